@@ -1,0 +1,85 @@
+#pragma once
+/// @file time_integrator.hpp
+/// Time integrators for second-order systems written in positions (positional FEM, PFEM, MPM),
+///
+///   M a + C v + f_int(x) = f_ext(t),
+///
+/// where the unknown of every implicit step is the new position x_{n+1} (not an increment).
+///
+/// Contract (in the spirit of MFEM's SecondOrderODESolver / NewmarkSolver):
+///  - At entry to a step the state (x_n, v_n, a_n) is known and consistent.
+///  - begin_step(state, dt) stores the old state and returns nothing; predictor() gives the first Newton
+///    guess for x_{n+1}.
+///  - For a trial x_{n+1}, kinematics(x_{n+1}) returns the quantities at which the residual is evaluated:
+///    x_eval, v_eval, a_eval and t_eval (for Newmark these are x_{n+1}, v_{n+1}, a_{n+1}, t_{n+1}; for
+///    generalized-alpha the intermediate points x_{n+1-af}, v_{n+1-af}, a_{n+1-am}, t_{n+1-af}).
+///    The model assembles r = M a_eval + C v_eval + f_int(x_eval) - f_ext(t_eval).
+///  - coefficients() gives the derivatives of those quantities with respect to x_{n+1}:
+///    d a_eval/dx = c_m, d v_eval/dx = c_c, d x_eval/dx = c_k, so the consistent tangent is
+///    H = c_m M + c_c C + c_k K(x_eval).
+///  - end_step(x_{n+1}, state) writes (x_{n+1}, v_{n+1}, a_{n+1}) into the state.
+/// Explicit central difference is the limit case (Newmark with beta = 0, gamma = 1/2, in velocity-Verlet
+/// form): is_explicit() is true, and the model calls explicit_step() instead:
+///   x_{n+1} = x_n + dt v_n + dt^2/2 a_n,  a_{n+1} = M_L^{-1} F(x_{n+1}, v_n + dt a_n, t_{n+1}),
+///   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
+///
+/// References: Newmark (1959); Chung & Hulbert (1993), J. Appl. Mech. 60:371 (generalized-alpha with
+/// am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), gamma = 1/2 - am + af, beta = (1 - am + af)^2 / 4);
+/// Hughes (1987), The Finite Element Method, ch. 9 (central difference).
+#include <lagfsi/types.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace lagfsi {
+
+/// Positions, velocities and accelerations of all dofs at one time.
+struct KinematicState {
+  double t = 0.0;
+  Vec x, v, a;
+};
+
+/// What the residual is evaluated with, for a trial x_{n+1}.
+struct EvalPoint {
+  double t;
+  Vec x, v, a;
+};
+
+/// Derivatives of the evaluation point with respect to x_{n+1}: H = c_m M + c_c C + c_k K.
+struct TangentCoefficients {
+  double c_m, c_c, c_k;
+};
+
+class TimeIntegrator {
+ public:
+  virtual ~TimeIntegrator() = default;
+  virtual std::string type() const = 0;
+  virtual bool is_explicit() const { return false; }
+
+  /// Stores (x_n, v_n, a_n, t_n) and dt for the step to come.
+  virtual void begin_step(const KinematicState& s, double dt) = 0;
+  /// First guess for x_{n+1} (the "constant position" or the "constant acceleration" predictor).
+  virtual Vec predictor() const = 0;
+  /// Evaluation point for a trial x_{n+1}.
+  virtual EvalPoint kinematics(const Vec& x_new) const = 0;
+  virtual TangentCoefficients coefficients() const = 0;
+  /// v_{n+1}, a_{n+1} from the converged x_{n+1}; writes the new state (t_{n+1} = t_n + dt).
+  virtual void end_step(const Vec& x_new, KinematicState& s) const = 0;
+
+  /// Explicit integrators only: one step of central difference with a lumped (diagonal) mass.
+  /// force(x, v, t) returns f_ext - f_int - C v (the out-of-balance force); inv_mass is 1/M_ii
+  /// (0 for prescribed dofs, whose motion the caller imposes afterwards).
+  using ForceFunction = std::function<Vec(const Vec& x, const Vec& v, double t)>;
+  virtual void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt,
+                             KinematicState& s) const;
+};
+
+/// Newmark-beta (beta, gamma); beta = 1/4, gamma = 1/2 is the average-acceleration rule.
+std::unique_ptr<TimeIntegrator> make_newmark(double beta = 0.25, double gamma = 0.5);
+/// Generalized-alpha of Chung & Hulbert with spectral radius at infinity rho_inf in [0, 1].
+std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf);
+/// Explicit central difference (velocity-Verlet form; conditionally stable, dt < 2/omega_max).
+std::unique_ptr<TimeIntegrator> make_central_difference();
+
+}  // namespace lagfsi

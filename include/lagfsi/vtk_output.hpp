@@ -1,0 +1,51 @@
+#pragma once
+/// @file vtk_output.hpp
+/// ParaView output: one .pvd time series per body, one .vtu (unstructured grid, VTK XML, binary appended,
+/// zlib-compressed) per output step. The .pvd is rewritten (to a temporary file, then renamed) after each
+/// step so that it is a complete, valid file whenever the run stops.
+#include <lagfsi/mesh.hpp>
+#include <lagfsi/types.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lagfsi {
+
+/// A point or cell field: n_components values per point (or per cell), point after point.
+struct Field {
+  std::string name;
+  int n_components = 1;
+  std::vector<double> values;
+};
+
+/// What one .vtu holds. Cells are triangles of `order` (1: VTK_TRIANGLE, 2: VTK_QUADRATIC_TRIANGLE,
+/// 3: VTK_LAGRANGE_TRIANGLE); a mesh with zero cells and `vertices_as_cells` = true writes each point as a
+/// VTK_VERTEX (particle clouds).
+struct VtuData {
+  const TriMesh* mesh = nullptr;          ///< connectivity and order; its nodes are ignored if points given
+  std::vector<Vec2> points;               ///< current positions (empty: use mesh->nodes)
+  std::vector<Field> point_fields;
+  std::vector<Field> cell_fields;
+  bool vertices_as_cells = false;
+};
+
+/// Writes VTK XML unstructured grid file `path` (throws std::runtime_error on I/O failure).
+void write_vtu(const std::filesystem::path& path, const VtuData& data);
+
+/// A time series: `<dir>/<name>.pvd` referencing `<dir>/<name>/<name>_NNNNN.vtu`.
+class PvdSeries {
+ public:
+  PvdSeries(std::filesystem::path dir, std::string name);
+  /// Writes the .vtu for time t and rewrites the .pvd atomically.
+  void write(double t, const VtuData& data);
+  int steps_written() const { return static_cast<int>(entries_.size()); }
+  std::filesystem::path pvd_path() const;
+
+ private:
+  std::filesystem::path dir_;
+  std::string name_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace lagfsi

@@ -6,6 +6,7 @@
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/types.hpp>
 
+#include <string>
 #include <vector>
 
 namespace lagfsi::meshing {

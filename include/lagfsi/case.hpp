@@ -1,0 +1,71 @@
+#pragma once
+/// @file case.hpp
+/// The case file: what every model builder receives, the shared geometry and selection helpers, and the
+/// registry that turns a body's "type" string into a model.
+///
+/// A case file (JSON, comments allowed) has the top-level keys documented by case_defaults(); each body
+/// and each nested object is validated against its own defaults (see the builders), so `lagfsi check`
+/// prints the whole resolved case with every default filled in.
+#include <lagfsi/mesh.hpp>
+#include <lagfsi/model.hpp>
+#include <lagfsi/params.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lagfsi {
+
+struct NewtonSettings {
+  int max_iterations = 25;
+  double residual_tolerance = 1e-8;   ///< relative to the largest force term of the step
+  double position_tolerance = 1e-8;   ///< relative to the body's size
+};
+
+struct AnalysisSettings {
+  std::string type;            ///< "static" (load factor = time from 0 to 1) or "dynamic"
+  double dt = 0;               ///< time step (dynamic) or 1/load_steps (static)
+  double end_time = 0;         ///< 1 for static
+  Json integrator;             ///< {"type": "newmark"|"generalized_alpha"|"central_difference", ...}
+  NewtonSettings newton;
+  std::string linear_solver;   ///< linear_solver.hpp type
+};
+
+/// What a model builder gets besides its own parameters.
+struct CaseContext {
+  std::filesystem::path case_file;
+  std::filesystem::path base_dir;   ///< folder of the case file (relative paths start here)
+  std::filesystem::path out_dir;
+  AnalysisSettings analysis;
+  Vec2 gravity = Vec2::Zero();
+};
+
+/// Top-level defaults of a case file (null = required).
+const Json& case_defaults();
+
+/// Mesh of a geometry primitive. geometry: {"type": "rectangle", "origin": [x, y], "size": [w, h]} |
+/// {"type": "polygon", "points": [[x, y], ...], "holes": [[[x, y], ...], ...]} |
+/// {"type": "circle_cut", "points": [...], "centre": [x, y], "radius": r} (a polygon minus a disc that
+/// cuts its boundary in exactly two points, e.g. a flag clamped on a cylinder).
+/// mesh: {"size": h, "order": 1|2|3, "type": "unstructured"|"structured", "divisions": [nx, ny],
+/// "pattern": "crossed"|"right"|"left"} ("structured" for rectangles only).
+TriMesh build_mesh(Params geometry, Params mesh);
+
+/// Node selection: {"type": "point", "at": [x, y]} (the nearest node, which must lie within
+/// "tolerance" — default 1e-6 of the body size), {"type": "segment", "from": [..], "to": [..]} (nodes
+/// within tolerance of the segment), {"type": "box", "min": [..], "max": [..]}, {"type": "circle",
+/// "centre": [..], "radius": r} (nodes within tolerance of the circle), {"type": "all"}.
+/// An empty selection is an error.
+std::vector<Index> select_nodes(Params select, const std::vector<Vec2>& nodes);
+
+/// Registry of body types: a small explicit map from the "type" string to a builder.
+using ModelBuilder = std::function<std::unique_ptr<PhysicsModel>(Params body, const CaseContext&)>;
+const std::map<std::string, ModelBuilder>& model_registry();
+
+/// Builders registered in model_registry().
+std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx);
+
+}  // namespace lagfsi

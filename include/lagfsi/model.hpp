@@ -1,0 +1,73 @@
+#pragma once
+/// @file model.hpp
+/// The lifecycle every physics model follows, so that one driver (and later the FSI loop) can advance
+/// solids, fluids and MPM alike:
+///
+///   initialize()                once, before the first step (initial state, consistent accelerations)
+///   predict(t_new, dt)          begin a step: store the old state, impose the prescribed values at t_new,
+///                               set the first guess
+///   solve_iteration()           one Newton correction: assemble, factorize, solve, update; returns the norms
+///   finalize_step()             the step converged: update velocities/accelerations, commit the state
+///   write_output(t)             ParaView output of the committed state
+///
+/// Probes are created by the model that owns the quantity (make_probe) and sampled after finalize_step.
+#include <lagfsi/params.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lagfsi {
+
+/// Wall-clock seconds spent per phase (accumulated by the model, reset by the driver each step).
+struct PhaseTimes {
+  double assembly = 0, factorization = 0, solve = 0, output = 0;
+  PhaseTimes& operator+=(const PhaseTimes& o) {
+    assembly += o.assembly;
+    factorization += o.factorization;
+    solve += o.solve;
+    output += o.output;
+    return *this;
+  }
+};
+
+/// Norms of one Newton iteration: the residual at the iterate the call started from, and the correction
+/// it applied. Convergence (decided by the model, reported in `converged`): residual <= rtol *
+/// residual_ref at an iterate whose last correction was <= xtol * increment_ref (the body's size); a
+/// converged call applies no correction, so the last factorization of a step is not wasted.
+struct IterationReport {
+  double residual = 0, residual_ref = 0, increment = 0, increment_ref = 1;
+  bool converged = false;
+};
+
+/// One or more columns of probes.csv.
+class Probe {
+ public:
+  virtual ~Probe() = default;
+  virtual std::vector<std::string> columns() const = 0;
+  virtual std::vector<double> sample() const = 0;
+};
+
+class PhysicsModel {
+ public:
+  virtual ~PhysicsModel() = default;
+  virtual std::string name() const = 0;
+  virtual std::string type() const = 0;
+  virtual void initialize() = 0;
+  virtual void predict(double t_new, double dt) = 0;
+  virtual IterationReport solve_iteration() = 0;
+  virtual void finalize_step() = 0;
+  virtual void write_output(double t) = 0;
+  /// Creates a probe of this model from its case-file parameters (the "type" selects it).
+  virtual std::unique_ptr<Probe> make_probe(Params p) = 0;
+
+  virtual Index num_nodes() const = 0;
+  virtual Index num_elements() const = 0;
+  virtual double fluid_area() const { return 0.0; }
+  PhaseTimes& times() { return times_; }
+
+ protected:
+  PhaseTimes times_;
+};
+
+}  // namespace lagfsi

@@ -1,0 +1,84 @@
+#pragma once
+/// @file params.hpp
+/// Case-file parameters: a JSON value that knows which file and which JSON path it came from, so that
+/// every error is one line "FILE: /json/path: reason" (lagfsi::InputError).
+///
+/// In the spirit of Kratos' Parameters::ValidateAndAssignDefaults: each object is checked against a
+/// defaults object; keys not in the defaults are errors that list the valid keys; a value whose JSON type
+/// differs from the default's is an error; missing keys take the default. A default of `null` marks a
+/// required key (no default), so the defaults object documents every key in one place.
+#include <lagfsi/error.hpp>
+#include <lagfsi/types.hpp>
+
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace lagfsi {
+
+using Json = nlohmann::json;
+
+class Params {
+ public:
+  Params() = default;
+  /// Owns `value`. Children returned by at() refer into the same document, so validate() on a child
+  /// fills defaults into the whole document (which `lagfsi check` then prints resolved).
+  Params(Json value, std::string file, std::string path = "")
+      : owner_(std::make_shared<Json>(std::move(value))), file_(std::move(file)), path_(std::move(path)) {
+    node_ = owner_.get();
+  }
+
+  /// Reads and parses a JSON file; a missing file or a syntax error throws InputError (with line).
+  static Params load(const std::filesystem::path& file);
+
+  /// Checks the keys and types of this object against `defaults` and fills the missing keys.
+  /// Keys of `defaults` whose value is null are required. Number defaults accept integer or float
+  /// values; object and array defaults are not descended into (validate children separately).
+  void validate(const Json& defaults);
+
+  bool has(const std::string& key) const;
+  Params at(const std::string& key) const;   ///< child object (error if absent)
+  Params at(size_t i) const;                 ///< array element
+  size_t size() const;                        ///< array length (error if not an array)
+  bool is_null() const { return node_->is_null(); }
+
+  double number(const std::string& key) const;            ///< finite number
+  double positive(const std::string& key) const;          ///< > 0
+  double non_negative(const std::string& key) const;      ///< >= 0
+  int integer(const std::string& key, int min_value = std::numeric_limits<int>::min()) const;
+  bool boolean(const std::string& key) const;
+  std::string string(const std::string& key) const;
+  /// A string that must be one of `options` (error lists them).
+  std::string choice(const std::string& key, const std::vector<std::string>& options) const;
+  Vec2 vec2(const std::string& key) const;                 ///< [x, y], finite
+  std::vector<Vec2> points(const std::string& key) const;  ///< [[x, y], ...]
+  std::vector<double> numbers(const std::string& key) const;
+
+  const Json& json() const { return *node_; }
+  Json& json() { return *node_; }
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+  std::string child_path(const std::string& key) const { return path_ + "/" + key; }
+
+  /// Throws InputError at this object's path (or at a child key's path).
+  [[noreturn]] void fail(const std::string& reason) const;
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+
+ private:
+  Params(std::shared_ptr<Json> owner, Json* node, std::string file, std::string path)
+      : owner_(std::move(owner)), node_(node), file_(std::move(file)), path_(std::move(path)) {}
+  const Json& get(const std::string& key) const;
+  std::shared_ptr<Json> owner_;
+  Json* node_ = nullptr;
+  std::string file_, path_;
+};
+
+/// Applies "a.b.0.c=value" to a JSON document: the value is parsed as JSON when it is valid JSON,
+/// otherwise taken as a string; array indices are numbers; intermediate objects must exist.
+/// Throws InputError (file = "--set") for a path that does not exist.
+void apply_override(Json& doc, const std::string& assignment);
+
+}  // namespace lagfsi

@@ -1,0 +1,380 @@
+#include <lagfsi/analysis.hpp>
+#include <lagfsi/case.hpp>
+#include <lagfsi/error.hpp>
+#include <lagfsi/linear_solver.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#ifdef LAGFSI_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+namespace lagfsi {
+
+namespace fs = std::filesystem;
+
+const Json& case_defaults() {
+  static const Json d = {
+      {"name", ""},
+      {"description", ""},
+      {"analysis", nullptr},
+      {"gravity", Json::array({0.0, 0.0})},
+      {"bodies", nullptr},
+      {"probes", Json::array()},
+      {"output", Json::object()},
+  };
+  return d;
+}
+
+const std::map<std::string, ModelBuilder>& model_registry() {
+  static const std::map<std::string, ModelBuilder> r = {
+      {"solid", make_solid_model},
+  };
+  return r;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string fmt(double x, int prec = 6) {
+  std::ostringstream o;
+  o << std::setprecision(prec) << x;
+  return o.str();
+}
+
+/// Everything built from the case file.
+struct Case {
+  Params root;
+  CaseContext ctx;
+  std::string name;
+  std::vector<std::unique_ptr<PhysicsModel>> models;
+  std::vector<std::unique_ptr<Probe>> probes;
+  int output_every = 1;
+  bool vtk = true;
+};
+
+AnalysisSettings read_analysis(Params a) {
+  a.validate({{"type", nullptr},
+              {"dt", 0.0},
+              {"end_time", 0.0},
+              {"load_steps", 10},
+              {"integrator", Json{{"type", "newmark"}}},
+              {"newton", Json::object()},
+              {"linear_solver", Json{{"type", "cholmod"}}}});
+  AnalysisSettings s;
+  s.type = a.choice("type", {"static", "dynamic"});
+  if (s.type == "static") {
+    const int n = a.integer("load_steps", 1);
+    s.dt = 1.0 / n;
+    s.end_time = 1.0;
+  } else {
+    s.dt = a.positive("dt");
+    s.end_time = a.positive("end_time");
+    if (s.end_time / s.dt > 1e8) a.fail("dt", "more than 1e8 steps requested");
+  }
+  Params it = a.at("integrator");
+  if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
+  const std::string itype = it.choice("type", {"newmark", "generalized_alpha", "central_difference"});
+  if (itype == "newmark") {
+    it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}});
+    if (!(it.number("beta") > 0)) it.fail("beta", "must be positive (beta = 0 is the explicit central_difference)");
+    if (it.number("gamma") < 0.5) it.fail("gamma", "must be at least 1/2 (gamma < 1/2 is unstable)");
+  } else if (itype == "generalized_alpha") {
+    it.validate({{"type", "generalized_alpha"}, {"rho_inf", 0.8}});
+    const double r = it.number("rho_inf");
+    if (r < 0 || r > 1) it.fail("rho_inf", "must lie in [0, 1]");
+  } else {
+    it.validate({{"type", "central_difference"}});
+    it.fail("type", "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
+                    "(use newmark or generalized_alpha)");
+  }
+  s.integrator = it.json();
+  Params nw = a.at("newton");
+  nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-8}, {"position_tolerance", 1e-8}});
+  s.newton.max_iterations = nw.integer("max_iterations", 1);
+  s.newton.residual_tolerance = nw.positive("residual_tolerance");
+  s.newton.position_tolerance = nw.positive("position_tolerance");
+  Params ls = a.at("linear_solver");
+  ls.validate({{"type", "cholmod"}});
+  s.linear_solver = ls.choice("type", linear_solver_types());
+  return s;
+}
+
+Case build_case(const RunOptions& opt, bool for_check) {
+  Case c;
+  c.root = Params::load(opt.case_file);
+  for (const auto& o : opt.overrides) apply_override(c.root.json(), o);
+  c.root.validate(case_defaults());
+  c.name = c.root.string("name");
+  if (c.name.empty()) c.name = opt.case_file.stem().string();
+  c.ctx.case_file = opt.case_file;
+  c.ctx.base_dir = opt.case_file.parent_path();
+  c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
+  c.ctx.analysis = read_analysis(c.root.at("analysis"));
+  c.ctx.gravity = c.root.vec2("gravity");
+  Params out = c.root.at("output");
+  out.validate({{"every", 1}, {"vtk", true}});
+  c.output_every = out.integer("every", 1);
+  c.vtk = out.boolean("vtk");
+  (void)for_check;
+
+  Params bodies = c.root.at("bodies");
+  if (bodies.size() == 0) bodies.fail("at least one body is needed");
+  std::vector<std::string> types;
+  for (const auto& [k, v] : model_registry()) types.push_back(k);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    Params b = bodies.at(i);
+    if (!b.json().is_object()) b.fail("expected an object");
+    if (!b.has("type")) b.fail("type", "required key is missing");
+    const std::string type = b.choice("type", types);
+    c.models.push_back(model_registry().at(type)(b, c.ctx));
+    for (size_t j = 0; j + 1 < c.models.size(); ++j)
+      if (c.models[j]->name() == c.models.back()->name()) b.fail("name", "duplicate body name");
+  }
+  Params probes = c.root.at("probes");
+  std::vector<std::string> names;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    Params p = probes.at(i);
+    if (!p.json().is_object()) p.fail("expected an object");
+    if (!p.has("name")) p.fail("name", "required key is missing");
+    if (!p.has("type")) p.fail("type", "required key is missing");
+    if (!p.has("body")) p.fail("body", "required key is missing");
+    const std::string body = p.string("body");
+    PhysicsModel* m = nullptr;
+    for (auto& mm : c.models)
+      if (mm->name() == body) m = mm.get();
+    if (!m) p.fail("body", "no body named '" + body + "'");
+    auto probe = m->make_probe(p);
+    for (const auto& col : probe->columns()) {
+      if (col == "time" || std::find(names.begin(), names.end(), col) != names.end())
+        p.fail("name", "duplicate probe column '" + col + "'");
+      names.push_back(col);
+    }
+    c.probes.push_back(std::move(probe));
+  }
+  return c;
+}
+
+/// Writes text to a file through a temporary and a rename (the file is always complete).
+void write_atomic(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream o(tmp);
+    if (!o) throw std::runtime_error("cannot write " + tmp.string());
+    o << text;
+  }
+  fs::rename(tmp, path);
+}
+
+struct Totals {
+  PhaseTimes phases;
+  long iterations = 0;
+  int max_iterations = 0;
+  int steps = 0;
+};
+
+}  // namespace
+
+int check_case(const RunOptions& opt) {
+  try {
+    Case c = build_case(opt, true);
+    std::cout << c.root.json().dump(2) << "\n";
+    return kOk;
+  } catch (const InputError& e) {
+    std::cerr << "lagfsi: error: " << e.what() << "\n";
+    return kInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
+    return kInputError;
+  }
+}
+
+int run_case(const RunOptions& opt) {
+  const auto t_start = Clock::now();
+#ifdef LAGFSI_HAVE_OPENMP
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+#endif
+  std::unique_ptr<Case> cp;
+  try {
+    cp = std::make_unique<Case>(build_case(opt, false));
+  } catch (const InputError& e) {
+    std::cerr << "lagfsi: error: " << e.what() << "\n";
+    return kInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
+    return kInputError;
+  }
+  Case& c = *cp;
+  const fs::path out = c.ctx.out_dir;
+  std::ofstream probes_csv, log_csv;
+  Totals tot;
+  std::string status = "completed", message;
+  int code = kOk;
+  double t = 0.0, last_output_t = -1.0;
+  const AnalysisSettings& an = c.ctx.analysis;
+  const long nsteps = static_cast<long>(std::ceil(an.end_time / an.dt - 1e-9));
+
+  auto write_summary = [&]() {
+    Json s;
+    s["case"] = c.name;
+    s["case_file"] = opt.case_file.string();
+    s["status"] = status;
+    s["message"] = message;
+    s["analysis"] = an.type;
+    s["steps"] = tot.steps;
+    s["steps_planned"] = nsteps;
+    s["time"] = t;
+    s["wall_time"] = since(t_start);
+    s["newton_iterations"] = {{"total", tot.iterations},
+                              {"mean", tot.steps ? double(tot.iterations) / tot.steps : 0.0},
+                              {"max", tot.max_iterations}};
+    s["timing"] = {{"assembly", tot.phases.assembly},
+                   {"factorization", tot.phases.factorization},
+                   {"solve", tot.phases.solve},
+                   {"output", tot.phases.output}};
+    Json bodies = Json::array();
+    for (const auto& m : c.models)
+      bodies.push_back({{"name", m->name()}, {"type", m->type()}, {"nodes", m->num_nodes()},
+                        {"elements", m->num_elements()}});
+    s["bodies"] = bodies;
+#ifdef LAGFSI_HAVE_OPENMP
+    s["threads"] = omp_get_max_threads();
+#else
+    s["threads"] = 1;
+#endif
+    write_atomic(out / "summary.json", s.dump(2) + "\n");
+  };
+
+  try {
+    fs::create_directories(out);
+    write_atomic(out / "resolved_case.json", c.root.json().dump(2) + "\n");
+    probes_csv.open(out / "probes.csv");
+    log_csv.open(out / "log.csv");
+    if (!probes_csv || !log_csv) throw std::runtime_error("cannot write in " + out.string());
+    probes_csv << "time";
+    for (const auto& p : c.probes)
+      for (const auto& col : p->columns()) probes_csv << "," << col;
+    probes_csv << "\n" << std::setprecision(12);
+    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area,"
+               "t_assembly,t_factorization,t_solve,t_output,t_step\n"
+            << std::setprecision(10);
+    auto sample = [&]() {
+      probes_csv << t;
+      for (const auto& p : c.probes)
+        for (double v : p->sample()) probes_csv << "," << v;
+      probes_csv << "\n";
+      probes_csv.flush();
+    };
+    auto output = [&]() {
+      if (!c.vtk || t == last_output_t) return;
+      last_output_t = t;
+      for (auto& m : c.models) m->write_output(t);
+    };
+
+    for (auto& m : c.models) m->initialize();
+    output();
+    sample();
+    write_summary();
+
+    const NewtonSettings& nw = an.newton;
+    for (long step = 1; step <= nsteps; ++step) {
+      const auto t_step = Clock::now();
+      const double t_new = std::min(step * an.dt, an.end_time);
+      const double dt = t_new - t;
+      int iters_step = 0;
+      double last_res = 0.0;
+      for (auto& m : c.models) m->times() = PhaseTimes{};
+      for (auto& m : c.models) {
+        m->predict(t_new, dt);
+        bool ok = false;
+        for (int it = 1; it <= nw.max_iterations; ++it) {
+          const IterationReport r = m->solve_iteration();
+          ++iters_step;
+          const double rref = std::max(r.residual_ref, 1e-300);
+          last_res = r.residual / rref;
+          if (!std::isfinite(last_res) || last_res > 1e12)
+            throw SolverError("body '" + m->name() + "': Newton diverged at t = " + fmt(t_new) +
+                              " (relative residual " + fmt(last_res, 3) + ")");
+          if (r.converged) {
+            ok = true;
+            break;
+          }
+        }
+        if (!ok)
+          throw SolverError("body '" + m->name() + "': Newton did not converge in " +
+                            std::to_string(nw.max_iterations) + " iterations at t = " + fmt(t_new) +
+                            " (relative residual " + fmt(last_res, 3) + ")");
+      }
+      for (auto& m : c.models) m->finalize_step();
+      t = t_new;
+      ++tot.steps;
+      tot.iterations += iters_step;
+      tot.max_iterations = std::max(tot.max_iterations, iters_step);
+      sample();
+      if (step % c.output_every == 0 || step == nsteps) output();
+      PhaseTimes ph;
+      Index nn = 0, ne = 0;
+      double area = 0;
+      for (auto& m : c.models) {
+        ph += m->times();
+        nn += m->num_nodes();
+        ne += m->num_elements();
+        area += m->fluid_area();
+      }
+      tot.phases += ph;
+      const double wall_step = since(t_step);
+      log_csv << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn << "," << ne
+              << "," << area << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
+              << ph.output << "," << wall_step << "\n";
+      log_csv.flush();
+      if (!opt.quiet) {
+        const double wall = since(t_start);
+        const double eta = wall / step * (nsteps - step);
+        std::fprintf(stderr, "[%s] step %ld/%ld t=%.6g dt=%.3g it=%d wall=%.2fs eta=%.1fs\n", c.name.c_str(), step,
+                     nsteps, t, dt, iters_step, wall, eta);
+      }
+      if (step % 50 == 0) write_summary();
+    }
+  } catch (const SolverError& e) {
+    status = "failed";
+    message = e.what();
+    code = kSolverError;
+  } catch (const InputError& e) {
+    status = "failed";
+    message = e.what();
+    code = kInputError;
+  } catch (const std::exception& e) {
+    status = "failed";
+    message = e.what();
+    code = kInternalError;
+  }
+  if (code != kOk) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << message << "\n";
+    // Last output: the last converged state, so that the series ends where the run did.
+    try {
+      if (c.vtk && t != last_output_t)
+        for (auto& m : c.models) m->write_output(t);
+    } catch (const std::exception&) {
+    }
+  }
+  try {
+    write_summary();
+  } catch (const std::exception& e) {
+    std::cerr << "lagfsi: error: " << e.what() << "\n";
+    if (code == kOk) code = kInternalError;
+  }
+  if (!opt.quiet && code == kOk)
+    std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,
+                 tot.iterations, since(t_start), out.string().c_str());
+  return code;
+}
+
+}  // namespace lagfsi

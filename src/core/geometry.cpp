@@ -1,0 +1,196 @@
+#include <lagfsi/case.hpp>
+#include <lagfsi/meshing/primitives.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace lagfsi {
+
+namespace {
+
+double bbox_diagonal(const std::vector<Vec2>& pts) {
+  if (pts.empty()) return 1.0;
+  Vec2 lo = pts[0], hi = pts[0];
+  for (const auto& p : pts) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return std::max((hi - lo).norm(), 1e-300);
+}
+
+/// Boundary of (polygon minus disc) for a disc that crosses the polygon boundary exactly twice.
+std::vector<Vec2> circle_cut(const Params& g, const std::vector<Vec2>& poly, const Vec2& c, double r, double h) {
+  const size_t n = poly.size();
+  auto inside = [&](const Vec2& p) { return (p - c).norm() < r; };
+  struct Crossing {
+    size_t edge;
+    double s;
+    Vec2 p;
+    bool entering;
+  };
+  std::vector<Crossing> cross;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % n], d = b - a;
+    // |a + s d - c|^2 = r^2
+    const double A = d.squaredNorm(), B = 2 * d.dot(a - c), C = (a - c).squaredNorm() - r * r;
+    const double disc = B * B - 4 * A * C;
+    if (disc <= 0) continue;
+    const double sq = std::sqrt(disc);
+    for (double s : {(-B - sq) / (2 * A), (-B + sq) / (2 * A)})
+      if (s > 0 && s < 1) cross.push_back({i, s, a + s * d, inside(a + (s + 1e-9) * d)});
+  }
+  if (cross.size() != 2)
+    g.fail("the circle must cut the polygon boundary in exactly two points (found " + std::to_string(cross.size()) +
+           ")");
+  std::sort(cross.begin(), cross.end(), [](const Crossing& x, const Crossing& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.s < y.s;
+  });
+  const Crossing& enter = cross[0].entering ? cross[0] : cross[1];
+  const Crossing& leave = cross[0].entering ? cross[1] : cross[0];
+  // Walk from the exit point along the polygon (outside the disc) to the entry point, then along the arc
+  // back to the exit point (the arc bulges into the polygon: clockwise around c for a CCW polygon).
+  std::vector<Vec2> out{leave.p};
+  size_t i = (leave.edge + 1) % n;
+  for (size_t k = 0; k < n; ++k) {
+    if (i == (enter.edge + 1) % n && k > 0) break;
+    if (!inside(poly[i])) out.push_back(poly[i]);
+    if (i == enter.edge) break;
+    i = (i + 1) % n;
+  }
+  out.push_back(enter.p);
+  const double a0 = std::atan2(enter.p.y() - c.y(), enter.p.x() - c.x());
+  double a1 = std::atan2(leave.p.y() - c.y(), leave.p.x() - c.x());
+  // Go the way whose mid-point is inside the polygon: try both senses.
+  auto mid_inside_poly = [&](double from, double to) {
+    const double am = 0.5 * (from + to);
+    const Vec2 m = c + r * Vec2(std::cos(am), std::sin(am));
+    bool in = false;  // even-odd rule
+    for (size_t j = 0, k = n - 1; j < n; k = j++)
+      if ((poly[j].y() > m.y()) != (poly[k].y() > m.y()) &&
+          m.x() < (poly[k].x() - poly[j].x()) * (m.y() - poly[j].y()) / (poly[k].y() - poly[j].y()) + poly[j].x())
+        in = !in;
+    return in;
+  };
+  double a1_ccw = a1, a1_cw = a1;
+  while (a1_ccw <= a0) a1_ccw += 2 * std::numbers::pi;
+  while (a1_cw >= a0) a1_cw -= 2 * std::numbers::pi;
+  a1 = mid_inside_poly(a0, a1_ccw) ? a1_ccw : a1_cw;
+  auto arc = meshing::arc_points(c, r, a0, a1, h);
+  for (size_t k = 1; k + 1 < arc.size(); ++k) out.push_back(arc[k]);
+  return out;
+}
+
+}  // namespace
+
+TriMesh build_mesh(Params g, Params m) {
+  if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
+  const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});
+  m.validate({{"size", nullptr},
+              {"order", 1},
+              {"type", "unstructured"},
+              {"divisions", Json::array()},
+              {"pattern", "crossed"}});
+  const double h = m.positive("size");
+  const int order = m.integer("order", 1);
+  if (order > 3) m.fail("order", "must be 1, 2 or 3");
+  const std::string mtype = m.choice("type", {"unstructured", "structured"});
+  TriMesh linear;
+  try {
+    if (type == "rectangle") {
+      g.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      const Vec2 o = g.vec2("origin"), s = g.vec2("size");
+      if (!(s.x() > 0 && s.y() > 0)) g.fail("size", "width and height must be positive");
+      if (mtype == "structured") {
+        int nx = static_cast<int>(std::ceil(s.x() / h - 1e-9)), ny = static_cast<int>(std::ceil(s.y() / h - 1e-9));
+        const auto div = m.json().at("divisions");
+        if (!div.empty()) {
+          if (!div.is_array() || div.size() != 2 || !div[0].is_number_integer() || !div[1].is_number_integer() ||
+              div[0].get<int>() < 1 || div[1].get<int>() < 1)
+            m.fail("divisions", "expected [nx, ny], two positive integers");
+          nx = div[0].get<int>();
+          ny = div[1].get<int>();
+        }
+        linear = meshing::mesh_rectangle_structured(o.x(), o.y(), o.x() + s.x(), o.y() + s.y(), nx, ny,
+                                                    m.choice("pattern", {"crossed", "right", "left"}));
+      } else {
+        meshing::PolygonRegion r;
+        r.outer = {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
+        linear = meshing::mesh_polygon(r, h);
+      }
+    } else {
+      if (mtype == "structured") m.fail("type", "a structured mesh needs a rectangle geometry");
+      if (type == "polygon") {
+        g.validate({{"type", "polygon"}, {"points", nullptr}, {"holes", Json::array()}});
+        meshing::PolygonRegion r;
+        r.outer = g.points("points");
+        const Params holes = g.at("holes");
+        for (size_t i = 0; i < holes.size(); ++i) {
+          Params hp(Json{{"p", holes.json()[i]}}, g.file(), holes.path() + "/" + std::to_string(i));
+          r.holes.push_back(hp.points("p"));
+        }
+        linear = meshing::mesh_polygon(r, h);
+      } else {
+        g.validate({{"type", "circle_cut"}, {"points", nullptr}, {"centre", nullptr}, {"radius", nullptr}});
+        meshing::PolygonRegion r;
+        r.outer = circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
+        linear = meshing::mesh_polygon(r, h);
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    g.fail(std::string("cannot mesh this geometry: ") + e.what());
+  }
+  return order == 1 ? linear : meshing::elevate(linear, order);
+}
+
+std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
+  if (!s.json().is_object() || !s.has("type")) s.fail("type", "required key is missing");
+  const std::string type = s.choice("type", {"point", "segment", "box", "circle", "all"});
+  const double L = bbox_diagonal(nodes);
+  std::vector<Index> out;
+  if (type == "point") {
+    s.validate({{"type", "point"}, {"at", nullptr}, {"tolerance", 1e-6 * L}});
+    const Vec2 p = s.vec2("at");
+    const double tol = s.positive("tolerance");
+    Index best = -1;
+    double dbest = 1e300;
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i) {
+      const double d = (nodes[i] - p).norm();
+      if (d < dbest) {
+        dbest = d;
+        best = i;
+      }
+    }
+    if (best < 0 || dbest > tol)
+      s.fail("at", "no node within " + std::to_string(tol) + " of the point (nearest at " + std::to_string(dbest) +
+                       ")");
+    out.push_back(best);
+  } else if (type == "segment") {
+    s.validate({{"type", "segment"}, {"from", nullptr}, {"to", nullptr}, {"tolerance", 1e-6 * L}});
+    const Vec2 a = s.vec2("from"), b = s.vec2("to");
+    const double tol = s.positive("tolerance");
+    const Vec2 d = b - a;
+    const double len2 = d.squaredNorm();
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i) {
+      const double t = len2 > 0 ? std::clamp((nodes[i] - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+      if ((nodes[i] - (a + t * d)).norm() <= tol) out.push_back(i);
+    }
+  } else if (type == "box") {
+    s.validate({{"type", "box"}, {"min", nullptr}, {"max", nullptr}});
+    const Vec2 lo = s.vec2("min"), hi = s.vec2("max");
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
+      if ((nodes[i].array() >= lo.array()).all() && (nodes[i].array() <= hi.array()).all()) out.push_back(i);
+  } else if (type == "circle") {
+    s.validate({{"type", "circle"}, {"centre", nullptr}, {"radius", nullptr}, {"tolerance", 1e-6 * L}});
+    const Vec2 c = s.vec2("centre");
+    const double r = s.positive("radius"), tol = s.positive("tolerance");
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
+      if (std::abs((nodes[i] - c).norm() - r) <= tol) out.push_back(i);
+  } else {
+    s.validate({{"type", "all"}});
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i) out.push_back(i);
+  }
+  if (out.empty()) s.fail("the selection contains no node");
+  return out;
+}
+
+}  // namespace lagfsi

@@ -1,0 +1,122 @@
+#include <lagfsi/time_integrator.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lagfsi {
+
+void TimeIntegrator::explicit_step(const ForceFunction&, const Vec&, double, KinematicState&) const {
+  throw std::logic_error("explicit_step called on the implicit integrator '" + type() + "'");
+}
+
+namespace {
+
+/// Newmark-type family in position form; generalized-alpha adds the intermediate evaluation points.
+///   a_{n+1} = (x_{n+1} - x_n - dt v_n - dt^2 (1/2 - beta) a_n) / (beta dt^2)
+///   v_{n+1} = v_n + dt ((1 - gamma) a_n + gamma a_{n+1})
+///   x_e = (1 - af) x_{n+1} + af x_n, v_e likewise, a_e = (1 - am) a_{n+1} + am a_n, t_e = t_n + (1 - af) dt
+class AlphaNewmark final : public TimeIntegrator {
+ public:
+  AlphaNewmark(std::string name, double beta, double gamma, double am, double af)
+      : name_(std::move(name)), beta_(beta), gamma_(gamma), am_(am), af_(af) {
+    if (!(beta > 0.0) || !(gamma >= 0.0) || !std::isfinite(beta) || !std::isfinite(gamma))
+      throw std::invalid_argument("Newmark needs beta > 0 and gamma >= 0");
+  }
+  std::string type() const override { return name_; }
+
+  void begin_step(const KinematicState& s, double dt) override {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be positive and finite");
+    old_ = s;
+    dt_ = dt;
+  }
+
+  Vec predictor() const override { return old_.x; }
+
+  EvalPoint kinematics(const Vec& x_new) const override {
+    const Vec a_new = acceleration(x_new);
+    const Vec v_new = old_.v + dt_ * ((1.0 - gamma_) * old_.a + gamma_ * a_new);
+    EvalPoint p;
+    p.t = old_.t + (1.0 - af_) * dt_;
+    p.x = (1.0 - af_) * x_new + af_ * old_.x;
+    p.v = (1.0 - af_) * v_new + af_ * old_.v;
+    p.a = (1.0 - am_) * a_new + am_ * old_.a;
+    return p;
+  }
+
+  TangentCoefficients coefficients() const override {
+    const double da = 1.0 / (beta_ * dt_ * dt_);
+    const double dv = gamma_ / (beta_ * dt_);
+    return {(1.0 - am_) * da, (1.0 - af_) * dv, 1.0 - af_};
+  }
+
+  void end_step(const Vec& x_new, KinematicState& s) const override {
+    const Vec a_new = acceleration(x_new);
+    s.v = old_.v + dt_ * ((1.0 - gamma_) * old_.a + gamma_ * a_new);
+    s.a = a_new;
+    s.x = x_new;
+    s.t = old_.t + dt_;
+  }
+
+ private:
+  Vec acceleration(const Vec& x_new) const {
+    return (x_new - old_.x - dt_ * old_.v - dt_ * dt_ * (0.5 - beta_) * old_.a) / (beta_ * dt_ * dt_);
+  }
+
+  std::string name_;
+  double beta_, gamma_, am_, af_;
+  KinematicState old_;
+  double dt_ = 0.0;
+};
+
+class CentralDifference final : public TimeIntegrator {
+ public:
+  std::string type() const override { return "central_difference"; }
+  bool is_explicit() const override { return true; }
+  void begin_step(const KinematicState& s, double dt) override {
+    old_ = s;
+    dt_ = dt;
+  }
+  Vec predictor() const override { return old_.x + dt_ * old_.v + 0.5 * dt_ * dt_ * old_.a; }
+  EvalPoint kinematics(const Vec& x_new) const override { return {old_.t + dt_, x_new, old_.v, old_.a}; }
+  TangentCoefficients coefficients() const override { return {0.0, 0.0, 0.0}; }
+  void end_step(const Vec& x_new, KinematicState& s) const override {
+    s.x = x_new;
+    s.t = old_.t + dt_;
+  }
+
+  void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt,
+                     KinematicState& s) const override {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be positive and finite");
+    const Vec x_new = s.x + dt * s.v + 0.5 * dt * dt * s.a;
+    const Vec v_pred = s.v + 0.5 * dt * s.a;  // half-step velocity, used for the damping force
+    const Vec a_new = inv_mass.cwiseProduct(force(x_new, v_pred, s.t + dt));
+    s.v += 0.5 * dt * (s.a + a_new);
+    s.a = a_new;
+    s.x = x_new;
+    s.t += dt;
+  }
+
+ private:
+  KinematicState old_;
+  double dt_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<TimeIntegrator> make_newmark(double beta, double gamma) {
+  return std::make_unique<AlphaNewmark>("newmark", beta, gamma, 0.0, 0.0);
+}
+
+std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf) {
+  if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
+    throw std::invalid_argument("generalized-alpha needs 0 <= rho_inf <= 1");
+  const double am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+  const double af = rho_inf / (rho_inf + 1.0);
+  const double gamma = 0.5 - am + af;
+  const double beta = 0.25 * (1.0 - am + af) * (1.0 - am + af);
+  return std::make_unique<AlphaNewmark>("generalized_alpha", beta, gamma, am, af);
+}
+
+std::unique_ptr<TimeIntegrator> make_central_difference() { return std::make_unique<CentralDifference>(); }
+
+}  // namespace lagfsi

@@ -1,0 +1,217 @@
+/// @file vtk_output.cpp
+/// ParaView output (see vtk_output.hpp): VTK XML unstructured grids written by
+/// vtkXMLUnstructuredGridWriter (binary, appended, raw i.e. not base64-encoded, zlib-compressed), and the
+/// .pvd collection file written by hand.
+///
+/// Conventions of the written files:
+///  - points are 3D with z = 0;
+///  - a field with 2 components (a 2D vector) is written with 3 components, the third one 0, so that
+///    ParaView treats it as a vector (Glyph, Warp By Vector, magnitude colouring); other component
+///    counts are written as given;
+///  - cells: order 1 -> VTK_TRIANGLE, 2 -> VTK_QUADRATIC_TRIANGLE, 3 -> VTK_LAGRANGE_TRIANGLE with the
+///    node order of mesh.hpp, which is VTK's (vertices, then the edge nodes of edges 0-1, 1-2, 2-0, each
+///    from its first vertex, then the interior node), so connectivity is written unchanged.
+#include <lagfsi/vtk_output.hpp>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace lagfsi {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Creates the parent directory of `path` if needed; throws std::runtime_error naming it on failure.
+void ensure_parent_directory(const fs::path& path) {
+  const fs::path parent = path.parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent))
+    throw std::runtime_error(parent.string() + ": cannot create directory" +
+                             (ec ? " (" + ec.message() + ")" : std::string()));
+}
+
+/// A vtkDoubleArray holding `field` for `n` points or cells (2-component fields padded to 3).
+vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, const char* where) {
+  if (field.n_components < 1)
+    throw std::invalid_argument("write_vtu: field '" + field.name + "' has " +
+                                std::to_string(field.n_components) + " components");
+  const auto nc = static_cast<vtkIdType>(field.n_components);
+  if (static_cast<vtkIdType>(field.values.size()) != nc * n)
+    throw std::invalid_argument("write_vtu: " + std::string(where) + " field '" + field.name + "' has " +
+                                std::to_string(field.values.size()) + " values, expected " +
+                                std::to_string(nc * n));
+  const vtkIdType out_nc = nc == 2 ? 3 : nc;
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(field.name.c_str());
+  array->SetNumberOfComponents(static_cast<int>(out_nc));
+  array->SetNumberOfTuples(n);
+  double* out = array->GetPointer(0);
+  for (vtkIdType i = 0; i < n; ++i) {
+    for (vtkIdType c = 0; c < nc; ++c) out[i * out_nc + c] = field.values[static_cast<size_t>(i * nc + c)];
+    if (nc == 2) out[i * out_nc + 2] = 0.0;
+  }
+  return array;
+}
+
+int vtk_cell_type(int order) {
+  switch (order) {
+    case 1: return VTK_TRIANGLE;
+    case 2: return VTK_QUADRATIC_TRIANGLE;
+    case 3: return VTK_LAGRANGE_TRIANGLE;
+    default: throw std::invalid_argument("write_vtu: unsupported triangle order " + std::to_string(order));
+  }
+}
+
+/// XML attribute value with the five special characters escaped.
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_vtu(const fs::path& path, const VtuData& data) {
+  // ------------------------------------------------------------ points
+  const std::vector<Vec2>* points = &data.points;
+  if (points->empty() && data.mesh) points = &data.mesh->nodes;
+  const auto np = static_cast<vtkIdType>(points->size());
+
+  vtkNew<vtkDoubleArray> coords;
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(np);
+  double* xyz = coords->GetPointer(0);
+  for (vtkIdType i = 0; i < np; ++i) {
+    const Vec2& p = (*points)[static_cast<size_t>(i)];
+    xyz[3 * i] = p.x();
+    xyz[3 * i + 1] = p.y();
+    xyz[3 * i + 2] = 0.0;
+  }
+  vtkNew<vtkPoints> vtk_points;
+  vtk_points->SetData(coords);
+
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(vtk_points);
+
+  // ------------------------------------------------------------ cells
+  const Index ne = data.mesh ? data.mesh->num_elements() : 0;
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  int cell_type = VTK_VERTEX;
+  vtkIdType nc = 0;
+  if (ne > 0) {
+    if (data.vertices_as_cells)
+      throw std::invalid_argument("write_vtu: vertices_as_cells needs a mesh without cells");
+    const TriMesh& mesh = *data.mesh;
+    cell_type = vtk_cell_type(mesh.order);
+    const int npe = mesh.nodes_per_element();
+    if (mesh.conn.size() != static_cast<size_t>(ne) * static_cast<size_t>(npe))
+      throw std::invalid_argument("write_vtu: connectivity size is not a multiple of " + std::to_string(npe));
+    nc = ne;
+    offsets->SetNumberOfValues(nc + 1);
+    connectivity->SetNumberOfValues(nc * npe);
+    for (vtkIdType e = 0; e <= nc; ++e) offsets->SetValue(e, e * npe);
+    for (size_t k = 0; k < mesh.conn.size(); ++k) {
+      const Index node = mesh.conn[k];
+      if (node < 0 || node >= np)
+        throw std::invalid_argument("write_vtu: element node " + std::to_string(node) + " out of range (" +
+                                    std::to_string(np) + " points)");
+      connectivity->SetValue(static_cast<vtkIdType>(k), node);
+    }
+  } else if (data.vertices_as_cells) {
+    nc = np;
+    offsets->SetNumberOfValues(nc + 1);
+    connectivity->SetNumberOfValues(nc);
+    for (vtkIdType i = 0; i <= nc; ++i) offsets->SetValue(i, i);
+    for (vtkIdType i = 0; i < nc; ++i) connectivity->SetValue(i, i);
+  } else {
+    offsets->SetNumberOfValues(1);
+    offsets->SetValue(0, 0);
+  }
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets.Get(), connectivity.Get());
+  grid->SetCells(cell_type, cells);
+
+  // ------------------------------------------------------------ fields
+  for (const Field& f : data.point_fields) grid->GetPointData()->AddArray(make_array(f, np, "point"));
+  for (const Field& f : data.cell_fields) grid->GetCellData()->AddArray(make_array(f, nc, "cell"));
+
+  // ------------------------------------------------------------ write
+  ensure_parent_directory(path);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(path.string().c_str());
+  writer->SetInputData(grid);
+  writer->SetDataModeToAppended();
+  writer->SetEncodeAppendedData(false);
+  writer->SetCompressorTypeToZLib();
+  const int ok = writer->Write();
+  if (!ok || writer->GetErrorCode() != vtkErrorCode::NoError)
+    throw std::runtime_error(path.string() + ": cannot write VTK file (VTK error code " +
+                             std::to_string(writer->GetErrorCode()) + ")");
+}
+
+PvdSeries::PvdSeries(fs::path dir, std::string name) : dir_(std::move(dir)), name_(std::move(name)) {}
+
+fs::path PvdSeries::pvd_path() const { return dir_ / (name_ + ".pvd"); }
+
+void PvdSeries::write(double t, const VtuData& data) {
+  char file_name[64];
+  std::snprintf(file_name, sizeof file_name, "_%05d.vtu", steps_written());
+  // Relative to the .pvd, with '/' separators whatever the platform.
+  const std::string relative = name_ + "/" + name_ + file_name;
+  write_vtu(dir_ / name_ / (name_ + file_name), data);
+  entries_.emplace_back(t, relative);
+
+  // Rewrite the whole .pvd into a temporary file, then rename it over the old one (atomic on POSIX).
+  const fs::path pvd = pvd_path();
+  const fs::path tmp = dir_ / (name_ + ".pvd.tmp");
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot open for writing");
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    char time[32];
+    for (const auto& [time_value, file] : entries_) {
+      std::snprintf(time, sizeof time, "%.17g", time_value);
+      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(file)
+          << "\"/>\n";
+    }
+    out << "  </Collection>\n"
+        << "</VTKFile>\n";
+    out.flush();
+    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  std::error_code ec;
+  fs::rename(tmp, pvd, ec);
+  if (ec)
+    throw std::runtime_error(pvd.string() + ": cannot replace it by " + tmp.string() + " (" + ec.message() + ")");
+}
+
+}  // namespace lagfsi

@@ -1,0 +1,354 @@
+#include <lagfsi/element.hpp>
+#include <lagfsi/error.hpp>
+#include <lagfsi/solid.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace lagfsi {
+
+namespace {
+
+/// Parent-space data for all quadrature points of an order (shared by all elements).
+struct ParentRule {
+  std::vector<Eigen::VectorXd> N;
+  std::vector<Eigen::MatrixX2d> dN;
+  std::vector<double> w;
+};
+
+ParentRule parent_rule(int order, int degree) {
+  ParentRule r;
+  for (const auto& q : triangle_quadrature(degree)) {
+    Eigen::VectorXd N;
+    Eigen::MatrixX2d dN;
+    triangle_shape(order, q.xi1, q.xi2, N, dN);
+    r.N.push_back(N);
+    r.dN.push_back(dN);
+    r.w.push_back(q.weight);
+  }
+  return r;
+}
+
+}  // namespace
+
+SolidBody::SolidBody(TriMesh reference, std::shared_ptr<const SolidMaterial> material, double thickness)
+    : mesh_(std::move(reference)), material_(std::move(material)), thickness_(thickness) {
+  if (mesh_.order < 1 || mesh_.order > 3) throw std::invalid_argument("solid elements must be of order 1, 2 or 3");
+  if (mesh_.num_elements() == 0) throw std::invalid_argument("solid mesh has no elements");
+  if (!(thickness_ > 0.0)) throw std::invalid_argument("thickness must be positive");
+  const ParentRule rule = parent_rule(mesh_.order, 2 * mesh_.order);
+  qdN_ = rule.dN;
+  qw_ = rule.w;
+  X_.resize(num_dofs());
+  for (Index i = 0; i < num_nodes(); ++i) X_.segment<2>(2 * i) = mesh_.nodes[i];
+  build_pattern();
+  color_elements();
+  build_mass();
+}
+
+void SolidBody::build_pattern() {
+  const int npe = mesh_.nodes_per_element(), m = 2 * npe;
+  const Index ne = mesh_.num_elements(), nd = num_dofs();
+  // Node adjacency -> dof pattern.
+  std::vector<std::vector<Index>> adj(num_nodes());
+  for (Index e = 0; e < ne; ++e) {
+    const Index* c = mesh_.element(e);
+    for (int a = 0; a < npe; ++a)
+      for (int b = 0; b < npe; ++b) adj[c[a]].push_back(c[b]);
+  }
+  std::vector<int> outer(nd + 1, 0);
+  std::vector<int> inner;
+  for (Index i = 0; i < num_nodes(); ++i) {
+    auto& v = adj[i];
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  // Column 2i+c holds rows 2j+d for all neighbours j (sorted).
+  for (Index i = 0; i < num_nodes(); ++i)
+    for (int c = 0; c < 2; ++c) {
+      outer[2 * i + c + 1] = outer[2 * i + c] + static_cast<int>(2 * adj[i].size());
+      for (Index j : adj[i]) {
+        inner.push_back(2 * j);
+        inner.push_back(2 * j + 1);
+      }
+    }
+  std::vector<double> values(inner.size(), 0.0);
+  pattern_ = Eigen::Map<const SparseMatrix>(nd, nd, static_cast<int>(inner.size()), outer.data(), inner.data(),
+                                            values.data());
+  pattern_.makeCompressed();
+  // Scatter map.
+  scatter_.resize(static_cast<size_t>(ne) * m * m);
+  const int* op = pattern_.outerIndexPtr();
+  const int* ip = pattern_.innerIndexPtr();
+  for (Index e = 0; e < ne; ++e) {
+    const Index* c = mesh_.element(e);
+    for (int j = 0; j < m; ++j) {
+      const int gj = 2 * c[j / 2] + j % 2;
+      for (int i = 0; i < m; ++i) {
+        const int gi = 2 * c[i / 2] + i % 2;
+        const int* pos = std::lower_bound(ip + op[gj], ip + op[gj + 1], gi);
+        scatter_[(static_cast<size_t>(e) * m + j) * m + i] = static_cast<int>(pos - ip);
+      }
+    }
+  }
+}
+
+void SolidBody::color_elements() {
+  const int npe = mesh_.nodes_per_element();
+  std::vector<std::uint64_t> used(num_nodes(), 0);
+  std::vector<int> color(mesh_.num_elements());
+  int ncolors = 0;
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    const Index* c = mesh_.element(e);
+    std::uint64_t forbidden = 0;
+    for (int a = 0; a < npe; ++a) forbidden |= used[c[a]];
+    int k = 0;
+    while (k < 64 && (forbidden >> k) & 1u) ++k;
+    if (k == 64) throw std::runtime_error("element colouring needs more than 64 colours (degenerate mesh?)");
+    color[e] = k;
+    ncolors = std::max(ncolors, k + 1);
+    for (int a = 0; a < npe; ++a) used[c[a]] |= (std::uint64_t(1) << k);
+  }
+  colors_.assign(ncolors, {});
+  for (Index e = 0; e < mesh_.num_elements(); ++e) colors_[color[e]].push_back(e);
+}
+
+void SolidBody::build_mass() {
+  const int npe = mesh_.nodes_per_element(), m = 2 * npe;
+  const ParentRule rule = parent_rule(mesh_.order, 2 * mesh_.order);
+  mass_ = pattern_;
+  double* val = mass_.valuePtr();
+  std::fill(val, val + mass_.nonZeros(), 0.0);
+  const double rho = material_->density();
+  Eigen::MatrixX2d Xe(npe, 2);
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    const Index* c = mesh_.element(e);
+    for (int a = 0; a < npe; ++a) Xe.row(a) = mesh_.nodes[c[a]].transpose();
+    Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(npe, npe);
+    for (size_t q = 0; q < rule.w.size(); ++q) {
+      const Mat2 A0 = Xe.transpose() * rule.dN[q];
+      const double detA0 = A0.determinant();
+      if (!(detA0 > 0.0)) throw std::invalid_argument("element " + std::to_string(e) + " has non-positive area or is clockwise");
+      Me += rule.N[q] * rule.N[q].transpose() * (rho * rule.w[q] * detA0 * thickness_);
+    }
+    const int* sc = scatter_.data() + static_cast<size_t>(e) * m * m;
+    for (int b = 0; b < npe; ++b)
+      for (int a = 0; a < npe; ++a)
+        for (int d = 0; d < 2; ++d) val[sc[(2 * b + d) * m + 2 * a + d]] += Me(a, b);
+  }
+}
+
+Vec SolidBody::lumped_mass() const {
+  Vec ml = Vec::Zero(num_dofs());
+  for (int k = 0; k < mass_.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(mass_, k); it; ++it) ml[it.row()] += it.value();
+  return ml;
+}
+
+template <int NPE>
+double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_force) const {
+  constexpr int M = 2 * NPE;
+  using MatN2 = Eigen::Matrix<double, NPE, 2>;
+  using MatB = Eigen::Matrix<double, 3, M>;
+  using MatM = Eigen::Matrix<double, M, M>;
+  const size_t nq = qw_.size();
+
+  if (need_force) f.setZero(num_dofs());
+  double* kval = K ? K->valuePtr() : nullptr;
+  if (K) std::fill(kval, kval + K->nonZeros(), 0.0);
+  double energy = 0.0;
+  std::atomic<bool> failed{false};
+  std::string failure;
+
+  // One parallel region for all colours (a barrier between colours); small meshes run serially, where
+  // forking threads costs more than the work.
+#pragma omp parallel if (mesh_.num_elements() >= 256) reduction(+ : energy)
+  for (const auto& elems : colors_) {
+    const Index nce = static_cast<Index>(elems.size());
+#pragma omp for schedule(static)
+    for (Index ie = 0; ie < nce; ++ie) {
+      if (failed) continue;
+      const Index e = elems[ie];
+      const Index* c = mesh_.element(e);
+      MatN2 Xe, xe;
+      for (int a = 0; a < NPE; ++a) {
+        Xe.row(a) = mesh_.nodes[c[a]].transpose();
+        xe.row(a) = x.segment<2>(2 * c[a]).transpose();
+      }
+      Eigen::Matrix<double, M, 1> fe = Eigen::Matrix<double, M, 1>::Zero();
+      MatM Ke = MatM::Zero();
+      try {
+        for (size_t q = 0; q < nq; ++q) {
+          const MatN2 dN = qdN_[q];
+          const Mat2 A0 = Xe.transpose() * dN;
+          const double detA0 = A0.determinant();
+          const MatN2 G = dN * A0.inverse();
+          const double dV = qw_[q] * detA0 * thickness_;
+          const Mat2 F = xe.transpose() * G;
+          const MaterialResponse r = material_->evaluate(F);
+          energy += r.psi * dV;
+          if (need_force) {
+            const Eigen::Matrix<double, 2, NPE> FSGt = F * r.S * G.transpose();
+            for (int a = 0; a < NPE; ++a) fe.template segment<2>(2 * a) += FSGt.col(a) * dV;
+          }
+          if (K) {
+            MatB B;
+            for (int a = 0; a < NPE; ++a)
+              for (int al = 0; al < 2; ++al) {
+                const int col = 2 * a + al;
+                B(0, col) = G(a, 0) * F(al, 0);
+                B(1, col) = G(a, 1) * F(al, 1);
+                B(2, col) = G(a, 0) * F(al, 1) + G(a, 1) * F(al, 0);
+              }
+            Ke.noalias() += B.transpose() * (r.D * dV) * B;
+            const Eigen::Matrix<double, NPE, NPE> Kg = G * (r.S * dV) * G.transpose();
+            for (int b = 0; b < NPE; ++b)
+              for (int a = 0; a < NPE; ++a) {
+                Ke(2 * a, 2 * b) += Kg(a, b);
+                Ke(2 * a + 1, 2 * b + 1) += Kg(a, b);
+              }
+          }
+        }
+      } catch (const std::exception& ex) {
+#pragma omp critical(lagfsi_solid_failure)
+        {
+          failed = true;
+          failure = "element " + std::to_string(e) + ": " + ex.what();
+        }
+        continue;
+      }
+      if (need_force)
+        for (int a = 0; a < NPE; ++a) f.segment<2>(2 * c[a]) += fe.template segment<2>(2 * a);
+      if (K) {
+        const int* sc = scatter_.data() + static_cast<size_t>(e) * M * M;
+        for (int j = 0; j < M; ++j)
+          for (int i = 0; i < M; ++i) kval[sc[j * M + i]] += Ke(i, j);
+      }
+    }
+  }
+  if (failed) throw SolverError(failure);
+  if (!std::isfinite(energy)) throw SolverError("non-finite strain energy");
+  return energy;
+}
+
+double SolidBody::internal_force(const Vec& x, Vec& f, SparseMatrix* K) const {
+  if (x.size() != num_dofs()) throw std::invalid_argument("position vector has the wrong size");
+  switch (mesh_.order) {
+    case 1: return assemble<3>(x, f, K, true);
+    case 2: return assemble<6>(x, f, K, true);
+    default: return assemble<10>(x, f, K, true);
+  }
+}
+
+double SolidBody::strain_energy(const Vec& x) const {
+  Vec dummy;
+  switch (mesh_.order) {
+    case 1: return assemble<3>(x, dummy, nullptr, false);
+    case 2: return assemble<6>(x, dummy, nullptr, false);
+    default: return assemble<10>(x, dummy, nullptr, false);
+  }
+}
+
+Vec SolidBody::body_force(const Vec2& b) const {
+  Vec g(num_dofs());
+  const double rho = material_->density();
+  for (Index i = 0; i < num_nodes(); ++i) g.segment<2>(2 * i) = b / rho;
+  return mass_ * g;
+}
+
+Vec SolidBody::edge_traction(const std::vector<std::vector<Index>>& edges, const Vec2& t) const {
+  Vec f = Vec::Zero(num_dofs());
+  const int p = mesh_.order;
+  Eigen::VectorXd N, dN;
+  for (const auto& edge : edges) {
+    if (static_cast<int>(edge.size()) != p + 1) throw std::invalid_argument("edge has the wrong number of nodes");
+    for (const auto& [s, w] : line_quadrature(p + 1)) {
+      line_shape(p, s, N, dN);
+      Vec2 dXds = Vec2::Zero();
+      for (int a = 0; a <= p; ++a) dXds += dN[a] * mesh_.nodes[edge[a]];
+      const double dS = w * dXds.norm() * thickness_;
+      for (int a = 0; a <= p; ++a) f.segment<2>(2 * edge[a]) += N[a] * dS * t;
+    }
+  }
+  return f;
+}
+
+bool SolidBody::locate(const Vec2& P, Index& element, double& xi1, double& xi2) const {
+  double best = -1e300;
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    const Index* c = mesh_.element(e);
+    const Vec2 &v0 = mesh_.nodes[c[0]], &v1 = mesh_.nodes[c[1]], &v2 = mesh_.nodes[c[2]];
+    // P = v2 + L1 (v0 - v2) + L2 (v1 - v2)
+    Mat2 A;
+    A.col(0) = v0 - v2;
+    A.col(1) = v1 - v2;
+    const Vec2 L = A.inverse() * (P - v2);
+    const double m = std::min({L[0], L[1], 1.0 - L[0] - L[1]});
+    if (m > best) {
+      best = m;
+      element = e;
+      xi1 = L[0];
+      xi2 = L[1];
+    }
+  }
+  return best > -1e-9;
+}
+
+SolidBody::NodalStress SolidBody::nodal_stress(const Vec& x) const {
+  const int npe = mesh_.nodes_per_element();
+  NodalStress out;
+  out.cauchy.assign(4 * num_nodes(), 0.0);
+  out.von_mises.assign(num_nodes(), 0.0);
+  out.green.assign(3 * num_nodes(), 0.0);
+  std::vector<int> count(num_nodes(), 0);
+  const auto coords = triangle_node_coordinates(mesh_.order);
+  Eigen::MatrixX2d Xe(npe, 2), xe(npe, 2);
+  Eigen::VectorXd N;
+  Eigen::MatrixX2d dN;
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    const Index* c = mesh_.element(e);
+    for (int a = 0; a < npe; ++a) {
+      Xe.row(a) = mesh_.nodes[c[a]].transpose();
+      xe.row(a) = x.segment<2>(2 * c[a]).transpose();
+    }
+    for (int k = 0; k < npe; ++k) {
+      triangle_shape(mesh_.order, coords[k].first, coords[k].second, N, dN);
+      const Mat2 A0 = Xe.transpose() * dN;
+      const Mat2 F = xe.transpose() * dN * A0.inverse();
+      const Mat2 E = 0.5 * (F.transpose() * F - Mat2::Identity());
+      MaterialResponse r;
+      try {
+        r = material_->evaluate(F);
+      } catch (const std::exception&) {
+        continue;  // inverted element: leave its contribution out of the average
+      }
+      const double J = F.determinant() * r.F33;
+      const Mat2 sigma = F * r.S * F.transpose() / J;
+      const double szz = r.S33 * r.F33 * r.F33 / J;
+      const Index n = c[k];
+      out.cauchy[4 * n] += sigma(0, 0);
+      out.cauchy[4 * n + 1] += sigma(1, 1);
+      out.cauchy[4 * n + 2] += sigma(0, 1);
+      out.cauchy[4 * n + 3] += szz;
+      out.green[3 * n] += E(0, 0);
+      out.green[3 * n + 1] += E(1, 1);
+      out.green[3 * n + 2] += E(0, 1);
+      ++count[n];
+    }
+  }
+  for (Index n = 0; n < num_nodes(); ++n) {
+    if (count[n] == 0) continue;
+    for (int i = 0; i < 4; ++i) out.cauchy[4 * n + i] /= count[n];
+    for (int i = 0; i < 3; ++i) out.green[3 * n + i] /= count[n];
+    const double sx = out.cauchy[4 * n], sy = out.cauchy[4 * n + 1], sxy = out.cauchy[4 * n + 2],
+                 sz = out.cauchy[4 * n + 3];
+    out.von_mises[n] =
+        std::sqrt(0.5 * ((sx - sy) * (sx - sy) + (sy - sz) * (sy - sz) + (sz - sx) * (sz - sx)) + 3 * sxy * sxy);
+  }
+  return out;
+}
+
+}  // namespace lagfsi

@@ -1,0 +1,558 @@
+// The solid body as a PhysicsModel: boundary conditions, loads, Newton iterations with a time integrator
+// (or load stepping for static analysis), probes and output.
+#include <lagfsi/case.hpp>
+#include <lagfsi/element.hpp>
+#include <lagfsi/error.hpp>
+#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/solid.hpp>
+#include <lagfsi/time_function.hpp>
+#include <lagfsi/time_integrator.hpp>
+#include <lagfsi/vtk_output.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <set>
+
+namespace lagfsi {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// A load: a fixed nodal force vector scaled by a function of time (and by the load factor in statics).
+struct Load {
+  Vec f;
+  std::shared_ptr<TimeFunction> fn;
+};
+
+/// A prescribed dof: x = X + amplitude * g(t), g = f (displacement) or int f (velocity).
+struct Prescribed {
+  Index dof;
+  double amplitude;
+  std::shared_ptr<TimeFunction> fn;  // null: fixed
+  bool velocity;
+};
+
+class SolidModel;
+
+class DisplacementProbe final : public Probe {
+ public:
+  DisplacementProbe(const SolidModel& m, std::string name, Index e, double xi1, double xi2, std::string comp,
+                    bool position);
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const SolidModel& m_;
+  std::string name_;
+  std::vector<Index> nodes_;
+  Eigen::VectorXd N_;
+  std::string comp_;
+  bool position_;
+};
+
+class ReactionProbe final : public Probe {
+ public:
+  ReactionProbe(const SolidModel& m, std::string name, std::vector<Index> nodes, int comp)
+      : m_(m), name_(std::move(name)), nodes_(std::move(nodes)), comp_(comp) {}
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const SolidModel& m_;
+  std::string name_;
+  std::vector<Index> nodes_;
+  int comp_;
+};
+
+class EnergyProbe final : public Probe {
+ public:
+  EnergyProbe(const SolidModel& m, std::string name, std::string kind)
+      : m_(m), name_(std::move(name)), kind_(std::move(kind)) {}
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const SolidModel& m_;
+  std::string name_, kind_;
+};
+
+class SolidModel final : public PhysicsModel {
+ public:
+  SolidModel(Params body, const CaseContext& ctx);
+
+  std::string name() const override { return name_; }
+  std::string type() const override { return "solid"; }
+  Index num_nodes() const override { return body_->num_nodes(); }
+  Index num_elements() const override { return body_->mesh().num_elements(); }
+
+  void initialize() override;
+  void predict(double t_new, double dt) override;
+  IterationReport solve_iteration() override;
+  void finalize_step() override;
+  void write_output(double t) override;
+  std::unique_ptr<Probe> make_probe(Params p) override;
+
+  // Read access for probes.
+  const SolidBody& body() const { return *body_; }
+  const KinematicState& state() const { return state_; }
+  const Vec& reaction() const { return reaction_; }
+  double kinetic_energy() const { return 0.5 * state_.v.dot(body_->mass() * state_.v); }
+  double strain_energy() const { return strain_energy_; }
+  double external_work() const { return work_ext_; }
+  double dissipated() const { return work_damp_; }
+  double initial_energy() const { return energy0_; }
+
+ private:
+  Vec external_force(double t) const;
+  double load_factor(double t) const { return is_static_ ? t : 1.0; }
+  void impose_prescribed(double t, Vec& x) const;
+  void apply_dirichlet(SparseMatrix& H, Vec& r) const;
+  void factorize(const SparseMatrix& H);
+  Vec damping_times(const Vec& v) const;
+
+  std::string name_;
+  CaseContext ctx_;
+  bool is_static_;
+  std::unique_ptr<SolidBody> body_;
+  std::unique_ptr<TimeIntegrator> integrator_;
+  std::unique_ptr<LinearSolver> solver_;
+  std::string solver_type_;
+  double damp_mass_ = 0, damp_stiff_ = 0;
+  SparseMatrix K0_;           // initial tangent (stiffness-proportional damping)
+  std::vector<Load> loads_;
+  std::vector<Prescribed> prescribed_;
+  std::vector<char> fixed_mask_;
+  double length_ = 1;         // body size, for the position tolerance
+
+  KinematicState state_, old_state_;
+  Vec x_;                     // current iterate of x_{n+1}
+  double t_new_ = 0, dt_ = 0;
+  double last_increment_ = 0;  // |dx| of the last correction of this step (inf before the first)
+  SparseMatrix H_;
+  Vec f_int_;
+  double strain_energy_ = 0, work_ext_ = 0, work_damp_ = 0, energy0_ = 0;
+  bool need_reaction_ = false;
+  Vec reaction_;
+  std::unique_ptr<PvdSeries> series_;
+  bool warned_fallback_ = false;
+};
+
+// ------------------------------------------------------------------------------------------ building
+
+SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_(ctx.analysis.type == "static") {
+  b.validate({{"name", nullptr},
+              {"type", "solid"},
+              {"material", nullptr},
+              {"thickness", 1.0},
+              {"damping", Json::object()},
+              {"geometry", nullptr},
+              {"mesh", nullptr},
+              {"initial_velocity", Json::array({0.0, 0.0})},
+              {"boundary_conditions", Json::array()},
+              {"loads", Json::array()},
+              {"gravity", true}});
+  name_ = b.string("name");
+  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
+    b.fail("name", "must be a non-empty name without spaces or slashes");
+
+  Params mat = b.at("material");
+  mat.validate({{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
+                {"hypothesis", "plane_strain"}});
+  const double E = mat.positive("young"), nu = mat.number("poisson"), rho = mat.positive("density");
+  if (!(nu > -1.0 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
+  const auto hyp = mat.choice("hypothesis", {"plane_strain", "plane_stress"}) == "plane_strain"
+                       ? PlaneHypothesis::PlaneStrain
+                       : PlaneHypothesis::PlaneStress;
+  std::shared_ptr<SolidMaterial> material;
+  try {
+    material = make_solid_material(mat.choice("type", {"svk", "neo_hookean"}), E, nu, rho, hyp);
+  } catch (const std::invalid_argument& e) {
+    mat.fail("type", e.what());
+  }
+  const double thickness = b.positive("thickness");
+
+  Params damp = b.at("damping");
+  damp.validate({{"mass", 0.0}, {"stiffness", 0.0}});
+  damp_mass_ = damp.non_negative("mass");
+  damp_stiff_ = damp.non_negative("stiffness");
+
+  TriMesh mesh = build_mesh(b.at("geometry"), b.at("mesh"));
+  try {
+    body_ = std::make_unique<SolidBody>(std::move(mesh), material, thickness);
+  } catch (const std::exception& e) {
+    b.fail("mesh", e.what());
+  }
+  {
+    Vec2 lo = body_->mesh().nodes[0], hi = lo;
+    for (const auto& p : body_->mesh().nodes) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    length_ = (hi - lo).norm();
+  }
+  const Index nd = body_->num_dofs();
+  const auto& nodes = body_->mesh().nodes;
+
+  // Boundary conditions: fixed / prescribed displacement / prescribed velocity.
+  Params bcs = b.at("boundary_conditions");
+  fixed_mask_.assign(nd, 0);
+  for (size_t i = 0; i < bcs.size(); ++i) {
+    Params bc = bcs.at(i);
+    if (!bc.json().is_object() || !bc.has("type")) bc.fail("type", "required key is missing");
+    const std::string t = bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
+    if (t == "fixed")
+      bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
+    else
+      bc.validate({{"type", t}, {"select", nullptr}, {"components", "xy"}, {"value", nullptr},
+                   {"function", Json{{"type", "constant"}}}});
+    const std::string comps = bc.choice("components", {"x", "y", "xy"});
+    const auto sel = select_nodes(bc.at("select"), nodes);
+    Vec2 value = Vec2::Zero();
+    std::shared_ptr<TimeFunction> fn;
+    if (t != "fixed") {
+      value = bc.vec2("value");
+      fn = make_time_function(bc.at("function"), ctx.base_dir);
+    }
+    for (Index n : sel)
+      for (int c = 0; c < 2; ++c) {
+        if ((c == 0 && comps == "y") || (c == 1 && comps == "x")) continue;
+        const Index dof = 2 * n + c;
+        if (fixed_mask_[dof]) continue;  // first condition wins
+        fixed_mask_[dof] = 1;
+        prescribed_.push_back({dof, value[c], fn, t == "prescribed_velocity"});
+      }
+  }
+
+  // Loads: point loads (value split equally over the selected nodes) and edge tractions.
+  Params loads = b.at("loads");
+  const auto edges = boundary_edges(body_->mesh());
+  for (size_t i = 0; i < loads.size(); ++i) {
+    Params l = loads.at(i);
+    if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
+    const std::string t = l.choice("type", {"point_load", "traction", "body_force"});
+    Json defaults{{"type", t}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}};
+    if (t != "body_force") defaults["select"] = nullptr;
+    l.validate(defaults);
+    const Vec2 value = l.vec2("value");
+    Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx.base_dir))};
+    if (t == "point_load") {
+      const auto sel = select_nodes(l.at("select"), nodes);
+      for (Index n : sel) load.f.segment<2>(2 * n) = value / static_cast<double>(sel.size());
+    } else if (t == "traction") {
+      const auto sel = select_nodes(l.at("select"), nodes);
+      std::set<Index> in(sel.begin(), sel.end());
+      std::vector<std::vector<Index>> chosen;
+      for (const auto& e : edges) {
+        bool all = true;
+        for (Index n : e.nodes) all = all && in.count(n);
+        if (all) chosen.push_back(e.nodes);
+      }
+      if (chosen.empty()) l.fail("select", "the selection contains no boundary edge");
+      load.f = body_->edge_traction(chosen, value);
+    } else {
+      load.f = body_->body_force(value);
+    }
+    loads_.push_back(std::move(load));
+  }
+  if (b.boolean("gravity") && ctx.gravity.squaredNorm() > 0)
+    loads_.push_back({body_->body_force(material->density() * ctx.gravity),
+                      constant_function(1.0)});
+
+  // Integrator and solver.
+  if (!is_static_) {
+    Params ip(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
+    const std::string it = ip.string("type");
+    if (it == "newmark")
+      integrator_ = make_newmark(ip.number("beta"), ip.number("gamma"));
+    else if (it == "generalized_alpha")
+      integrator_ = make_generalized_alpha(ip.number("rho_inf"));
+    else
+      integrator_ = make_central_difference();
+  }
+  solver_type_ = ctx.analysis.linear_solver;
+  solver_ = make_linear_solver(solver_type_);
+
+  state_.t = 0;
+  state_.x = body_->reference_positions();
+  state_.v = Vec::Zero(nd);
+  const Vec2 v0 = b.vec2("initial_velocity");
+  for (Index n = 0; n < body_->num_nodes(); ++n) state_.v.segment<2>(2 * n) = v0;
+  for (const auto& p : prescribed_) state_.v[p.dof] = 0.0;
+  state_.a = Vec::Zero(nd);
+  H_ = body_->pattern();
+}
+
+// ------------------------------------------------------------------------------------------ helpers
+
+Vec SolidModel::external_force(double t) const {
+  Vec f = Vec::Zero(body_->num_dofs());
+  for (const auto& l : loads_) f += l.fn->value(t) * l.f;
+  return load_factor(t) * f;
+}
+
+void SolidModel::impose_prescribed(double t, Vec& x) const {
+  const Vec& X = body_->reference_positions();
+  for (const auto& p : prescribed_) {
+    double u = 0.0;
+    if (p.fn) u = p.amplitude * (p.velocity ? p.fn->integral(t) : p.fn->value(t)) * load_factor(t);
+    x[p.dof] = X[p.dof] + u;
+  }
+}
+
+Vec SolidModel::damping_times(const Vec& v) const {
+  Vec r = Vec::Zero(v.size());
+  if (damp_mass_ > 0) r += damp_mass_ * (body_->mass() * v);
+  if (damp_stiff_ > 0) r += damp_stiff_ * (K0_ * v);
+  return r;
+}
+
+void SolidModel::apply_dirichlet(SparseMatrix& H, Vec& r) const {
+  for (int k = 0; k < H.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(H, k); it; ++it)
+      if (fixed_mask_[it.row()] || fixed_mask_[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  for (Index i = 0; i < r.size(); ++i)
+    if (fixed_mask_[i]) r[i] = 0.0;
+}
+
+void SolidModel::factorize(const SparseMatrix& H) {
+  try {
+    solver_->factorize(H);
+  } catch (const SolverError& e) {
+    if (solver_type_ != "cholmod") throw;
+    // An indefinite tangent (buckling, strong compression): switch to LU for the rest of the run.
+    if (!warned_fallback_)
+      std::cerr << "lagfsi: warning: body '" << name_ << "': " << e.what() << "; switching to umfpack\n";
+    warned_fallback_ = true;
+    solver_type_ = "umfpack";
+    solver_ = make_linear_solver(solver_type_);
+    solver_->factorize(H);
+  }
+}
+
+// ------------------------------------------------------------------------------------------ lifecycle
+
+void SolidModel::initialize() {
+  auto t0 = Clock::now();
+  if (damp_stiff_ > 0) {
+    K0_ = body_->pattern();
+    Vec f;
+    body_->internal_force(body_->reference_positions(), f, &K0_);
+  }
+  impose_prescribed(0.0, state_.x);
+  Vec f;
+  strain_energy_ = body_->internal_force(state_.x, f, nullptr);
+  energy0_ = kinetic_energy() + strain_energy_;
+  if (!is_static_) {
+    // Consistent initial acceleration: M a0 = f_ext(0) - f_int(x0) - C v0 on the free dofs.
+    Vec r = external_force(0.0) - f - damping_times(state_.v);
+    SparseMatrix M = body_->mass();
+    apply_dirichlet(M, r);
+    auto s = make_linear_solver("cholmod");
+    s->factorize(M);
+    s->solve(r, state_.a);
+    for (const auto& p : prescribed_) state_.a[p.dof] = 0.0;
+  }
+  times_.assembly += seconds_since(t0);
+}
+
+void SolidModel::predict(double t_new, double dt) {
+  old_state_ = state_;
+  t_new_ = t_new;
+  dt_ = dt;
+  if (is_static_) {
+    x_ = state_.x;
+  } else {
+    integrator_->begin_step(state_, dt);
+    x_ = integrator_->predictor();
+  }
+  impose_prescribed(t_new, x_);
+  last_increment_ = std::numeric_limits<double>::infinity();
+}
+
+IterationReport SolidModel::solve_iteration() {
+  auto t0 = Clock::now();
+  IterationReport rep;
+  Vec r;
+  const Index nd = body_->num_dofs();
+  if (is_static_) {
+    strain_energy_ = body_->internal_force(x_, f_int_, &H_);
+    const Vec fext = external_force(t_new_);
+    r = f_int_ - fext;
+    rep.residual_ref = std::max(fext.norm(), f_int_.norm());
+  } else {
+    const EvalPoint ev = integrator_->kinematics(x_);
+    const TangentCoefficients c = integrator_->coefficients();
+    strain_energy_ = body_->internal_force(ev.x, f_int_, &H_);
+    const Vec fext = external_force(ev.t);
+    const Vec inertia = body_->mass() * ev.a;
+    const Vec damping = damping_times(ev.v);
+    r = inertia + damping + f_int_ - fext;
+    // H = c_m M + c_c C + c_k K, all on the same pattern.
+    const double* m = body_->mass().valuePtr();
+    double* h = H_.valuePtr();
+    const double* k0 = damp_stiff_ > 0 ? K0_.valuePtr() : nullptr;
+    const double cm = c.c_m + c.c_c * damp_mass_;
+    for (Index i = 0; i < H_.nonZeros(); ++i) {
+      h[i] = c.c_k * h[i] + cm * m[i];
+      if (k0) h[i] += c.c_c * damp_stiff_ * k0[i];
+    }
+    Vec rf = fext, ri = inertia, ru = f_int_;
+    for (Index i = 0; i < nd; ++i)
+      if (fixed_mask_[i]) rf[i] = ri[i] = ru[i] = 0.0;
+    rep.residual_ref = std::max({rf.norm(), ri.norm(), ru.norm()});
+  }
+  apply_dirichlet(H_, r);
+  rep.residual = r.norm();
+  if (!std::isfinite(rep.residual)) throw SolverError("body '" + name_ + "': non-finite residual");
+  times_.assembly += seconds_since(t0);
+  rep.increment_ref = length_;
+  // Converged already (small residual at the updated x after a small last correction): no solve.
+  const NewtonSettings& nw = ctx_.analysis.newton;
+  if (rep.residual <= nw.residual_tolerance * std::max(rep.residual_ref, 1e-300) &&
+      last_increment_ <= nw.position_tolerance * length_) {
+    rep.increment = last_increment_;
+    rep.converged = true;
+    return rep;
+  }
+
+  t0 = Clock::now();
+  factorize(H_);
+  times_.factorization += seconds_since(t0);
+  t0 = Clock::now();
+  Vec dx;
+  solver_->solve(-r, dx);
+  times_.solve += seconds_since(t0);
+  x_ += dx;
+  rep.increment = dx.norm();
+  last_increment_ = rep.increment;
+
+  if (!x_.allFinite()) throw SolverError("body '" + name_ + "': non-finite positions");
+  return rep;
+}
+
+void SolidModel::finalize_step() {
+  auto t0 = Clock::now();
+  const Vec x_old = state_.x;
+  const Vec fext_old = external_force(old_state_.t);
+  if (is_static_) {
+    state_.x = x_;
+    state_.t = t_new_;
+  } else {
+    integrator_->end_step(x_, state_);
+  }
+  // Energy bookkeeping (trapezoidal): external work and damping dissipation.
+  const Vec fext_new = external_force(state_.t);
+  work_ext_ += 0.5 * (fext_old + fext_new).dot(state_.x - x_old);
+  if (!is_static_ && (damp_mass_ > 0 || damp_stiff_ > 0))
+    work_damp_ += 0.5 * dt_ * (old_state_.v.dot(damping_times(old_state_.v)) + state_.v.dot(damping_times(state_.v)));
+  Vec f;
+  strain_energy_ = body_->internal_force(state_.x, f, nullptr);
+  if (need_reaction_) {
+    reaction_ = f - fext_new;
+    if (!is_static_) reaction_ += body_->mass() * state_.a + damping_times(state_.v);
+  }
+  times_.assembly += seconds_since(t0);
+}
+
+void SolidModel::write_output(double t) {
+  auto t0 = Clock::now();
+  if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
+  const Index nn = body_->num_nodes();
+  VtuData d;
+  d.mesh = &body_->mesh();
+  d.points.resize(nn);
+  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, a{"acceleration", 2, {}};
+  const Vec& X = body_->reference_positions();
+  for (Index n = 0; n < nn; ++n) {
+    d.points[n] = state_.x.segment<2>(2 * n);
+    for (int c = 0; c < 2; ++c) {
+      u.values.push_back(state_.x[2 * n + c] - X[2 * n + c]);
+      v.values.push_back(state_.v[2 * n + c]);
+      a.values.push_back(state_.a[2 * n + c]);
+    }
+  }
+  auto s = body_->nodal_stress(state_.x);
+  d.point_fields = {u, v, a, {"cauchy_stress", 4, s.cauchy}, {"von_mises", 1, s.von_mises},
+                    {"green_strain", 3, s.green}};
+  series_->write(t, d);
+  times_.output += seconds_since(t0);
+}
+
+// ------------------------------------------------------------------------------------------ probes
+
+std::unique_ptr<Probe> SolidModel::make_probe(Params p) {
+  const std::string t = p.choice("type", {"displacement", "position", "reaction", "energy"});
+  if (t == "displacement" || t == "position") {
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"component", "y"}});
+    const std::string comp = p.choice("component", {"x", "y", "magnitude"});
+    Index e;
+    double xi1, xi2;
+    if (!body_->locate(p.vec2("at"), e, xi1, xi2)) p.fail("at", "the point is outside body '" + name_ + "'");
+    return std::make_unique<DisplacementProbe>(*this, p.string("name"), e, xi1, xi2, comp, t == "position");
+  }
+  if (t == "reaction") {
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"select", nullptr}, {"component", "y"}});
+    const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
+    need_reaction_ = true;
+    return std::make_unique<ReactionProbe>(*this, p.string("name"), select_nodes(p.at("select"), body_->mesh().nodes),
+                                           comp);
+  }
+  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
+  return std::make_unique<EnergyProbe>(
+      *this, p.string("name"),
+      p.choice("kind", {"kinetic", "strain", "external_work", "dissipated", "total", "balance"}));
+}
+
+DisplacementProbe::DisplacementProbe(const SolidModel& m, std::string name, Index e, double xi1, double xi2,
+                                     std::string comp, bool position)
+    : m_(m), name_(std::move(name)), comp_(std::move(comp)), position_(position) {
+  const TriMesh& mesh = m.body().mesh();
+  const Index* c = mesh.element(e);
+  nodes_.assign(c, c + mesh.nodes_per_element());
+  Eigen::MatrixX2d dN;
+  triangle_shape(mesh.order, xi1, xi2, N_, dN);
+}
+
+std::vector<double> DisplacementProbe::sample() const {
+  const Vec& x = m_.state().x;
+  const Vec& X = m_.body().reference_positions();
+  Vec2 u = Vec2::Zero();
+  for (size_t a = 0; a < nodes_.size(); ++a) {
+    const Vec2 d = x.segment<2>(2 * nodes_[a]) - (position_ ? Vec2::Zero() : Vec2(X.segment<2>(2 * nodes_[a])));
+    u += N_[a] * d;
+  }
+  if (comp_ == "x") return {u.x()};
+  if (comp_ == "y") return {u.y()};
+  return {u.norm()};
+}
+
+std::vector<double> ReactionProbe::sample() const {
+  const Vec& r = m_.reaction();
+  double s = 0.0;
+  if (r.size() == 0) return {0.0};
+  for (Index n : nodes_) s += r[2 * n + comp_];
+  return {s};
+}
+
+std::vector<double> EnergyProbe::sample() const {
+  if (kind_ == "kinetic") return {m_.kinetic_energy()};
+  if (kind_ == "strain") return {m_.strain_energy()};
+  if (kind_ == "external_work") return {m_.external_work()};
+  if (kind_ == "dissipated") return {m_.dissipated()};
+  const double total = m_.kinetic_energy() + m_.strain_energy();
+  if (kind_ == "total") return {total};
+  // balance: E(t) - E(0) - W_ext + W_damp, zero for an exact integrator.
+  return {total - m_.initial_energy() - m_.external_work() + m_.dissipated()};
+}
+
+}  // namespace
+
+std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx) {
+  return std::make_unique<SolidModel>(std::move(body), ctx);
+}
+
+}  // namespace lagfsi

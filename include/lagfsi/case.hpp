@@ -21,8 +21,8 @@ namespace lagfsi {
 
 struct NewtonSettings {
   int max_iterations = 25;
-  double residual_tolerance = 1e-8;   ///< relative to the largest force term of the step
-  double position_tolerance = 1e-8;   ///< relative to the body's size
+  double residual_tolerance = 1e-6;   ///< relative to the largest force term of the step (inertia, internal, external)
+  double position_tolerance = 1e-9;   ///< relative to the body size
 };
 
 struct AnalysisSettings {

@@ -98,7 +98,7 @@ AnalysisSettings read_analysis(Params a) {
   }
   s.integrator = it.json();
   Params nw = a.at("newton");
-  nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-8}, {"position_tolerance", 1e-8}});
+  nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});
   s.newton.max_iterations = nw.integer("max_iterations", 1);
   s.newton.residual_tolerance = nw.positive("residual_tolerance");
   s.newton.position_tolerance = nw.positive("position_tolerance");

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Sets up the machine, builds, and runs the whole test suite (unit, verification, regression).
+# Extra arguments go to ctest (e.g. -L unit).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/setup.sh"
+bash "$root/scripts/build.sh"
+cd "$root/build"
+ctest --output-on-failure -j "${LAGFSI_TEST_JOBS:-2}" "$@"

@@ -1,0 +1,99 @@
+#pragma once
+// Helpers for tests that run whole cases: run the lagfsi executable, read CSV output.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagfsi::testing {
+
+namespace fs = std::filesystem;
+
+/// Result of one run of the lagfsi executable.
+struct RunResult {
+  int exit_code = -1;
+  std::string stderr_text;
+  fs::path out_dir;
+};
+
+/// A fresh, empty folder under the build tree for one test's output.
+inline fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::path(LAGFSI_BINARY_DIR) / "test_output" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// Runs `lagfsi <args>` (args already quoted as needed), capturing stderr.
+inline RunResult run_lagfsi(const std::string& args, const fs::path& work_dir) {
+  RunResult r;
+  const fs::path err = work_dir / "stderr.txt";
+  const std::string cmd = std::string("\"") + LAGFSI_EXE + "\" " + args + " 2> \"" + err.string() + "\" > \"" +
+                          (work_dir / "stdout.txt").string() + "\"";
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.stderr_text = ss.str();
+  return r;
+}
+
+/// Runs a case file from cases/ with overrides; output in a fresh folder named `tag`.
+inline RunResult run_case_file(const std::string& case_rel, const std::string& tag,
+                               const std::vector<std::string>& sets = {}) {
+  const fs::path dir = fresh_dir(tag);
+  std::string args = "run \"" + (fs::path(LAGFSI_SOURCE_DIR) / case_rel).string() + "\" -o \"" +
+                     (dir / "out").string() + "\" --quiet";
+  for (const auto& s : sets) args += " --set '" + s + "'";
+  RunResult r = run_lagfsi(args, dir);
+  r.out_dir = dir / "out";
+  return r;
+}
+
+/// A CSV file with a header row, numeric columns ('#' lines skipped).
+struct Csv {
+  std::vector<std::string> header;
+  std::map<std::string, std::vector<double>> col;
+  const std::vector<double>& operator[](const std::string& name) const {
+    auto it = col.find(name);
+    if (it == col.end()) throw std::runtime_error("no column " + name);
+    return it->second;
+  }
+  size_t rows() const { return header.empty() ? 0 : col.at(header[0]).size(); }
+};
+
+inline Csv read_csv(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot open " + file.string());
+  Csv csv;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (csv.header.empty()) {
+      csv.header = cells;
+      for (const auto& h : cells) csv.col[h];
+      continue;
+    }
+    for (size_t i = 0; i < cells.size() && i < csv.header.size(); ++i)
+      csv.col[csv.header[i]].push_back(std::stod(cells[i]));
+  }
+  return csv;
+}
+
+/// Writes a text file (for case files made by a test).
+inline void write_text(const fs::path& file, const std::string& text) {
+  fs::create_directories(file.parent_path());
+  std::ofstream o(file);
+  o << text;
+}
+
+}  // namespace lagfsi::testing

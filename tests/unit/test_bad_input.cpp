@@ -1,0 +1,186 @@
+// Bad input never crashes: every malformed case ends with exit code != 0 and a one-line message that
+// names the file, the JSON path and the reason; output written so far stays valid.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "case_runner.hpp"
+
+namespace {
+
+using namespace lagfsi::testing;
+using nlohmann::json;
+
+/// A small valid static case (cantilever strip, T3), used as the base for each mutation.
+json base_case() {
+  return json::parse(R"({
+    "name": "bad_input_base",
+    "analysis": {"type": "static", "load_steps": 2},
+    "bodies": [{
+      "name": "strip", "type": "solid",
+      "material": {"type": "svk", "young": 1e6, "poisson": 0.3, "density": 1000},
+      "geometry": {"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.1]},
+      "mesh": {"type": "structured", "size": 0.05, "order": 1},
+      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, 0.1]}}],
+      "loads": [{"type": "point_load", "select": {"type": "point", "at": [1.0, 0.1]}, "value": [0, -1.0]}]
+    }],
+    "probes": [{"name": "tip", "type": "displacement", "body": "strip", "at": [1.0, 0.05]}]
+  })");
+}
+
+struct Outcome {
+  int code;
+  std::string message;
+  fs::path dir;
+};
+
+Outcome run_text(const std::string& tag, const std::string& text, const std::string& extra = "") {
+  const fs::path dir = fresh_dir("bad_input_" + tag);
+  write_text(dir / "case.json", text);
+  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() +
+                               "\" --quiet " + extra,
+                           dir);
+  return {r.exit_code, r.stderr_text, dir};
+}
+
+Outcome run_json(const std::string& tag, const json& j, const std::string& extra = "") {
+  return run_text(tag, j.dump(2), extra);
+}
+
+/// One line, naming the file and (if given) the JSON path.
+void expect_one_line(const Outcome& o, const std::string& path, const std::string& reason_part) {
+  ASSERT_FALSE(o.message.empty());
+  EXPECT_EQ(std::count(o.message.begin(), o.message.end(), '\n'), 1) << o.message;
+  EXPECT_NE(o.message.find("case.json"), std::string::npos) << o.message;
+  if (!path.empty()) {
+    EXPECT_NE(o.message.find(path), std::string::npos) << o.message;
+  }
+  EXPECT_NE(o.message.find(reason_part), std::string::npos) << o.message;
+}
+
+TEST(BadInput, BaseCaseRuns) {
+  const Outcome o = run_json("base", base_case());
+  EXPECT_EQ(o.code, 0) << o.message;
+}
+
+TEST(BadInput, MalformedJson) {
+  const Outcome o = run_text("malformed", "{\n \"name\": \"x\",\n \"analysis\": {\"type\": \"static\"\n");
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "", "invalid JSON at line");
+}
+
+TEST(BadInput, MissingFile) {
+  const fs::path dir = fresh_dir("bad_input_missing");
+  RunResult r = run_lagfsi("run \"" + (dir / "nothing.json").string() + "\" --quiet", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("nothing.json"), std::string::npos);
+  EXPECT_NE(r.stderr_text.find("cannot open"), std::string::npos);
+}
+
+TEST(BadInput, UnknownKeyListsValidKeys) {
+  json j = base_case();
+  j["bodies"][0]["materail"] = 1;
+  const Outcome o = run_json("unknown_key", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/materail", "unknown key");
+  EXPECT_NE(o.message.find("material"), std::string::npos) << "valid keys listed";
+}
+
+TEST(BadInput, WrongType) {
+  json j = base_case();
+  j["bodies"][0]["material"]["young"] = "stiff";
+  const Outcome o = run_json("wrong_type", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/material/young", "expected a number");
+}
+
+TEST(BadInput, NegativeDensity) {
+  json j = base_case();
+  j["bodies"][0]["material"]["density"] = -1000;
+  const Outcome o = run_json("negative_density", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/material/density", "must be positive");
+}
+
+TEST(BadInput, ZeroMeshSize) {
+  json j = base_case();
+  j["bodies"][0]["mesh"]["size"] = 0;
+  const Outcome o = run_json("zero_size", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/mesh/size", "must be positive");
+}
+
+TEST(BadInput, ZeroTimeStep) {
+  json j = base_case();
+  j["analysis"] = {{"type", "dynamic"}, {"dt", 0.0}, {"end_time", 1.0}};
+  const Outcome o = run_json("zero_dt", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/analysis/dt", "must be positive");
+}
+
+TEST(BadInput, LoadOnEmptySelection) {
+  json j = base_case();
+  j["bodies"][0]["loads"][0]["select"] = {{"type", "box"}, {"min", {5, 5}}, {"max", {6, 6}}};
+  const Outcome o = run_json("empty_selection", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/loads/0/select", "contains no node");
+}
+
+TEST(BadInput, MissingMesh) {
+  json j = base_case();
+  j["bodies"][0].erase("mesh");
+  const Outcome o = run_json("missing_mesh", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/mesh", "required key is missing");
+}
+
+TEST(BadInput, MissingTableFile) {
+  json j = base_case();
+  j["bodies"][0]["loads"][0]["function"] = {{"type", "table"}, {"file", "no_such_table.csv"}};
+  const Outcome o = run_json("missing_table", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/loads/0/function/file", "cannot open");
+}
+
+TEST(BadInput, DegenerateGeometry) {
+  json j = base_case();
+  j["bodies"][0]["geometry"] = {{"type", "polygon"}, {"points", {{0, 0}, {1, 0}, {2, 0}}}};
+  j["bodies"][0]["mesh"]["type"] = "unstructured";
+  const Outcome o = run_json("degenerate", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/geometry", "cannot mesh");
+}
+
+TEST(BadInput, UnknownOverridePath) {
+  const Outcome o = run_json("bad_set", base_case(), "--set analysis.nothing.deeper=3");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.message.find("--set"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, NewtonDivergenceLeavesValidOutput) {
+  // A load far beyond what the strip can carry, with a Newton budget too small to follow it: the run
+  // must stop with exit code 3, a one-line message, a summary saying "failed" and a readable .pvd.
+  json j = base_case();
+  j["bodies"][0]["loads"][0]["value"] = {0, -1e9};
+  j["analysis"]["newton"] = {{"max_iterations", 3}};
+  const Outcome o = run_json("divergence", j);
+  EXPECT_EQ(o.code, 3) << o.message;
+  expect_one_line(o, "", "Newton");
+  const auto summary = json::parse(std::ifstream(o.dir / "out" / "summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  std::ifstream pvd(o.dir / "out" / "strip.pvd");
+  std::stringstream ss;
+  ss << pvd.rdbuf();
+  EXPECT_NE(ss.str().find("</VTKFile>"), std::string::npos);
+  EXPECT_NE(ss.str().find("strip_00000.vtu"), std::string::npos);
+}
+
+TEST(BadInput, UsageErrors) {
+  const fs::path dir = fresh_dir("bad_input_usage");
+  EXPECT_EQ(run_lagfsi("frobnicate", dir).exit_code, 1);
+  EXPECT_EQ(run_lagfsi("run", dir).exit_code, 1);
+  EXPECT_EQ(run_lagfsi("run x.json --threads zero", dir).exit_code, 1);
+  EXPECT_EQ(run_lagfsi("--version", dir).exit_code, 0);
+}
+
+}  // namespace

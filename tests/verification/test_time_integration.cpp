@@ -1,0 +1,400 @@
+// Verification of the implicit time integrators (time_integrator.hpp) in position form.
+//
+// (a) Through the TimeIntegrator contract (begin_step / predictor / kinematics / coefficients / end_step,
+//     with a Newton loop written here) on single-degree-of-freedom systems with exact solutions:
+//   - m x'' + k x = 0 (and, to exercise c_c and t_eval, m x'' + c x' + k x = F0 cos(W t)): the error at a
+//     fixed time vs the exact solution, dt halved 3 times, must show second order (observed order in
+//     [1.8, 2.2]) for Newmark (beta = 1/4, gamma = 1/2) and generalized-alpha (rho_inf = 0.8);
+//     Newmark (1959); Chung & Hulbert (1993), J. Appl. Mech. 60:371, sec. 3 (second-order accuracy).
+//   - High-frequency behaviour: the one-step amplification matrix A (3 x 3 on (x, v, a), built by stepping
+//     unit states through the contract) has spectral radius rho(A) -> rho_inf for omega dt -> infinity
+//     for generalized-alpha (Chung & Hulbert, eq. 25: all three roots tend to -rho_inf) and rho(A) = 1
+//     for the trapezoidal Newmark rule; rho -> 1 for omega dt -> 0 (no low-frequency damping). A
+//     simulated stiff oscillator (omega dt = 1e3) loses amplitude by a factor ~rho_inf per step with
+//     generalized-alpha and keeps its energy exactly with Newmark (the trapezoidal rule conserves the
+//     energy of linear systems exactly; Hughes 1987, sec. 9.3).
+// (b) The whole program (run_case with a case JSON in a temporary directory): undamped free vibration of
+//     a cantilever strip (T6 and T10) released with a uniform initial velocity, Newmark, 20 periods of
+//     the first mode with dt = T1 / 40 (T1 from Euler-Bernoulli beam theory, omega1 = 1.8751^2
+//     sqrt(EI / (rho A L^4))). The total energy (probe "total") must stay within 0.5 % of its initial value
+//     (= the initial kinetic energy, checked against 1/2 v0^T M v0 computed here) and the balance probe
+//     within 0.5 %; the measured period must match beam theory within 5 % (shear and rotary inertia at
+//     L/H = 10 and the coarse mesh shift it by ~1-3 %, Newmark's period elongation is (omega dt)^2 / 12 =
+//     0.2 %). A mass-damped variant (C = alpha M) checks the dissipation bookkeeping: every mode's energy
+//     decays like exp(-alpha t), and the balance probe E - E0 + W_damp stays ~0.
+#include <lagfsi/analysis.hpp>
+#include <lagfsi/material.hpp>
+#include <lagfsi/meshing/primitives.hpp>
+#include <lagfsi/solid.hpp>
+#include <lagfsi/time_integrator.hpp>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+#include <unistd.h>
+
+using namespace lagfsi;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::unique_ptr<TimeIntegrator> make(const std::string& which) {
+  return which == "newmark" ? make_newmark(0.25, 0.5) : make_generalized_alpha(0.8);
+}
+
+/// SDOF m x'' + c x' + k x = f(t).
+struct Sdof {
+  double m, c, k;
+  std::function<double(double)> f;
+};
+
+/// One step through the contract with a Newton loop (linear problem: converges in one correction; the
+/// loop checks that the contract's coefficients are the exact derivatives, i.e. the second residual is 0).
+void step(TimeIntegrator& ti, const Sdof& s, KinematicState& st, double dt, int* newton = nullptr) {
+  ti.begin_step(st, dt);
+  Vec x = ti.predictor();
+  int it = 0;
+  for (; it < 10; ++it) {
+    const EvalPoint e = ti.kinematics(x);
+    const double r = s.m * e.a[0] + s.c * e.v[0] + s.k * e.x[0] - s.f(e.t);
+    const TangentCoefficients c = ti.coefficients();
+    const double H = c.c_m * s.m + c.c_c * s.c + c.c_k * s.k;
+    const double dx = -r / H;
+    x[0] += dx;
+    if (std::abs(dx) <= 1e-14 * (1.0 + std::abs(x[0]))) break;
+  }
+  if (newton) *newton = it + 1;
+  ti.end_step(x, st);
+}
+
+KinematicState initial(const Sdof& s, double x0, double v0) {
+  KinematicState st;
+  st.t = 0;
+  st.x = Vec::Constant(1, x0);
+  st.v = Vec::Constant(1, v0);
+  st.a = Vec::Constant(1, (s.f(0.0) - s.c * v0 - s.k * x0) / s.m);  // consistent initial acceleration
+  return st;
+}
+
+// ------------------------------------------------------------------------------ (a) convergence order
+
+struct Problem {
+  Sdof sdof;
+  double x0, v0;
+  std::function<double(double)> exact;
+};
+
+/// Undamped free vibration, omega = 2 pi (T = 1).
+Problem free_problem() {
+  const double m = 2.0, w = 2 * kPi, k = m * w * w, x0 = 1.0, v0 = 0.5;
+  return {{m, 0.0, k, [](double) { return 0.0; }}, x0, v0,
+          [=](double t) { return x0 * std::cos(w * t) + v0 / w * std::sin(w * t); }};
+}
+
+/// Damped, harmonically forced: x'' + 2 zeta w x' + w^2 x = F0 cos(W t) (per unit mass, m = 1.5).
+Problem forced_problem() {
+  const double m = 1.5, w = 2 * kPi, zeta = 0.05, F0 = 3.0, W = 1.7 * kPi, x0 = 0.2, v0 = -0.3;
+  const double k = m * w * w, c = 2 * zeta * w * m;
+  // Particular solution Re(Xp e^{i W t}), Xp = (F0/m) / (w^2 - W^2 + 2 i zeta w W).
+  const std::complex<double> Xp = (F0 / m) / std::complex<double>(w * w - W * W, 2 * zeta * w * W);
+  const double xp0 = Xp.real(), vp0 = -W * Xp.imag();  // x_p(0), x_p'(0)
+  const double wd = w * std::sqrt(1 - zeta * zeta);
+  const double A = x0 - xp0, B = (v0 - vp0 + zeta * w * A) / wd;
+  return {{m, c, k, [=](double t) { return F0 * std::cos(W * t); }}, x0, v0, [=](double t) {
+            const double xp = (Xp * std::exp(std::complex<double>(0, W * t))).real();
+            return xp + std::exp(-zeta * w * t) * (A * std::cos(wd * t) + B * std::sin(wd * t));
+          }};
+}
+
+struct OrderCase {
+  std::string integrator;
+  bool forced;
+};
+
+class TimeOrder : public ::testing::TestWithParam<OrderCase> {};
+
+TEST_P(TimeOrder, SecondOrderInTime) {
+  const auto [which, forced] = GetParam();
+  const Problem p = forced ? forced_problem() : free_problem();
+  const double t_end = 2.3;  // not a multiple of the period
+  std::vector<double> err;
+  for (int n : {40, 80, 160, 320}) {  // dt = T_end / n, i.e. 17 to 139 steps per period
+    const double dt = t_end / n;
+    auto ti = make(which);
+    KinematicState st = initial(p.sdof, p.x0, p.v0);
+    int newton = 0;
+    for (int i = 0; i < n; ++i) {
+      step(*ti, p.sdof, st, dt, &newton);
+      ASSERT_LE(newton, 2) << "a linear problem must converge in one Newton correction";
+    }
+    EXPECT_NEAR(st.t, t_end, 1e-12);
+    err.push_back(std::abs(st.x[0] - p.exact(t_end)));
+  }
+  for (size_t i = 1; i < err.size(); ++i) {
+    const double order = std::log2(err[i - 1] / err[i]);
+    std::printf("%-18s %-6s dt = T/%-4d error %.3e  order %.3f\n", which.c_str(), forced ? "forced" : "free",
+                40 << i, err[i], order);
+    EXPECT_GE(order, 1.8) << which;
+    EXPECT_LE(order, 2.2) << which;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, TimeOrder,
+                         ::testing::Values(OrderCase{"newmark", false}, OrderCase{"generalized_alpha", false},
+                                           OrderCase{"newmark", true}, OrderCase{"generalized_alpha", true}),
+                         [](const ::testing::TestParamInfo<OrderCase>& i) {
+                           return i.param.integrator + (i.param.forced ? "_forced" : "_free");
+                         });
+
+// ------------------------------------------------------------------------------ (a) spectral behaviour
+
+/// Spectral radius of the one-step map (x, v, a)_n -> (x, v, a)_{n+1} of m x'' + k x = 0 at omega dt = W.
+double spectral_radius(const std::string& which, double W) {
+  const Sdof s{1.0, 0.0, W * W, [](double) { return 0.0; }};  // omega = W, dt = 1
+  Eigen::Matrix3d A;
+  for (int j = 0; j < 3; ++j) {
+    KinematicState st;
+    st.t = 0;
+    st.x = Vec::Constant(1, j == 0 ? 1.0 : 0.0);
+    st.v = Vec::Constant(1, j == 1 ? 1.0 : 0.0);
+    st.a = Vec::Constant(1, j == 2 ? 1.0 : 0.0);
+    auto ti = make(which);
+    step(*ti, s, st, 1.0);
+    A.col(j) << st.x[0], st.v[0], st.a[0];
+  }
+  return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+TEST(TimeIntegratorSpectrum, HighFrequencyDissipation) {
+  const double rho_ga_inf = spectral_radius("generalized_alpha", 1e4);
+  const double rho_nm_inf = spectral_radius("newmark", 1e4);
+  const double rho_ga_0 = spectral_radius("generalized_alpha", 1e-2);
+  const double rho_nm_0 = spectral_radius("newmark", 1e-2);
+  std::printf("spectral radius at omega dt = 1e4: generalized-alpha %.6f (rho_inf 0.8), newmark %.12f\n",
+              rho_ga_inf, rho_nm_inf);
+  std::printf("spectral radius at omega dt = 1e-2: generalized-alpha %.9f, newmark %.12f\n", rho_ga_0, rho_nm_0);
+  // At omega dt = 1e4 the roots differ from their limit by O(1 / (omega dt)) ~ 1e-4; the eigenvalues of
+  // the nearly defective (triple root) matrix carry round-off ~ eps^(1/3) ~ 1e-5.
+  EXPECT_NEAR(rho_ga_inf, 0.8, 2e-3);
+  EXPECT_NEAR(rho_nm_inf, 1.0, 1e-9);
+  // Low frequencies: no numerical damping to O((omega dt)^3) (generalized-alpha) or at all (Newmark).
+  EXPECT_GT(rho_ga_0, 1.0 - 1e-5);
+  EXPECT_LE(rho_ga_0, 1.0 + 1e-12);
+  EXPECT_NEAR(rho_nm_0, 1.0, 1e-9);
+}
+
+TEST(TimeIntegratorSpectrum, StiffModeAmplitude) {
+  // Stiff oscillator, omega dt = 1e3, released from x = 1 at rest; energy norm A = sqrt(omega^2 x^2 + v^2).
+  const double W = 1e3;
+  const Sdof s{1.0, 0.0, W * W, [](double) { return 0.0; }};
+  for (const std::string which : {"generalized_alpha", "newmark"}) {
+    auto ti = make(which);
+    KinematicState st = initial(s, 1.0, 0.0);
+    auto amp = [&]() { return std::sqrt(W * W * st.x[0] * st.x[0] + st.v[0] * st.v[0]); };
+    const double a0 = amp();
+    double a200 = 0, a400 = 0, worst = 0;
+    for (int n = 1; n <= 400; ++n) {
+      step(*ti, s, st, 1.0);
+      worst = std::max(worst, std::abs(amp() / a0 - 1.0));
+      if (n == 200) a200 = amp();
+      if (n == 400) a400 = amp();
+    }
+    if (which == "newmark") {
+      std::printf("newmark stiff mode: max |A_n / A_0 - 1| over 400 steps = %.2e\n", worst);
+      EXPECT_LT(worst, 1e-10);  // exact energy conservation of the trapezoidal rule, up to round-off
+    } else {
+      // Per-step decay measured between steps 200 and 400 (the triple root gives an n^2 factor:
+      // 2^(2/200) = 1.007 on the per-step ratio, hence the tolerance 0.01).
+      const double per_step = std::pow(a400 / a200, 1.0 / 200.0);
+      std::printf("generalized-alpha stiff mode: amplitude ratio per step %.4f (rho_inf = 0.8)\n", per_step);
+      EXPECT_NEAR(per_step, 0.8, 0.01);
+      EXPECT_LT(a400 / a0, 1e-30);
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------ (b) run_case
+
+struct BeamRun {
+  std::map<std::string, std::vector<double>> cols;
+  double seconds = 0;
+  int code = -1;
+};
+
+std::map<std::string, std::vector<double>> read_csv(const fs::path& file) {
+  std::map<std::string, std::vector<double>> out;
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> names;
+  if (!std::getline(in, line)) return out;
+  {
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) names.push_back(c);
+  }
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string c;
+    for (size_t i = 0; i < names.size() && std::getline(ss, c, ','); ++i) out[names[i]].push_back(std::stod(c));
+  }
+  return out;
+}
+
+// Beam data (SI): L = 1, H = 0.1, unit thickness, E = 1.2e7, nu = 0, rho = 1000, plane stress.
+constexpr double kL = 1.0, kH = 0.1, kE = 1.2e7, kRho = 1000.0, kV0 = 0.05;
+double beam_period() {
+  const double EI = kE * kH * kH * kH / 12.0, rhoA = kRho * kH;
+  const double w1 = 1.875104068711961 * 1.875104068711961 * std::sqrt(EI / (rhoA * std::pow(kL, 4)));
+  return 2 * kPi / w1;
+}
+
+BeamRun run_beam(const std::string& tag, int order, double mass_damping) {
+  const double T = beam_period(), dt = T / 40.0, t_end = 20.0 * T;
+  const fs::path dir = fs::temp_directory_path() / ("lagfsi_verif_time_" + std::to_string(::getpid()) + "_" + tag);
+  fs::create_directories(dir);
+  std::ostringstream js;
+  js.precision(17);
+  js << R"({
+  "name": "free_vibration_)" << tag << R"(",
+  "analysis": {"type": "dynamic", "dt": )" << dt << R"(, "end_time": )" << t_end << R"(,
+               "integrator": {"type": "newmark", "beta": 0.25, "gamma": 0.5},
+               "newton": {"max_iterations": 20, "residual_tolerance": 1e-10, "position_tolerance": 1e-12},
+               "linear_solver": {"type": "cholmod"}},
+  "bodies": [{
+    "name": "strip", "type": "solid",
+    "material": {"type": "svk", "young": )" << kE << R"(, "poisson": 0.0, "density": )" << kRho << R"(,
+                 "hypothesis": "plane_stress"},
+    "thickness": 1.0,
+    "damping": {"mass": )" << mass_damping << R"(},
+    "initial_velocity": [0.0, )" << kV0 << R"(],
+    "geometry": {"type": "rectangle", "origin": [0, 0], "size": [)" << kL << ", " << kH << R"(]},
+    "mesh": {"type": "structured", "size": 0.05, "divisions": [20, 2], "pattern": "crossed", "order": )" << order << R"(},
+    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, )" << kH << R"(]}}]
+  }],
+  "probes": [
+    {"name": "tip_uy", "type": "displacement", "body": "strip", "at": [)" << kL << ", " << kH / 2 << R"(], "component": "y"},
+    {"name": "e_total", "type": "energy", "body": "strip", "kind": "total"},
+    {"name": "e_balance", "type": "energy", "body": "strip", "kind": "balance"},
+    {"name": "e_dissipated", "type": "energy", "body": "strip", "kind": "dissipated"}
+  ],
+  "output": {"every": 1000000, "vtk": false}
+})";
+  {
+    std::ofstream(dir / "case.json") << js.str();
+  }
+  RunOptions opt;
+  opt.case_file = dir / "case.json";
+  opt.out_dir = dir / "out";
+  opt.quiet = true;
+  const auto t0 = std::chrono::steady_clock::now();
+  BeamRun r;
+  r.code = run_case(opt);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cols = read_csv(dir / "out" / "probes.csv");
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return r;
+}
+
+/// Initial kinetic energy 1/2 v0^T M v0 with v0 = (0, V) on the free nodes, computed from SolidBody's
+/// mass on the same mesh (the clamped nodes, x = 0, have zero velocity).
+double initial_kinetic_energy(int order) {
+  auto mat = std::shared_ptr<const SolidMaterial>(
+      make_solid_material("svk", kE, 0.0, kRho, PlaneHypothesis::PlaneStress));
+  SolidBody body(meshing::elevate(meshing::mesh_rectangle_structured(0, 0, kL, kH, 20, 2, "crossed"), order), mat,
+                 1.0);
+  Vec v = Vec::Zero(body.num_dofs());
+  for (Index n = 0; n < body.num_nodes(); ++n)
+    if (body.mesh().nodes[n].x() > 1e-12) v[2 * n + 1] = kV0;
+  return 0.5 * v.dot(body.mass() * v);
+}
+
+/// Mean period from the upward zero crossings of a signal (linear interpolation).
+double measured_period(const std::vector<double>& t, const std::vector<double>& y) {
+  std::vector<double> up;
+  for (size_t i = 1; i < y.size(); ++i)
+    if (y[i - 1] < 0 && y[i] >= 0) up.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
+  if (up.size() < 2) return 0.0;
+  return (up.back() - up.front()) / double(up.size() - 1);
+}
+
+class FreeVibration : public ::testing::TestWithParam<int> {};
+
+TEST_P(FreeVibration, NewmarkConservesEnergyOver20Periods) {
+  const int order = GetParam();
+  const BeamRun r = run_beam("T" + std::to_string(order), order, 0.0);
+  ASSERT_EQ(r.code, 0) << "run_case failed";
+  const auto& t = r.cols.at("time");
+  const auto& etot = r.cols.at("e_total");
+  const auto& ebal = r.cols.at("e_balance");
+  const double T = beam_period();
+  ASSERT_GE(t.size(), 801u);
+  EXPECT_NEAR(t.back(), 20 * T, 1e-9);
+
+  // Initial energy: all kinetic, 1/2 v0^T M v0 (exact up to round-off: 1e-12).
+  const double K0 = initial_kinetic_energy(order);
+  EXPECT_NEAR(etot[0], K0, 1e-12 * K0);
+  // Sanity of the scale: close to 1/2 rho L H V^2 (the clamped column of nodes has v = 0).
+  EXPECT_NEAR(K0, 0.5 * kRho * kL * kH * kV0 * kV0, 0.05 * K0);
+
+  double drift = 0, bal = 0;
+  for (size_t i = 0; i < etot.size(); ++i) {
+    drift = std::max(drift, std::abs(etot[i] - etot[0]) / etot[0]);
+    bal = std::max(bal, std::abs(ebal[i]) / etot[0]);
+  }
+  const double Tm = measured_period(t, r.cols.at("tip_uy"));
+  double amp = 0;
+  for (double u : r.cols.at("tip_uy")) amp = std::max(amp, std::abs(u));
+  std::printf("T%d free vibration: %zu steps in %.2f s, max |E - E0| / E0 = %.2e, max |balance| / E0 = %.2e, "
+              "tip amplitude %.3e m, period %.5f s (beam theory %.5f s, ratio %.4f)\n",
+              TriMesh::nodes_per_element(order), t.size() - 1, r.seconds, drift, bal, amp, Tm, T, Tm / T);
+  EXPECT_LT(drift, 5e-3);
+  EXPECT_LT(bal, 5e-3);
+  EXPECT_NEAR(Tm / T, 1.0, 0.05);
+  EXPECT_LT(r.seconds, 60.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Elements, FreeVibration, ::testing::Values(2, 3),
+                         [](const ::testing::TestParamInfo<int>& i) {
+                           return "T" + std::to_string(TriMesh::nodes_per_element(i.param));
+                         });
+
+TEST(FreeVibrationDamped, MassProportionalDampingBookkeeping) {
+  // C = alpha M damps every mode with energy ~ E0 exp(-alpha t) (modal damping ratio alpha / (2 omega);
+  // the instantaneous energy deviates from the exponential by O(alpha / omega1) = 1 % here).
+  const double T = beam_period(), alpha = 1.0 / (20.0 * T);
+  const BeamRun r = run_beam("damped", 2, alpha);
+  ASSERT_EQ(r.code, 0);
+  const auto& t = r.cols.at("time");
+  const auto& etot = r.cols.at("e_total");
+  const auto& ebal = r.cols.at("e_balance");
+  const auto& ediss = r.cols.at("e_dissipated");
+  double bal = 0;
+  for (size_t i = 0; i < etot.size(); ++i) bal = std::max(bal, std::abs(ebal[i]) / etot[0]);
+  const double ratio = etot.back() / etot[0], expected = std::exp(-alpha * t.back());
+  std::printf("mass-damped: E_end / E0 = %.4f (exp(-alpha t) = %.4f), dissipated / E0 = %.4f, max |balance| / E0 = "
+              "%.2e\n",
+              ratio, expected, ediss.back() / etot[0], bal);
+  EXPECT_NEAR(ratio, expected, 0.02 * expected + 0.005);
+  EXPECT_NEAR(ediss.back() / etot[0], 1.0 - ratio, 5e-3);
+  // Bookkeeping: trapezoidal damping work vs Newmark's midpoint dissipation differ by O(alpha dt^3 omega^2)
+  // per step, far below 1e-2 of E0 over the run.
+  EXPECT_LT(bal, 1e-2);
+}
+
+}  // namespace

@@ -17,6 +17,7 @@
 ///
 /// Assembly writes into a fixed CSC pattern through a per-element scatter map, in parallel (OpenMP) over
 /// element colours (no two elements of a colour share a node), so no atomics are needed.
+#include <lagfsi/assembly.hpp>
 #include <lagfsi/material.hpp>
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/types.hpp>
@@ -79,15 +80,13 @@ class SolidBody {
   double assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_force) const;
   void build_pattern();
   void build_mass();
-  void color_elements();
 
   TriMesh mesh_;
   std::shared_ptr<const SolidMaterial> material_;
   double thickness_;
   Vec X_;
   SparseMatrix pattern_, mass_;
-  std::vector<int> scatter_;                 // (2 npe)^2 value indices per element (column-major local)
-  std::vector<std::vector<Index>> colors_;   // element colours
+  ElementPattern assembly_;                  // pattern, scatter map and element colours
   std::vector<Eigen::MatrixX2d> qdN_;        // parent derivatives at the quadrature points
   std::vector<double> qw_;                   // quadrature weights
 };

@@ -1,7 +1,8 @@
 #pragma once
 /// @file vtk_output.hpp
 /// ParaView output: one .pvd time series per body, one .vtu (unstructured grid, VTK XML, binary appended,
-/// zlib-compressed) per output step. The .pvd is rewritten (to a temporary file, then renamed) after each
+/// zlib-compressed) per output step; polylines (rigid walls, shells) go to .vtp (VTK XML PolyData, same
+/// encoding). The .pvd is rewritten (to a temporary file, then renamed) after each
 /// step so that it is a complete, valid file whenever the run stops.
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/types.hpp>
@@ -30,15 +31,33 @@ struct VtuData {
   bool vertices_as_cells = false;
 };
 
-/// Writes VTK XML unstructured grid file `path` (throws std::runtime_error on I/O failure).
+/// Writes VTK XML unstructured grid file `path` (throws std::invalid_argument for inconsistent data,
+/// std::runtime_error on I/O failure).
 void write_vtu(const std::filesystem::path& path, const VtuData& data);
 
-/// A time series: `<dir>/<name>.pvd` referencing `<dir>/<name>/<name>_NNNNN.vtu`.
+/// What one .vtp holds: polylines through `points`. Each entry of `lines` is one polyline (a VTK_POLY_LINE
+/// cell) through the listed point indices, at least 2 of them (repeat the first index at the end to close
+/// it); cell fields have one tuple per line. With no lines, each point is written as a vertex cell
+/// (VTK_VERTEX) and cell fields have one tuple per point.
+struct VtpData {
+  std::vector<Vec2> points;
+  std::vector<std::vector<Index>> lines;
+  std::vector<Field> point_fields;
+  std::vector<Field> cell_fields;
+};
+
+/// Writes VTK XML PolyData file `path`, with the conventions of write_vtu (throws std::invalid_argument
+/// for inconsistent data, std::runtime_error on I/O failure).
+void write_vtp(const std::filesystem::path& path, const VtpData& data);
+
+/// A time series: `<dir>/<name>.pvd` referencing `<dir>/<name>/<name>_NNNNN.vtu` (or `.vtp`).
 class PvdSeries {
  public:
   PvdSeries(std::filesystem::path dir, std::string name);
   /// Writes the .vtu for time t and rewrites the .pvd atomically.
   void write(double t, const VtuData& data);
+  /// Same, writing `<name>_NNNNN.vtp`.
+  void write(double t, const VtpData& data);
   int steps_written() const { return static_cast<int>(entries_.size()); }
   std::filesystem::path pvd_path() const;
 

@@ -1,7 +1,7 @@
 /// @file vtk_output.cpp
-/// ParaView output (see vtk_output.hpp): VTK XML unstructured grids written by
-/// vtkXMLUnstructuredGridWriter (binary, appended, raw i.e. not base64-encoded, zlib-compressed), and the
-/// .pvd collection file written by hand.
+/// ParaView output (see vtk_output.hpp): VTK XML unstructured grids and polydata written by
+/// vtkXMLUnstructuredGridWriter / vtkXMLPolyDataWriter (binary, appended, raw i.e. not base64-encoded,
+/// zlib-compressed), and the .pvd collection file written by hand.
 ///
 /// Conventions of the written files:
 ///  - points are 3D with z = 0;
@@ -10,21 +10,26 @@
 ///    counts are written as given;
 ///  - cells: order 1 -> VTK_TRIANGLE, 2 -> VTK_QUADRATIC_TRIANGLE, 3 -> VTK_LAGRANGE_TRIANGLE with the
 ///    node order of mesh.hpp, which is VTK's (vertices, then the edge nodes of edges 0-1, 1-2, 2-0, each
-///    from its first vertex, then the interior node), so connectivity is written unchanged.
+///    from its first vertex, then the interior node), so connectivity is written unchanged;
+///  - polydata (.vtp): one VTK_POLY_LINE per line, or one VTK_VERTEX per point when there are no lines.
 #include <lagfsi/vtk_output.hpp>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
+#include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
+#include <vtkXMLWriter.h>
 
 #include <cstdio>
 #include <fstream>
@@ -48,14 +53,34 @@ void ensure_parent_directory(const fs::path& path) {
                              (ec ? " (" + ec.message() + ")" : std::string()));
 }
 
-/// A vtkDoubleArray holding `field` for `n` points or cells (2-component fields padded to 3).
-vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, const char* where) {
+/// vtkPoints holding `points` with z = 0.
+vtkSmartPointer<vtkPoints> make_points(const std::vector<Vec2>& points) {
+  const auto np = static_cast<vtkIdType>(points.size());
+  vtkNew<vtkDoubleArray> coords;
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(np);
+  double* xyz = coords->GetPointer(0);
+  for (vtkIdType i = 0; i < np; ++i) {
+    const Vec2& p = points[static_cast<size_t>(i)];
+    xyz[3 * i] = p.x();
+    xyz[3 * i + 1] = p.y();
+    xyz[3 * i + 2] = 0.0;
+  }
+  auto vtk_points = vtkSmartPointer<vtkPoints>::New();
+  vtk_points->SetData(coords);
+  return vtk_points;
+}
+
+/// A vtkDoubleArray holding `field` for `n` points or cells (2-component fields padded to 3); `caller`
+/// prefixes error messages.
+vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, const char* where,
+                                           const char* caller) {
   if (field.n_components < 1)
-    throw std::invalid_argument("write_vtu: field '" + field.name + "' has " +
+    throw std::invalid_argument(std::string(caller) + ": field '" + field.name + "' has " +
                                 std::to_string(field.n_components) + " components");
   const auto nc = static_cast<vtkIdType>(field.n_components);
   if (static_cast<vtkIdType>(field.values.size()) != nc * n)
-    throw std::invalid_argument("write_vtu: " + std::string(where) + " field '" + field.name + "' has " +
+    throw std::invalid_argument(std::string(caller) + ": " + where + " field '" + field.name + "' has " +
                                 std::to_string(field.values.size()) + " values, expected " +
                                 std::to_string(nc * n));
   const vtkIdType out_nc = nc == 2 ? 3 : nc;
@@ -69,6 +94,35 @@ vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, cons
     if (nc == 2) out[i * out_nc + 2] = 0.0;
   }
   return array;
+}
+
+/// Adds the point and cell fields to `dataset` (np points, nc cells).
+void add_fields(vtkDataSet* dataset, const std::vector<Field>& point_fields, const std::vector<Field>& cell_fields,
+                vtkIdType np, vtkIdType nc, const char* caller) {
+  for (const Field& f : point_fields) dataset->GetPointData()->AddArray(make_array(f, np, "point", caller));
+  for (const Field& f : cell_fields) dataset->GetCellData()->AddArray(make_array(f, nc, "cell", caller));
+}
+
+/// Writes `input` to `path` with `writer` (binary appended raw, zlib), creating the parent directory.
+void write_xml(vtkXMLWriter* writer, vtkDataObject* input, const fs::path& path) {
+  ensure_parent_directory(path);
+  writer->SetFileName(path.string().c_str());
+  writer->SetInputData(input);
+  writer->SetDataModeToAppended();
+  writer->SetEncodeAppendedData(false);
+  writer->SetCompressorTypeToZLib();
+  const int ok = writer->Write();
+  if (!ok || writer->GetErrorCode() != vtkErrorCode::NoError)
+    throw std::runtime_error(path.string() + ": cannot write VTK file (VTK error code " +
+                             std::to_string(writer->GetErrorCode()) + ")");
+}
+
+/// Offsets 0, 1, ..., n and connectivity 0, ..., n-1: one vertex cell per point.
+void fill_vertex_cells(vtkIdType n, vtkIdTypeArray* offsets, vtkIdTypeArray* connectivity) {
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i <= n; ++i) offsets->SetValue(i, i);
+  for (vtkIdType i = 0; i < n; ++i) connectivity->SetValue(i, i);
 }
 
 int vtk_cell_type(int order) {
@@ -96,6 +150,41 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
+/// `<name>_NNNNN<extension>`, the file of step `step` of series `name`.
+std::string step_file_name(const std::string& name, int step, const char* extension) {
+  char suffix[64];
+  std::snprintf(suffix, sizeof suffix, "_%05d%s", step, extension);
+  return name + suffix;
+}
+
+/// Rewrites the whole .pvd `pvd` listing `entries` (time, file relative to the .pvd) into a temporary
+/// file, then renames it over the old one (atomic on POSIX).
+void rewrite_pvd(const fs::path& pvd, const std::vector<std::pair<double, std::string>>& entries) {
+  fs::path tmp = pvd;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot open for writing");
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    char time[32];
+    for (const auto& [time_value, file] : entries) {
+      std::snprintf(time, sizeof time, "%.17g", time_value);
+      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(file)
+          << "\"/>\n";
+    }
+    out << "  </Collection>\n"
+        << "</VTKFile>\n";
+    out.flush();
+    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  std::error_code ec;
+  fs::rename(tmp, pvd, ec);
+  if (ec)
+    throw std::runtime_error(pvd.string() + ": cannot replace it by " + tmp.string() + " (" + ec.message() + ")");
+}
+
 }  // namespace
 
 void write_vtu(const fs::path& path, const VtuData& data) {
@@ -103,22 +192,8 @@ void write_vtu(const fs::path& path, const VtuData& data) {
   const std::vector<Vec2>* points = &data.points;
   if (points->empty() && data.mesh) points = &data.mesh->nodes;
   const auto np = static_cast<vtkIdType>(points->size());
-
-  vtkNew<vtkDoubleArray> coords;
-  coords->SetNumberOfComponents(3);
-  coords->SetNumberOfTuples(np);
-  double* xyz = coords->GetPointer(0);
-  for (vtkIdType i = 0; i < np; ++i) {
-    const Vec2& p = (*points)[static_cast<size_t>(i)];
-    xyz[3 * i] = p.x();
-    xyz[3 * i + 1] = p.y();
-    xyz[3 * i + 2] = 0.0;
-  }
-  vtkNew<vtkPoints> vtk_points;
-  vtk_points->SetData(coords);
-
   vtkNew<vtkUnstructuredGrid> grid;
-  grid->SetPoints(vtk_points);
+  grid->SetPoints(make_points(*points));
 
   // ------------------------------------------------------------ cells
   const Index ne = data.mesh ? data.mesh->num_elements() : 0;
@@ -146,10 +221,7 @@ void write_vtu(const fs::path& path, const VtuData& data) {
     }
   } else if (data.vertices_as_cells) {
     nc = np;
-    offsets->SetNumberOfValues(nc + 1);
-    connectivity->SetNumberOfValues(nc);
-    for (vtkIdType i = 0; i <= nc; ++i) offsets->SetValue(i, i);
-    for (vtkIdType i = 0; i < nc; ++i) connectivity->SetValue(i, i);
+    fill_vertex_cells(nc, offsets, connectivity);
   } else {
     offsets->SetNumberOfValues(1);
     offsets->SetValue(0, 0);
@@ -158,22 +230,54 @@ void write_vtu(const fs::path& path, const VtuData& data) {
   cells->SetData(offsets.Get(), connectivity.Get());
   grid->SetCells(cell_type, cells);
 
-  // ------------------------------------------------------------ fields
-  for (const Field& f : data.point_fields) grid->GetPointData()->AddArray(make_array(f, np, "point"));
-  for (const Field& f : data.cell_fields) grid->GetCellData()->AddArray(make_array(f, nc, "cell"));
-
-  // ------------------------------------------------------------ write
-  ensure_parent_directory(path);
+  add_fields(grid, data.point_fields, data.cell_fields, np, nc, "write_vtu");
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(path.string().c_str());
-  writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->SetEncodeAppendedData(false);
-  writer->SetCompressorTypeToZLib();
-  const int ok = writer->Write();
-  if (!ok || writer->GetErrorCode() != vtkErrorCode::NoError)
-    throw std::runtime_error(path.string() + ": cannot write VTK file (VTK error code " +
-                             std::to_string(writer->GetErrorCode()) + ")");
+  write_xml(writer, grid, path);
+}
+
+void write_vtp(const fs::path& path, const VtpData& data) {
+  const auto np = static_cast<vtkIdType>(data.points.size());
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(make_points(data.points));
+
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  vtkIdType nc = 0;
+  if (!data.lines.empty()) {
+    nc = static_cast<vtkIdType>(data.lines.size());
+    vtkIdType total = 0;
+    for (size_t l = 0; l < data.lines.size(); ++l) {
+      if (data.lines[l].size() < 2)
+        throw std::invalid_argument("write_vtp: line " + std::to_string(l) + " has " +
+                                    std::to_string(data.lines[l].size()) + " points, at least 2 needed");
+      total += static_cast<vtkIdType>(data.lines[l].size());
+    }
+    offsets->SetNumberOfValues(nc + 1);
+    connectivity->SetNumberOfValues(total);
+    vtkIdType k = 0;
+    offsets->SetValue(0, 0);
+    for (size_t l = 0; l < data.lines.size(); ++l) {
+      for (const Index node : data.lines[l]) {
+        if (node < 0 || node >= np)
+          throw std::invalid_argument("write_vtp: line " + std::to_string(l) + " node " + std::to_string(node) +
+                                      " out of range (" + std::to_string(np) + " points)");
+        connectivity->SetValue(k++, node);
+      }
+      offsets->SetValue(static_cast<vtkIdType>(l) + 1, k);
+    }
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(offsets.Get(), connectivity.Get());
+    poly->SetLines(cells);
+  } else {
+    nc = np;
+    fill_vertex_cells(nc, offsets, connectivity);
+    vtkNew<vtkCellArray> cells;
+    cells->SetData(offsets.Get(), connectivity.Get());
+    poly->SetVerts(cells);
+  }
+
+  add_fields(poly, data.point_fields, data.cell_fields, np, nc, "write_vtp");
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  write_xml(writer, poly, path);
 }
 
 PvdSeries::PvdSeries(fs::path dir, std::string name) : dir_(std::move(dir)), name_(std::move(name)) {}
@@ -181,37 +285,18 @@ PvdSeries::PvdSeries(fs::path dir, std::string name) : dir_(std::move(dir)), nam
 fs::path PvdSeries::pvd_path() const { return dir_ / (name_ + ".pvd"); }
 
 void PvdSeries::write(double t, const VtuData& data) {
-  char file_name[64];
-  std::snprintf(file_name, sizeof file_name, "_%05d.vtu", steps_written());
+  const std::string file = step_file_name(name_, steps_written(), ".vtu");
+  write_vtu(dir_ / name_ / file, data);
   // Relative to the .pvd, with '/' separators whatever the platform.
-  const std::string relative = name_ + "/" + name_ + file_name;
-  write_vtu(dir_ / name_ / (name_ + file_name), data);
-  entries_.emplace_back(t, relative);
+  entries_.emplace_back(t, name_ + "/" + file);
+  rewrite_pvd(pvd_path(), entries_);
+}
 
-  // Rewrite the whole .pvd into a temporary file, then rename it over the old one (atomic on POSIX).
-  const fs::path pvd = pvd_path();
-  const fs::path tmp = dir_ / (name_ + ".pvd.tmp");
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot open for writing");
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    char time[32];
-    for (const auto& [time_value, file] : entries_) {
-      std::snprintf(time, sizeof time, "%.17g", time_value);
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(file)
-          << "\"/>\n";
-    }
-    out << "  </Collection>\n"
-        << "</VTKFile>\n";
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
-  }
-  std::error_code ec;
-  fs::rename(tmp, pvd, ec);
-  if (ec)
-    throw std::runtime_error(pvd.string() + ": cannot replace it by " + tmp.string() + " (" + ec.message() + ")");
+void PvdSeries::write(double t, const VtpData& data) {
+  const std::string file = step_file_name(name_, steps_written(), ".vtp");
+  write_vtp(dir_ / name_ / file, data);
+  entries_.emplace_back(t, name_ + "/" + file);
+  rewrite_pvd(pvd_path(), entries_);
 }
 
 }  // namespace lagfsi

@@ -45,75 +45,12 @@ SolidBody::SolidBody(TriMesh reference, std::shared_ptr<const SolidMaterial> mat
   X_.resize(num_dofs());
   for (Index i = 0; i < num_nodes(); ++i) X_.segment<2>(2 * i) = mesh_.nodes[i];
   build_pattern();
-  color_elements();
   build_mass();
 }
 
 void SolidBody::build_pattern() {
-  const int npe = mesh_.nodes_per_element(), m = 2 * npe;
-  const Index ne = mesh_.num_elements(), nd = num_dofs();
-  // Node adjacency -> dof pattern.
-  std::vector<std::vector<Index>> adj(num_nodes());
-  for (Index e = 0; e < ne; ++e) {
-    const Index* c = mesh_.element(e);
-    for (int a = 0; a < npe; ++a)
-      for (int b = 0; b < npe; ++b) adj[c[a]].push_back(c[b]);
-  }
-  std::vector<int> outer(nd + 1, 0);
-  std::vector<int> inner;
-  for (Index i = 0; i < num_nodes(); ++i) {
-    auto& v = adj[i];
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
-  // Column 2i+c holds rows 2j+d for all neighbours j (sorted).
-  for (Index i = 0; i < num_nodes(); ++i)
-    for (int c = 0; c < 2; ++c) {
-      outer[2 * i + c + 1] = outer[2 * i + c] + static_cast<int>(2 * adj[i].size());
-      for (Index j : adj[i]) {
-        inner.push_back(2 * j);
-        inner.push_back(2 * j + 1);
-      }
-    }
-  std::vector<double> values(inner.size(), 0.0);
-  pattern_ = Eigen::Map<const SparseMatrix>(nd, nd, static_cast<int>(inner.size()), outer.data(), inner.data(),
-                                            values.data());
-  pattern_.makeCompressed();
-  // Scatter map.
-  scatter_.resize(static_cast<size_t>(ne) * m * m);
-  const int* op = pattern_.outerIndexPtr();
-  const int* ip = pattern_.innerIndexPtr();
-  for (Index e = 0; e < ne; ++e) {
-    const Index* c = mesh_.element(e);
-    for (int j = 0; j < m; ++j) {
-      const int gj = 2 * c[j / 2] + j % 2;
-      for (int i = 0; i < m; ++i) {
-        const int gi = 2 * c[i / 2] + i % 2;
-        const int* pos = std::lower_bound(ip + op[gj], ip + op[gj + 1], gi);
-        scatter_[(static_cast<size_t>(e) * m + j) * m + i] = static_cast<int>(pos - ip);
-      }
-    }
-  }
-}
-
-void SolidBody::color_elements() {
-  const int npe = mesh_.nodes_per_element();
-  std::vector<std::uint64_t> used(num_nodes(), 0);
-  std::vector<int> color(mesh_.num_elements());
-  int ncolors = 0;
-  for (Index e = 0; e < mesh_.num_elements(); ++e) {
-    const Index* c = mesh_.element(e);
-    std::uint64_t forbidden = 0;
-    for (int a = 0; a < npe; ++a) forbidden |= used[c[a]];
-    int k = 0;
-    while (k < 64 && (forbidden >> k) & 1u) ++k;
-    if (k == 64) throw std::runtime_error("element colouring needs more than 64 colours (degenerate mesh?)");
-    color[e] = k;
-    ncolors = std::max(ncolors, k + 1);
-    for (int a = 0; a < npe; ++a) used[c[a]] |= (std::uint64_t(1) << k);
-  }
-  colors_.assign(ncolors, {});
-  for (Index e = 0; e < mesh_.num_elements(); ++e) colors_[color[e]].push_back(e);
+  assembly_ = ElementPattern(mesh_.conn, mesh_.nodes_per_element(), num_nodes(), 2);
+  pattern_ = assembly_.pattern();
 }
 
 void SolidBody::build_mass() {
@@ -134,7 +71,7 @@ void SolidBody::build_mass() {
       if (!(detA0 > 0.0)) throw std::invalid_argument("element " + std::to_string(e) + " has non-positive area or is clockwise");
       Me += rule.N[q] * rule.N[q].transpose() * (rho * rule.w[q] * detA0 * thickness_);
     }
-    const int* sc = scatter_.data() + static_cast<size_t>(e) * m * m;
+    const int* sc = assembly_.scatter(e);
     for (int b = 0; b < npe; ++b)
       for (int a = 0; a < npe; ++a)
         for (int d = 0; d < 2; ++d) val[sc[(2 * b + d) * m + 2 * a + d]] += Me(a, b);
@@ -166,7 +103,7 @@ double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_forc
   // One parallel region for all colours (a barrier between colours); small meshes run serially, where
   // forking threads costs more than the work.
 #pragma omp parallel if (mesh_.num_elements() >= 256) reduction(+ : energy)
-  for (const auto& elems : colors_) {
+  for (const auto& elems : assembly_.colors()) {
     const Index nce = static_cast<Index>(elems.size());
 #pragma omp for schedule(static)
     for (Index ie = 0; ie < nce; ++ie) {
@@ -222,11 +159,7 @@ double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_forc
       }
       if (need_force)
         for (int a = 0; a < NPE; ++a) f.segment<2>(2 * c[a]) += fe.template segment<2>(2 * a);
-      if (K) {
-        const int* sc = scatter_.data() + static_cast<size_t>(e) * M * M;
-        for (int j = 0; j < M; ++j)
-          for (int i = 0; i < M; ++i) kval[sc[j * M + i]] += Ke(i, j);
-      }
+      if (K) assembly_.add(e, Ke, kval);
     }
   }
   if (failed) throw SolverError(failure);

@@ -1,8 +1,8 @@
 // Unit tests of the ParaView output (vtk_output.hpp): .vtu files are read back with VTK's own reader and
 // checked against the data written (points, cell types, connectivity, fields); for T6/T10 the curved
 // geometry is evaluated by VTK's cell at interior parametric points and compared with the exact
-// polynomial map, which checks that mesh.hpp's node order is the one VTK expects. The .pvd is parsed
-// with VTK's XML parser.
+// polynomial map, which checks that mesh.hpp's node order is the one VTK expects. .vtp polyline files are
+// read back with vtkXMLPolyDataReader. The .pvd is parsed with VTK's XML parser.
 #include <lagfsi/vtk_output.hpp>
 
 #include <gtest/gtest.h>
@@ -11,11 +11,14 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
+#include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
+#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUtilities.h>
 
@@ -115,6 +118,23 @@ vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& path) {
   reader->Update();
   vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
   return grid;
+}
+
+vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& path) {
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.string().c_str());
+  reader->Update();
+  vtkSmartPointer<vtkPolyData> poly = reader->GetOutput();
+  return poly;
+}
+
+// Point ids of cell `c` of `poly`.
+std::vector<vtkIdType> cell_point_ids(vtkPolyData* poly, vtkIdType c) {
+  vtkNew<vtkIdList> ids;
+  poly->GetCellPoints(c, ids);
+  std::vector<vtkIdType> out;
+  for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) out.push_back(ids->GetId(k));
+  return out;
 }
 
 std::string read_text(const fs::path& path) {
@@ -356,6 +376,193 @@ TEST(VtkOutput, PvdSeriesListsEveryStep) {
       auto grid = read_vtu(dir / ds->GetAttribute("file"));
       ASSERT_EQ(grid->GetNumberOfPoints(), tm.mesh.num_nodes());
       EXPECT_EQ(grid->GetPointData()->GetArray("step")->GetComponent(0, 0), double(k));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------- .vtp
+
+TEST(VtpOutput, PolylinesAndFieldsThatVtkReadsBack) {
+  TempDir tmp;
+  VtpData data;
+  // An open wall of 4 points and a closed triangle (first point repeated at the end).
+  data.points = {Vec2(0, 0), Vec2(1, 0), Vec2(2, 0.5), Vec2(3, 0.5), Vec2(0, 2), Vec2(1, 2), Vec2(0.5, 3)};
+  data.lines = {{0, 1, 2, 3}, {4, 5, 6, 4}};
+  Field scalar{"pressure", 1, {}}, vector{"normal", 2, {}};
+  for (const Vec2& x : data.points) {
+    scalar.values.push_back(x.x() - 3.0 * x.y());
+    vector.values.push_back(x.y() + 0.25);
+    vector.values.push_back(-x.x());
+  }
+  data.point_fields = {scalar, vector};
+  data.cell_fields = {Field{"wall_id", 1, {7.0, 8.0}}, Field{"force", 2, {1.0, 2.0, 3.0, 4.0}}};
+  const fs::path file = tmp.path() / "sub" / "walls.vtp";  // parent directory created by write_vtp
+  write_vtp(file, data);
+
+  const std::string text = read_text(file);
+  EXPECT_NE(text.find("type=\"PolyData\""), std::string::npos);
+  EXPECT_NE(text.find("vtkZLibDataCompressor"), std::string::npos);
+  EXPECT_NE(text.find("<AppendedData encoding=\"raw\">"), std::string::npos);
+
+  auto poly = read_vtp(file);
+  ASSERT_TRUE(poly);
+  ASSERT_EQ(poly->GetNumberOfPoints(), 7);
+  for (vtkIdType i = 0; i < 7; ++i) {
+    double p[3];
+    poly->GetPoint(i, p);
+    EXPECT_EQ(p[0], data.points[static_cast<size_t>(i)].x());
+    EXPECT_EQ(p[1], data.points[static_cast<size_t>(i)].y());
+    EXPECT_EQ(p[2], 0.0);
+  }
+  EXPECT_EQ(poly->GetNumberOfVerts(), 0);
+  ASSERT_EQ(poly->GetNumberOfLines(), 2);
+  ASSERT_EQ(poly->GetNumberOfCells(), 2);
+  for (vtkIdType c = 0; c < 2; ++c) {
+    EXPECT_EQ(poly->GetCellType(c), VTK_POLY_LINE);
+    const auto& line = data.lines[static_cast<size_t>(c)];
+    EXPECT_EQ(cell_point_ids(poly, c), std::vector<vtkIdType>(line.begin(), line.end()));
+  }
+
+  vtkDataArray* s = poly->GetPointData()->GetArray("pressure");
+  vtkDataArray* v = poly->GetPointData()->GetArray("normal");
+  vtkDataArray* id = poly->GetCellData()->GetArray("wall_id");
+  vtkDataArray* f = poly->GetCellData()->GetArray("force");
+  ASSERT_TRUE(s && v && id && f);
+  EXPECT_EQ(s->GetNumberOfComponents(), 1);
+  EXPECT_EQ(v->GetNumberOfComponents(), 3);  // 2D vectors padded with z = 0
+  EXPECT_EQ(f->GetNumberOfComponents(), 3);
+  for (vtkIdType i = 0; i < 7; ++i) {
+    const Vec2& x = data.points[static_cast<size_t>(i)];
+    EXPECT_EQ(s->GetComponent(i, 0), x.x() - 3.0 * x.y());
+    EXPECT_EQ(v->GetComponent(i, 0), x.y() + 0.25);
+    EXPECT_EQ(v->GetComponent(i, 1), -x.x());
+    EXPECT_EQ(v->GetComponent(i, 2), 0.0);
+  }
+  EXPECT_EQ(id->GetComponent(0, 0), 7.0);
+  EXPECT_EQ(id->GetComponent(1, 0), 8.0);
+  EXPECT_EQ(f->GetComponent(0, 0), 1.0);
+  EXPECT_EQ(f->GetComponent(0, 1), 2.0);
+  EXPECT_EQ(f->GetComponent(0, 2), 0.0);
+  EXPECT_EQ(f->GetComponent(1, 0), 3.0);
+  EXPECT_EQ(f->GetComponent(1, 1), 4.0);
+  EXPECT_EQ(f->GetComponent(1, 2), 0.0);
+}
+
+TEST(VtpOutput, WithoutLinesEachPointIsAVertex) {
+  TempDir tmp;
+  VtpData data;
+  data.points = {Vec2(0, 0), Vec2(1, 0.5), Vec2(2, 1), Vec2(-1, 3), Vec2(0.25, 0.75)};
+  data.point_fields = {Field{"id", 1, {0, 1, 2, 3, 4}}};
+  data.cell_fields = {Field{"cell_id", 1, {5, 6, 7, 8, 9}}};  // one per point
+  write_vtp(tmp.path() / "cloud.vtp", data);
+  auto poly = read_vtp(tmp.path() / "cloud.vtp");
+  ASSERT_EQ(poly->GetNumberOfPoints(), 5);
+  EXPECT_EQ(poly->GetNumberOfLines(), 0);
+  ASSERT_EQ(poly->GetNumberOfVerts(), 5);
+  ASSERT_EQ(poly->GetNumberOfCells(), 5);
+  for (vtkIdType c = 0; c < 5; ++c) {
+    EXPECT_EQ(poly->GetCellType(c), VTK_VERTEX);
+    EXPECT_EQ(cell_point_ids(poly, c), std::vector<vtkIdType>{c});
+    EXPECT_EQ(poly->GetPointData()->GetArray("id")->GetComponent(c, 0), double(c));
+    EXPECT_EQ(poly->GetCellData()->GetArray("cell_id")->GetComponent(c, 0), 5.0 + c);
+  }
+
+  // No points at all: a valid, empty file.
+  write_vtp(tmp.path() / "empty.vtp", VtpData{});
+  auto empty = read_vtp(tmp.path() / "empty.vtp");
+  EXPECT_EQ(empty->GetNumberOfPoints(), 0);
+  EXPECT_EQ(empty->GetNumberOfCells(), 0);
+}
+
+TEST(VtpOutput, InconsistentDataIsRejected) {
+  TempDir tmp;
+  VtpData data;
+  data.points = {Vec2(0, 0), Vec2(1, 0), Vec2(2, 0)};
+  data.lines = {{0, 1, 2}, {2, 0}};
+  data.point_fields = {Field{"short", 1, {1.0, 2.0}}};
+  EXPECT_THROW(write_vtp(tmp.path() / "a.vtp", data), std::invalid_argument);
+  data.point_fields.clear();
+  data.cell_fields = {Field{"per_point", 1, {1.0, 2.0, 3.0}}};  // 2 lines: one value per line
+  EXPECT_THROW(write_vtp(tmp.path() / "b.vtp", data), std::invalid_argument);
+  data.cell_fields = {Field{"zero", 0, {}}};
+  EXPECT_THROW(write_vtp(tmp.path() / "c.vtp", data), std::invalid_argument);
+  data.cell_fields.clear();
+  data.lines = {{0, 1, 3}};  // point 3 does not exist
+  EXPECT_THROW(write_vtp(tmp.path() / "d.vtp", data), std::invalid_argument);
+  data.lines = {{0, -1}};
+  EXPECT_THROW(write_vtp(tmp.path() / "e.vtp", data), std::invalid_argument);
+  data.lines = {{0, 1}, {2}};  // a polyline needs 2 points
+  EXPECT_THROW(write_vtp(tmp.path() / "f.vtp", data), std::invalid_argument);
+  data.lines = {{0, 1}, {}};
+  EXPECT_THROW(write_vtp(tmp.path() / "g.vtp", data), std::invalid_argument);
+  data.lines.clear();
+  data.cell_fields = {Field{"per_line", 1, {1.0}}};  // no lines: one value per point (vertex cells)
+  EXPECT_THROW(write_vtp(tmp.path() / "h.vtp", data), std::invalid_argument);
+  for (const char* name : {"a", "b", "c", "d", "e", "f", "g", "h"})
+    EXPECT_FALSE(fs::exists(tmp.path() / (std::string(name) + ".vtp"))) << name;
+}
+
+TEST(VtpOutput, IoFailureThrowsRuntimeErrorWithThePath) {
+  TempDir tmp;
+  const fs::path blocker = tmp.path() / "not_a_directory";
+  std::ofstream(blocker) << "x";
+  VtpData data;
+  data.points = {Vec2(0, 0), Vec2(1, 0)};
+  data.lines = {{0, 1}};
+  try {
+    write_vtp(blocker / "out.vtp", data);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not_a_directory"), std::string::npos) << e.what();
+  }
+  PvdSeries series(blocker, "wall");
+  try {
+    series.write(0.0, data);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not_a_directory"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(series.steps_written(), 0);
+}
+
+TEST(VtpOutput, PvdSeriesListsVtpSteps) {
+  TempDir tmp;
+  const fs::path dir = tmp.path() / "out" / "run1";  // created on the first write
+  PvdSeries series(dir, "wall");
+  const double times[3] = {0.0, 0.125, 1.0 / 7.0};
+  for (int step = 0; step < 3; ++step) {
+    VtpData data;
+    data.points = {Vec2(0, step), Vec2(1, step), Vec2(2, step)};
+    data.lines = {{0, 1, 2}};
+    data.point_fields = {Field{"step", 1, std::vector<double>(3, double(step))}};
+    data.cell_fields = {Field{"line_step", 1, {10.0 + step}}};
+    series.write(times[step], data);
+    EXPECT_EQ(series.steps_written(), step + 1);
+    EXPECT_FALSE(fs::exists(dir / "wall.pvd.tmp"));
+
+    vtkSmartPointer<vtkXMLDataElement> root;
+    root.TakeReference(vtkXMLUtilities::ReadElementFromFile(series.pvd_path().string().c_str()));
+    ASSERT_TRUE(root) << "not well-formed XML:\n" << read_text(series.pvd_path());
+    ASSERT_STREQ(root->GetAttribute("type"), "Collection");
+    vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
+    ASSERT_TRUE(collection);
+    ASSERT_EQ(collection->GetNumberOfNestedElements(), step + 1);
+    for (int k = 0; k <= step; ++k) {
+      vtkXMLDataElement* ds = collection->GetNestedElement(k);
+      EXPECT_STREQ(ds->GetName(), "DataSet");
+      EXPECT_EQ(std::strtod(ds->GetAttribute("timestep"), nullptr), times[k]);
+      char expected_file[64];
+      std::snprintf(expected_file, sizeof expected_file, "wall/wall_%05d.vtp", k);
+      EXPECT_STREQ(ds->GetAttribute("file"), expected_file);
+      auto poly = read_vtp(dir / ds->GetAttribute("file"));
+      ASSERT_EQ(poly->GetNumberOfPoints(), 3);
+      ASSERT_EQ(poly->GetNumberOfLines(), 1);
+      double p[3];
+      poly->GetPoint(2, p);
+      EXPECT_EQ(p[0], 2.0);
+      EXPECT_EQ(p[1], double(k));
+      EXPECT_EQ(poly->GetPointData()->GetArray("step")->GetComponent(0, 0), double(k));
+      EXPECT_EQ(poly->GetCellData()->GetArray("line_step")->GetComponent(0, 0), 10.0 + k);
     }
   }
 }

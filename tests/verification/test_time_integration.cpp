@@ -13,15 +13,18 @@
 //     simulated stiff oscillator (omega dt = 1e3) loses amplitude by a factor ~rho_inf per step with
 //     generalized-alpha and keeps its energy exactly with Newmark (the trapezoidal rule conserves the
 //     energy of linear systems exactly; Hughes 1987, sec. 9.3).
-// (b) The whole program (run_case with a case JSON in a temporary directory): undamped free vibration of
-//     a cantilever strip (T6 and T10) released with a uniform initial velocity, Newmark, 20 periods of
-//     the first mode with dt = T1 / 40 (T1 from Euler-Bernoulli beam theory, omega1 = 1.8751^2
-//     sqrt(EI / (rho A L^4))). The total energy (probe "total") must stay within 0.5 % of its initial value
-//     (= the initial kinetic energy, checked against 1/2 v0^T M v0 computed here) and the balance probe
-//     within 0.5 %; the measured period must match beam theory within 5 % (shear and rotary inertia at
-//     L/H = 10 and the coarse mesh shift it by ~1-3 %, Newmark's period elongation is (omega dt)^2 / 12 =
-//     0.2 %). A mass-damped variant (C = alpha M) checks the dissipation bookkeeping: every mode's energy
-//     decays like exp(-alpha t), and the balance probe E - E0 + W_damp stays ~0.
+// (b) The whole program (run_case with a case JSON in a temporary directory) on a cantilever strip
+//     L x H = 1 x 0.1 (SVK, plane stress, nu = 0), Newmark, dt = T1 / 40 and 20 periods of the first mode,
+//     T1 from Euler-Bernoulli beam theory (omega1 = 1.8751^2 sqrt(EI / (rho A L^4))):
+//   - undamped free vibration after release with a uniform initial velocity (T6 and T10): the total
+//     energy (probe "total") stays within 0.5 % of its initial value, which equals 1/2 v0^T M v0
+//     (computed here from SolidBody's mass), the balance probe stays within 0.5 %, and the measured period
+//     matches beam theory within 5 % (shear and rotary inertia at L/H = 10 and the coarse mesh shift it
+//     by ~1 %; Newmark's period elongation is (omega dt)^2 / 12 = 0.2 %);
+//   - a smooth body-force pulse (half sine over T1 / 2) then free vibration: energy constant after the
+//     pulse and balance E - E0 - W_ext ~ 0 to 1e-4;
+//   - the same pulse with mass-proportional damping C = alpha M: the energy decays like exp(-alpha t)
+//     (every mode has the energy decay rate alpha) and the balance E - E0 - W_ext + W_damp stays ~0.
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/material.hpp>
 #include <lagfsi/meshing/primitives.hpp>
@@ -35,6 +38,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -256,17 +260,26 @@ std::map<std::string, std::vector<double>> read_csv(const fs::path& file) {
 }
 
 // Beam data (SI): L = 1, H = 0.1, unit thickness, E = 1.2e7, nu = 0, rho = 1000, plane stress.
-constexpr double kL = 1.0, kH = 0.1, kE = 1.2e7, kRho = 1000.0, kV0 = 0.05;
+constexpr double kL = 1.0, kH = 0.1, kE = 1.2e7, kRho = 1000.0;
 double beam_period() {
   const double EI = kE * kH * kH * kH / 12.0, rhoA = kRho * kH;
   const double w1 = 1.875104068711961 * 1.875104068711961 * std::sqrt(EI / (rhoA * std::pow(kL, 4)));
   return 2 * kPi / w1;
 }
 
-BeamRun run_beam(const std::string& tag, int order, double mass_damping) {
+/// Runs the cantilever strip (20 x 2 crossed cells, order `order`) with Newmark, dt = T1 / 40, for 20 T1:
+/// released with a uniform initial velocity (0, v0), or at rest and loaded by a uniform transverse body
+/// force q(t) = pulse sin(2 pi t / T1) for t < T1 / 2, zero afterwards (a table function).
+BeamRun run_beam(const std::string& tag, int order, double v0, double pulse, double mass_damping) {
   const double T = beam_period(), dt = T / 40.0, t_end = 20.0 * T;
   const fs::path dir = fs::temp_directory_path() / ("lagfsi_verif_time_" + std::to_string(::getpid()) + "_" + tag);
   fs::create_directories(dir);
+  {
+    std::ofstream csv(dir / "pulse.csv");
+    csv.precision(17);
+    for (int i = 0; i < 40; ++i) csv << i * T / 80 << "," << std::sin(kPi * i / 40.0) << "\n";
+    csv << T / 2 << ",0\n";  // and 0 beyond (a table is constant beyond its ends)
+  }
   std::ostringstream js;
   js.precision(17);
   js << R"({
@@ -281,15 +294,17 @@ BeamRun run_beam(const std::string& tag, int order, double mass_damping) {
                  "hypothesis": "plane_stress"},
     "thickness": 1.0,
     "damping": {"mass": )" << mass_damping << R"(},
-    "initial_velocity": [0.0, )" << kV0 << R"(],
+    "initial_velocity": [0.0, )" << v0 << R"(],
     "geometry": {"type": "rectangle", "origin": [0, 0], "size": [)" << kL << ", " << kH << R"(]},
     "mesh": {"type": "structured", "size": 0.05, "divisions": [20, 2], "pattern": "crossed", "order": )" << order << R"(},
-    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, )" << kH << R"(]}}]
+    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, )" << kH << R"(]}}],
+    "loads": [{"type": "body_force", "value": [0, )" << pulse << R"(], "function": {"type": "table", "file": "pulse.csv"}}]
   }],
   "probes": [
     {"name": "tip_uy", "type": "displacement", "body": "strip", "at": [)" << kL << ", " << kH / 2 << R"(], "component": "y"},
     {"name": "e_total", "type": "energy", "body": "strip", "kind": "total"},
     {"name": "e_balance", "type": "energy", "body": "strip", "kind": "balance"},
+    {"name": "e_work", "type": "energy", "body": "strip", "kind": "external_work"},
     {"name": "e_dissipated", "type": "energy", "body": "strip", "kind": "dissipated"}
   ],
   "output": {"every": 1000000, "vtk": false}
@@ -307,20 +322,20 @@ BeamRun run_beam(const std::string& tag, int order, double mass_damping) {
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.cols = read_csv(dir / "out" / "probes.csv");
   std::error_code ec;
-  fs::remove_all(dir, ec);
+  if (!std::getenv("LAGFSI_KEEP_TEST_OUTPUT")) fs::remove_all(dir, ec);
   return r;
 }
 
 /// Initial kinetic energy 1/2 v0^T M v0 with v0 = (0, V) on the free nodes, computed from SolidBody's
 /// mass on the same mesh (the clamped nodes, x = 0, have zero velocity).
-double initial_kinetic_energy(int order) {
+double initial_kinetic_energy(int order, double V) {
   auto mat = std::shared_ptr<const SolidMaterial>(
       make_solid_material("svk", kE, 0.0, kRho, PlaneHypothesis::PlaneStress));
   SolidBody body(meshing::elevate(meshing::mesh_rectangle_structured(0, 0, kL, kH, 20, 2, "crossed"), order), mat,
                  1.0);
   Vec v = Vec::Zero(body.num_dofs());
   for (Index n = 0; n < body.num_nodes(); ++n)
-    if (body.mesh().nodes[n].x() > 1e-12) v[2 * n + 1] = kV0;
+    if (body.mesh().nodes[n].x() > 1e-12) v[2 * n + 1] = V;
   return 0.5 * v.dot(body.mass() * v);
 }
 
@@ -333,24 +348,40 @@ double measured_period(const std::vector<double>& t, const std::vector<double>& 
   return (up.back() - up.front()) / double(up.size() - 1);
 }
 
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
 class FreeVibration : public ::testing::TestWithParam<int> {};
 
+// Released with a uniform initial velocity V = 5 mm/s (tip amplitude ~0.8 mm = L / 1300).
+//
+// Why V is small: the uniform velocity field jumps to zero at the clamp, so about 40 % of the energy goes
+// into higher modes (the first mode's effective mass is 61 % of the total), including modes with
+// omega dt >> 1 that Newmark's trapezoidal rule carries without damping. The trapezoidal rule conserves
+// the energy of linear systems exactly but not of nonlinear ones (Simo & Tarnow 1992, ZAMP 43:757), and
+// SVK couples those unresolved modes geometrically: the measured drift grows like V^2 (7e-6 at
+// V = 0.5 mm/s, 7e-4 at 5 mm/s, 3.7e-2 at 50 mm/s for T6) and falls like dt^4. With a smooth excitation
+// (test PulseExcitation below, tip amplitude 5.5 mm) the drift is ~1e-6: the solid itself conserves energy.
 TEST_P(FreeVibration, NewmarkConservesEnergyOver20Periods) {
   const int order = GetParam();
-  const BeamRun r = run_beam("T" + std::to_string(order), order, 0.0);
+  const double V = 0.005;
+  const BeamRun r = run_beam("v_T" + std::to_string(order), order, V, 0.0, 0.0);
   ASSERT_EQ(r.code, 0) << "run_case failed";
   const auto& t = r.cols.at("time");
   const auto& etot = r.cols.at("e_total");
   const auto& ebal = r.cols.at("e_balance");
   const double T = beam_period();
-  ASSERT_GE(t.size(), 801u);
+  ASSERT_EQ(t.size(), 801u);
   EXPECT_NEAR(t.back(), 20 * T, 1e-9);
 
-  // Initial energy: all kinetic, 1/2 v0^T M v0 (exact up to round-off: 1e-12).
-  const double K0 = initial_kinetic_energy(order);
-  EXPECT_NEAR(etot[0], K0, 1e-12 * K0);
+  // Initial energy: all kinetic, 1/2 v0^T M v0 (probes.csv has 12 significant digits: 1e-10).
+  const double K0 = initial_kinetic_energy(order, V);
+  EXPECT_NEAR(etot[0], K0, 1e-10 * K0);
   // Sanity of the scale: close to 1/2 rho L H V^2 (the clamped column of nodes has v = 0).
-  EXPECT_NEAR(K0, 0.5 * kRho * kL * kH * kV0 * kV0, 0.05 * K0);
+  EXPECT_NEAR(K0, 0.5 * kRho * kL * kH * V * V, 0.05 * K0);
 
   double drift = 0, bal = 0;
   for (size_t i = 0; i < etot.size(); ++i) {
@@ -358,11 +389,10 @@ TEST_P(FreeVibration, NewmarkConservesEnergyOver20Periods) {
     bal = std::max(bal, std::abs(ebal[i]) / etot[0]);
   }
   const double Tm = measured_period(t, r.cols.at("tip_uy"));
-  double amp = 0;
-  for (double u : r.cols.at("tip_uy")) amp = std::max(amp, std::abs(u));
   std::printf("T%d free vibration: %zu steps in %.2f s, max |E - E0| / E0 = %.2e, max |balance| / E0 = %.2e, "
               "tip amplitude %.3e m, period %.5f s (beam theory %.5f s, ratio %.4f)\n",
-              TriMesh::nodes_per_element(order), t.size() - 1, r.seconds, drift, bal, amp, Tm, T, Tm / T);
+              TriMesh::nodes_per_element(order), t.size() - 1, r.seconds, drift, bal, max_abs(r.cols.at("tip_uy")),
+              Tm, T, Tm / T);
   EXPECT_LT(drift, 5e-3);
   EXPECT_LT(bal, 5e-3);
   EXPECT_NEAR(Tm / T, 1.0, 0.05);
@@ -374,26 +404,61 @@ INSTANTIATE_TEST_SUITE_P(Elements, FreeVibration, ::testing::Values(2, 3),
                            return "T" + std::to_string(TriMesh::nodes_per_element(i.param));
                          });
 
-TEST(FreeVibrationDamped, MassProportionalDampingBookkeeping) {
-  // C = alpha M damps every mode with energy ~ E0 exp(-alpha t) (modal damping ratio alpha / (2 omega);
-  // the instantaneous energy deviates from the exponential by O(alpha / omega1) = 1 % here).
-  const double T = beam_period(), alpha = 1.0 / (20.0 * T);
-  const BeamRun r = run_beam("damped", 2, alpha);
+// At rest, loaded by a smooth body-force pulse (half sine over T1 / 2, impulse rho * 0.05 m/s per unit
+// volume), then free: the pulse puts nearly all the energy into well-resolved low modes. Checked: the
+// balance E - E0 - W_ext ~ 0 during the pulse (for Newmark the trapezoidal external work is the exact
+// discrete work of linear systems), and E constant after it; both to 1e-4 of E (measured ~1e-6: the
+// remaining geometric nonlinearity at a 5.5 mm tip amplitude).
+TEST(PulseExcitation, EnergyConservedAfterThePulse) {
+  const double T = beam_period();
+  const double q = kRho * 0.05 / (T / kPi);  // integral of q sin(2 pi t / T) over T / 2 = rho * 0.05
+  const BeamRun r = run_beam("pulse", 2, 0.0, q, 0.0);
   ASSERT_EQ(r.code, 0);
   const auto& t = r.cols.at("time");
   const auto& etot = r.cols.at("e_total");
   const auto& ebal = r.cols.at("e_balance");
-  const auto& ediss = r.cols.at("e_dissipated");
+  const auto& work = r.cols.at("e_work");
+  ASSERT_EQ(t.size(), 801u);
+  const size_t ip = 20;  // t = T / 2, the end of the pulse
+  EXPECT_NEAR(t[ip], T / 2, 1e-12);
+  const double Ep = etot[ip];
+  double drift = 0, bal = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    bal = std::max(bal, std::abs(ebal[i]) / Ep);
+    if (i >= ip) drift = std::max(drift, std::abs(etot[i] - Ep) / Ep);
+  }
+  std::printf("pulse: E after pulse %.5e J (external work %.5e J), max |E - E_p| / E_p = %.2e, "
+              "max |balance| / E_p = %.2e, tip amplitude %.3e m, %.2f s\n",
+              Ep, work.back(), drift, bal, max_abs(r.cols.at("tip_uy")), r.seconds);
+  EXPECT_GT(Ep, 0.01);  // ~0.047 J: the pulse did load the beam
+  EXPECT_NEAR(work.back(), work[ip], 1e-12 * Ep);  // no work after the pulse
+  EXPECT_LT(drift, 1e-4);
+  EXPECT_LT(bal, 1e-4);
+}
+
+// The same pulse with mass-proportional damping C = alpha M, alpha = 1 / (20 T1 - T1 / 2) (so that the
+// energy falls by about e after the pulse): every mode's energy decays on average like exp(-alpha t)
+// (modal damping ratio alpha / (2 omega), energy rate 2 zeta omega = alpha), with an oscillating
+// deviation of order alpha / omega1 = 0.2 %; tolerance 2 %. The balance probe E - E0 - W_ext + W_damp
+// stays ~0: the trapezoidal damping work differs from Newmark's discrete dissipation
+// dt v_mid^T C v_mid by (dt / 4) dv^T C dv per step, O((omega dt)^2) relative for resolved modes; 1 %.
+TEST(PulseExcitation, MassProportionalDampingDecay) {
+  const double T = beam_period();
+  const double q = kRho * 0.05 / (T / kPi), alpha = 1.0 / (19.5 * T);
+  const BeamRun r = run_beam("pulse_damped", 2, 0.0, q, alpha);
+  ASSERT_EQ(r.code, 0);
+  const auto& t = r.cols.at("time");
+  const auto& etot = r.cols.at("e_total");
+  const auto& ebal = r.cols.at("e_balance");
+  ASSERT_EQ(t.size(), 801u);
+  const size_t ip = 20;
+  const double Ep = etot[ip];
   double bal = 0;
-  for (size_t i = 0; i < etot.size(); ++i) bal = std::max(bal, std::abs(ebal[i]) / etot[0]);
-  const double ratio = etot.back() / etot[0], expected = std::exp(-alpha * t.back());
-  std::printf("mass-damped: E_end / E0 = %.4f (exp(-alpha t) = %.4f), dissipated / E0 = %.4f, max |balance| / E0 = "
-              "%.2e\n",
-              ratio, expected, ediss.back() / etot[0], bal);
-  EXPECT_NEAR(ratio, expected, 0.02 * expected + 0.005);
-  EXPECT_NEAR(ediss.back() / etot[0], 1.0 - ratio, 5e-3);
-  // Bookkeeping: trapezoidal damping work vs Newmark's midpoint dissipation differ by O(alpha dt^3 omega^2)
-  // per step, far below 1e-2 of E0 over the run.
+  for (size_t i = 0; i < t.size(); ++i) bal = std::max(bal, std::abs(ebal[i]) / Ep);
+  const double ratio = etot.back() / Ep, expected = std::exp(-alpha * (t.back() - t[ip]));
+  std::printf("pulse, mass damping: E_end / E_p = %.4f (exp(-alpha (t - t_p)) = %.4f), max |balance| / E_p = %.2e\n",
+              ratio, expected, bal);
+  EXPECT_NEAR(ratio, expected, 0.02 * expected);
   EXPECT_LT(bal, 1e-2);
 }
 

@@ -1,0 +1,46 @@
+#pragma once
+/// @file assembly.hpp
+/// Sparse assembly on a fixed pattern: the CSC pattern of a mesh with `dofs_per_node` unknowns per node
+/// (dof = dofs_per_node * node + component), and for each element the positions in the value array of its
+/// (npe*dofs_per_node)^2 local entries (the "scatter map"), so that assembling a local matrix is a sequence
+/// of indexed additions. Elements are coloured (no two elements of a colour share a node) so that OpenMP
+/// threads can add whole elements without atomics.
+#include <lagfsi/types.hpp>
+
+#include <vector>
+
+namespace lagfsi {
+
+class ElementPattern {
+ public:
+  ElementPattern() = default;
+  /// conn: npe node indices per element; num_nodes: nodes of the mesh (nodes in no element get a
+  /// diagonal entry so that the matrix stays square and can carry a Dirichlet 1 on them).
+  ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node);
+
+  const SparseMatrix& pattern() const { return pattern_; }
+  int local_size() const { return m_; }
+  Index num_elements() const { return ne_; }
+  /// Value indices of element e's local entries, column-major (entry (i, j) at [j * m + i]).
+  const int* scatter(Index e) const { return scatter_.data() + static_cast<size_t>(e) * m_ * m_; }
+  /// Element colours (lists of elements).
+  const std::vector<std::vector<Index>>& colors() const { return colors_; }
+
+  /// Adds a column-major local matrix (m x m) of element e into `values` (the value array of a matrix
+  /// with pattern()'s structure).
+  template <class LocalMatrix>
+  void add(Index e, const LocalMatrix& Ke, double* values) const {
+    const int* sc = scatter(e);
+    for (int j = 0; j < m_; ++j)
+      for (int i = 0; i < m_; ++i) values[sc[j * m_ + i]] += Ke(i, j);
+  }
+
+ private:
+  int m_ = 0;
+  Index ne_ = 0;
+  SparseMatrix pattern_;
+  std::vector<int> scatter_;
+  std::vector<std::vector<Index>> colors_;
+};
+
+}  // namespace lagfsi

@@ -1,0 +1,67 @@
+#pragma once
+/// @file remesh.hpp
+/// PFEM remeshing of a particle cloud (Idelsohn, Oñate & Del Pin 2004; Avancini 2018, sec. 6.7):
+/// Delaunay triangulation of all particles, the alpha-shape test, removal of elements made only of
+/// wall particles, free-surface detection, and the geometric part of particle-quality control.
+///
+/// The alpha test is a single comparison per element, done here on the triangulation itself: an element
+/// is deleted when its circumradius R exceeds alpha * h_e, with h_e the mean of its three particles'
+/// spacings h_i. CGAL's Alpha_shape_2 class is deliberately not used (it builds a full filtration and was
+/// measured 6-20x slower than the triangulation itself).
+///
+/// CGAL types do not appear here; see meshing/src/remesh.cpp.
+#include <lagfsi/types.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lagfsi::meshing {
+
+/// What a particle is. Walls and ghosts are boundary particles whose positions are prescribed.
+enum class ParticleKind : std::uint8_t { Fluid = 0, Wall = 1, Ghost = 2 };
+
+struct RemeshSettings {
+  double alpha = 1.2;   ///< delete an element if R > alpha * h_e
+};
+
+struct RemeshResult {
+  std::vector<std::array<Index, 3>> triangles;  ///< kept elements, counter-clockwise
+  std::vector<std::uint8_t> free_surface;       ///< per particle: 1 if a fluid particle on an unshared edge
+  std::vector<std::uint8_t> connected;          ///< per particle: 1 if used by at least one kept element
+  double area = 0;                              ///< total area of the kept elements
+  int removed_alpha = 0;                        ///< elements deleted by the alpha test
+  int removed_boundary_only = 0;                ///< elements deleted because all their particles are walls/ghosts
+};
+
+/// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its
+/// index), then keeps an element if (1) its circumradius R <= alpha * (h_a + h_b + h_c)/3 and (2) at least
+/// one of its particles is Fluid. Free-surface particles: Fluid particles on an edge used by exactly one
+/// kept element. Duplicate points (closer than 1e-12 of the bounding box) are an error
+/// (std::invalid_argument), as are sizes that do not match or fewer than 3 points (then the result is empty
+/// rather than an error if all are valid: fewer than 3 points give no triangles).
+/// Degenerate (zero-area) Delaunay triangles of collinear points are never kept.
+RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                    const std::vector<double>& h, const RemeshSettings& settings);
+
+/// The plain Delaunay triangulation of `points` (no alpha test, no removal), counter-clockwise, with the
+/// same construction, validation and duplicate check as remesh(); dimension < 2 (all points collinear)
+/// gives no triangles. For diagnostics, tests and timing the triangulation alone.
+std::vector<std::array<Index, 3>> delaunay_triangles(const std::vector<Vec2>& points);
+
+/// Particle-quality control, geometric part. Pairs of Fluid particles closer than `fraction * h_ij`,
+/// h_ij = (h_i + h_j)/2 (fraction typically 0.3-0.5): returns the indices to remove (one per pair, never
+/// a wall or ghost, each particle at most once, the one with the larger index of the pair; pairs are
+/// taken closest first and a pair whose particle is already removed is skipped), found from the edges of
+/// `triangles` (the nearest neighbour of a point is always a Delaunay neighbour), so this is
+/// O(n + k log k) for k close pairs. Sorted ascending.
+std::vector<Index> close_fluid_particles(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                                         const std::vector<double>& h,
+                                         const std::vector<std::array<Index, 3>>& triangles, double fraction);
+
+/// Kept elements whose area exceeds `factor * h_e^2` (h_e as in remesh): candidates for inserting a
+/// particle at their centroid (the caller interpolates the particle's state).
+std::vector<Index> oversized_elements(const std::vector<Vec2>& points, const std::vector<double>& h,
+                                      const std::vector<std::array<Index, 3>>& triangles, double factor);
+
+}  // namespace lagfsi::meshing

@@ -1,0 +1,301 @@
+/// @file remesh.cpp
+/// PFEM remeshing: CGAL Delaunay triangulation (exact predicates, inexact constructions) of the particle
+/// cloud, the alpha test on each Delaunay face, removal of wall/ghost-only faces, free-surface detection
+/// by a neighbour check through the triangulation, and the geometric particle-quality helpers.
+/// Every CGAL type stays in this translation unit.
+#include <lagfsi/meshing/remesh.hpp>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_data_structure_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+
+namespace lagfsi::meshing {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_2;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;         // info: particle index
+using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;    // info: 1 if the face is kept
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+
+[[noreturn]] void fail(const char* where, const std::string& what) {
+  throw std::invalid_argument(std::string(where) + ": " + what);
+}
+
+std::string point_str(const Vec2& p) {
+  std::ostringstream s;
+  s.precision(17);
+  s << '(' << p.x() << ", " << p.y() << ')';
+  return s.str();
+}
+
+/// Finite coordinates, an index range that fits Index; returns the duplicate tolerance squared
+/// (1e-12 of the bounding-box diagonal, squared).
+double check_points(const std::vector<Vec2>& points, const char* where) {
+  if (points.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+    fail(where, "too many points (" + std::to_string(points.size()) + ")");
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec2& p = points[i];
+    if (!(std::isfinite(p.x()) && std::isfinite(p.y())))
+      fail(where, "point " + std::to_string(i) + " has a non-finite coordinate");
+    x0 = std::min(x0, p.x());
+    x1 = std::max(x1, p.x());
+    y0 = std::min(y0, p.y());
+    y1 = std::max(y1, p.y());
+  }
+  if (points.empty()) return 0.0;
+  const double tol = 1e-12 * std::hypot(x1 - x0, y1 - y0);
+  return tol * tol;
+}
+
+/// Called when the triangulation has fewer vertices than points: CGAL merged exact duplicates.
+[[noreturn]] void throw_merged_duplicates(const DT& dt, const std::vector<Vec2>& points, const char* where) {
+  const std::size_t n = points.size();
+  std::vector<std::uint8_t> kept(n, 0);
+  for (auto v : dt.finite_vertex_handles()) kept[static_cast<std::size_t>(v->info())] = 1;
+  std::size_t first = 0;
+  while (first < n && kept[first]) ++first;
+  std::size_t twin = 0;
+  while (twin < n && !(kept[twin] && points[twin] == points[first])) ++twin;
+  std::ostringstream s;
+  s << (n - dt.number_of_vertices()) << " duplicate point(s), e.g. point " << first << " equals point " << twin
+    << " at " << point_str(points[first]);
+  fail(where, s.str());
+}
+
+[[noreturn]] void throw_near_duplicate(Index i, Index j, const std::vector<Vec2>& points, const char* where) {
+  std::ostringstream s;
+  s << "duplicate points: " << i << " " << point_str(points[static_cast<std::size_t>(i)]) << " and " << j << " "
+    << point_str(points[static_cast<std::size_t>(j)]) << " are closer than 1e-12 of the bounding box";
+  fail(where, s.str());
+}
+
+/// One range insertion of (point, index) pairs (CGAL sorts them spatially), then the exact-duplicate
+/// check. Near duplicates are checked by the callers on the faces (or edges in dimension 1).
+void build(DT& dt, const std::vector<Vec2>& points, const char* where) {
+  std::vector<std::pair<Point, Index>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    input.emplace_back(Point(points[i].x(), points[i].y()), static_cast<Index>(i));
+  dt.insert(input.begin(), input.end());
+  if (dt.number_of_vertices() < points.size()) throw_merged_duplicates(dt, points, where);
+}
+
+/// Dimension < 2: no faces; check the edges (dimension 1) for near duplicates.
+void check_edges_1d(const DT& dt, const std::vector<Vec2>& points, double tol2, const char* where) {
+  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+    const Index i = e->first->vertex(DT::cw(e->second))->info();
+    const Index j = e->first->vertex(DT::ccw(e->second))->info();
+    if ((points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(j)]).squaredNorm() < tol2)
+      throw_near_duplicate(i, j, points, where);
+  }
+}
+
+void check_triangles(const std::vector<std::array<Index, 3>>& triangles, std::size_t n, const char* where) {
+  for (std::size_t e = 0; e < triangles.size(); ++e)
+    for (Index v : triangles[e])
+      if (v < 0 || static_cast<std::size_t>(v) >= n)
+        fail(where, "triangle " + std::to_string(e) + " has particle index " + std::to_string(v) +
+                        " out of range [0, " + std::to_string(n) + ")");
+}
+
+}  // namespace
+
+RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                    const std::vector<double>& h, const RemeshSettings& settings) {
+  const char* where = "remesh";
+  const std::size_t n = points.size();
+  if (kind.size() != n || h.size() != n)
+    fail(where, "sizes do not match (points " + std::to_string(n) + ", kind " + std::to_string(kind.size()) +
+                    ", h " + std::to_string(h.size()) + ")");
+  const double alpha = settings.alpha;
+  if (!(std::isfinite(alpha) && alpha > 0)) fail(where, "alpha must be finite and > 0");
+  const double tol2 = check_points(points, where);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(std::isfinite(h[i]) && h[i] > 0)) fail(where, "h[" + std::to_string(i) + "] must be finite and > 0");
+    if (static_cast<std::uint8_t>(kind[i]) > static_cast<std::uint8_t>(ParticleKind::Ghost))
+      fail(where, "kind[" + std::to_string(i) + "] is not a valid ParticleKind");
+  }
+
+  RemeshResult result;
+  result.free_surface.assign(n, 0);
+  result.connected.assign(n, 0);
+  if (n < 3) return result;
+
+  DT dt;
+  build(dt, points, where);
+  if (dt.dimension() < 2) {
+    check_edges_1d(dt, points, tol2, where);
+    return result;
+  }
+
+  // The free-surface pass reads the flag of every neighbour, including the infinite faces.
+  {
+    auto fc = dt.incident_faces(dt.infinite_vertex());
+    const auto done = fc;
+    do fc->info() = 0;
+    while (++fc != done);
+  }
+
+  result.triangles.reserve(dt.number_of_faces());
+  std::uint8_t* connected = result.connected.data();
+  double area2 = 0.0, area2_comp = 0.0;   // twice the kept area, Neumaier-compensated sum
+  int removed_alpha = 0, removed_boundary = 0;
+
+  // Pass 1: the alpha test, in double from the input coordinates (CGAL's faces are counter-clockwise).
+  // An element failing both tests counts as removed by the alpha test.
+  for (auto f : dt.finite_face_handles()) {
+    const Index a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+    const Vec2& pa = points[static_cast<std::size_t>(a)];
+    const Vec2& pb = points[static_cast<std::size_t>(b)];
+    const Vec2& pc = points[static_cast<std::size_t>(c)];
+    const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y();   // a -> b
+    const double vx = pc.x() - pa.x(), vy = pc.y() - pa.y();   // a -> c
+    const double wx = pc.x() - pb.x(), wy = pc.y() - pb.y();   // b -> c
+    const double lab2 = ux * ux + uy * uy, lac2 = vx * vx + vy * vy, lbc2 = wx * wx + wy * wy;
+    if (std::min({lab2, lac2, lbc2}) < tol2) {
+      if (lab2 < tol2) throw_near_duplicate(a, b, points, where);
+      if (lac2 < tol2) throw_near_duplicate(a, c, points, where);
+      throw_near_duplicate(b, c, points, where);
+    }
+    const double cr = ux * vy - uy * vx;   // 2 * area
+    f->info() = 0;
+    // R = l_ab l_ac l_bc / (4 A) <= alpha h_e  <=>  l_ab l_ac l_bc <= 2 cr alpha h_e (for cr > 0)
+    const double he = (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] +
+                       h[static_cast<std::size_t>(c)]) * (1.0 / 3.0);
+    if (!(cr > 0) || std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2) > 2.0 * cr * alpha * he) {
+      ++removed_alpha;
+      continue;
+    }
+    if (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid &&
+        kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid &&
+        kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid) {
+      ++removed_boundary;
+      continue;
+    }
+    f->info() = 1;
+    result.triangles.push_back({a, b, c});
+    connected[a] = connected[b] = connected[c] = 1;
+    const double t = area2 + cr;
+    area2_comp += std::abs(area2) >= cr ? (area2 - t) + cr : (cr - t) + area2;
+    area2 = t;
+  }
+
+  // Pass 2: an edge of a kept face is used by exactly one kept element iff the face across it (possibly
+  // infinite) is not kept. Every face's flag has been set above.
+  std::uint8_t* fs = result.free_surface.data();
+  for (auto f : dt.all_face_handles()) {
+    if (!f->info()) continue;
+    for (int i = 0; i < 3; ++i) {
+      if (f->neighbor(i)->info()) continue;
+      const Index p = f->vertex(DT::ccw(i))->info(), q = f->vertex(DT::cw(i))->info();
+      if (kind[static_cast<std::size_t>(p)] == ParticleKind::Fluid) fs[p] = 1;
+      if (kind[static_cast<std::size_t>(q)] == ParticleKind::Fluid) fs[q] = 1;
+    }
+  }
+
+  result.area = 0.5 * (area2 + area2_comp);
+  result.removed_alpha = removed_alpha;
+  result.removed_boundary_only = removed_boundary;
+  return result;
+}
+
+std::vector<std::array<Index, 3>> delaunay_triangles(const std::vector<Vec2>& points) {
+  const char* where = "delaunay_triangles";
+  const double tol2 = check_points(points, where);
+  std::vector<std::array<Index, 3>> triangles;
+  if (points.size() < 3) return triangles;
+  DT dt;
+  build(dt, points, where);
+  if (dt.dimension() < 2) {
+    check_edges_1d(dt, points, tol2, where);
+    return triangles;
+  }
+  triangles.reserve(dt.number_of_faces());
+  for (auto f : dt.finite_face_handles()) {
+    const Index a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+    const Vec2& pa = points[static_cast<std::size_t>(a)];
+    const Vec2& pb = points[static_cast<std::size_t>(b)];
+    const Vec2& pc = points[static_cast<std::size_t>(c)];
+    if ((pb - pa).squaredNorm() < tol2) throw_near_duplicate(a, b, points, where);
+    if ((pc - pa).squaredNorm() < tol2) throw_near_duplicate(a, c, points, where);
+    if ((pc - pb).squaredNorm() < tol2) throw_near_duplicate(b, c, points, where);
+    triangles.push_back({a, b, c});
+  }
+  return triangles;
+}
+
+std::vector<Index> close_fluid_particles(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                                         const std::vector<double>& h,
+                                         const std::vector<std::array<Index, 3>>& triangles, double fraction) {
+  const char* where = "close_fluid_particles";
+  const std::size_t n = points.size();
+  if (kind.size() != n || h.size() != n) fail(where, "sizes of points, kind and h do not match");
+  if (!(std::isfinite(fraction) && fraction >= 0)) fail(where, "fraction must be finite and >= 0");
+  check_triangles(triangles, n, where);
+
+  // Candidates (relative distance squared, smaller index, larger index); each interior edge appears
+  // twice, the second copy is skipped below because one of its particles is already removed.
+  std::vector<std::tuple<double, Index, Index>> close;
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      Index i = t[static_cast<std::size_t>(k)], j = t[static_cast<std::size_t>((k + 1) % 3)];
+      const auto si = static_cast<std::size_t>(i), sj = static_cast<std::size_t>(j);
+      if (kind[si] != ParticleKind::Fluid || kind[sj] != ParticleKind::Fluid) continue;
+      const double hij = 0.5 * (h[si] + h[sj]);
+      const double d2 = (points[si] - points[sj]).squaredNorm();
+      const double lim = fraction * hij;
+      if (d2 < lim * lim) {
+        if (i > j) std::swap(i, j);
+        close.emplace_back(d2 / (hij * hij), i, j);
+      }
+    }
+  }
+  std::vector<Index> remove;
+  if (close.empty()) return remove;
+  std::sort(close.begin(), close.end());
+  std::vector<std::uint8_t> removed(n, 0);
+  for (const auto& [r2, i, j] : close) {
+    (void)r2;
+    if (removed[static_cast<std::size_t>(i)] || removed[static_cast<std::size_t>(j)]) continue;
+    removed[static_cast<std::size_t>(j)] = 1;
+    remove.push_back(j);
+  }
+  std::sort(remove.begin(), remove.end());
+  return remove;
+}
+
+std::vector<Index> oversized_elements(const std::vector<Vec2>& points, const std::vector<double>& h,
+                                      const std::vector<std::array<Index, 3>>& triangles, double factor) {
+  const char* where = "oversized_elements";
+  if (h.size() != points.size()) fail(where, "sizes of points and h do not match");
+  if (!(std::isfinite(factor) && factor >= 0)) fail(where, "factor must be finite and >= 0");
+  check_triangles(triangles, points.size(), where);
+  std::vector<Index> out;
+  for (std::size_t e = 0; e < triangles.size(); ++e) {
+    const auto a = static_cast<std::size_t>(triangles[e][0]), b = static_cast<std::size_t>(triangles[e][1]),
+               c = static_cast<std::size_t>(triangles[e][2]);
+    const Vec2 u = points[b] - points[a], v = points[c] - points[a];
+    const double area = 0.5 * std::abs(u.x() * v.y() - u.y() * v.x());
+    const double he = (h[a] + h[b] + h[c]) / 3.0;
+    if (area > factor * he * he) out.push_back(static_cast<Index>(e));
+  }
+  return out;
+}
+
+}  // namespace lagfsi::meshing

@@ -32,6 +32,7 @@ struct AnalysisSettings {
   Json integrator;             ///< {"type": "newmark"|"generalized_alpha"|"central_difference", ...}
   NewtonSettings newton;
   std::string linear_solver;   ///< linear_solver.hpp type
+  int max_step_halvings = 4;   ///< retries of a failed step with dt/2, dt/4, ...
 };
 
 /// What a model builder gets besides its own parameters.
@@ -67,5 +68,6 @@ const std::map<std::string, ModelBuilder>& model_registry();
 
 /// Builders registered in model_registry().
 std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx);
+std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
 
 }  // namespace lagfsi

@@ -77,8 +77,9 @@ class Params {
 };
 
 /// Applies "a.b.0.c=value" to a JSON document: the value is parsed as JSON when it is valid JSON,
-/// otherwise taken as a string; array indices are numbers; intermediate objects must exist.
-/// Throws InputError (file = "--set") for a path that does not exist.
+/// otherwise taken as a string; array indices are numbers; missing intermediate objects are created (the
+/// case validation then rejects keys that do not exist). Throws InputError (file = "--set") for an array
+/// index out of range or a path through a value that is not an object or array.
 void apply_override(Json& doc, const std::string& assignment);
 
 }  // namespace lagfsi

@@ -35,10 +35,10 @@ struct VtuData {
 /// std::runtime_error on I/O failure).
 void write_vtu(const std::filesystem::path& path, const VtuData& data);
 
-/// What one .vtp holds: polylines through `points`. Each entry of `lines` is one polyline (a VTK_POLY_LINE
-/// cell) through the listed point indices, at least 2 of them (repeat the first index at the end to close
-/// it); cell fields have one tuple per line. With no lines, each point is written as a vertex cell
-/// (VTK_VERTEX) and cell fields have one tuple per point.
+/// What one .vtp holds: polylines through `points`. Each entry of `lines` is one polyline (a cell of the
+/// PolyData's Lines) through the listed point indices, at least 2 of them (repeat the first index at the
+/// end to close it); cell fields have one tuple per line. With no lines, each point is written as a vertex
+/// cell (VTK_VERTEX, in the PolyData's Verts) and cell fields have one tuple per point.
 struct VtpData {
   std::vector<Vec2> points;
   std::vector<std::vector<Index>> lines;

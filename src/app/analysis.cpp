@@ -35,6 +35,7 @@ const Json& case_defaults() {
 const std::map<std::string, ModelBuilder>& model_registry() {
   static const std::map<std::string, ModelBuilder> r = {
       {"solid", make_solid_model},
+      {"fluid", make_fluid_model},
   };
   return r;
 }
@@ -66,6 +67,7 @@ AnalysisSettings read_analysis(Params a) {
               {"dt", 0.0},
               {"end_time", 0.0},
               {"load_steps", 10},
+              {"max_step_halvings", 4},
               {"integrator", Json{{"type", "newmark"}}},
               {"newton", Json::object()},
               {"linear_solver", Json{{"type", "cholmod"}}}});
@@ -80,6 +82,7 @@ AnalysisSettings read_analysis(Params a) {
     s.end_time = a.positive("end_time");
     if (s.end_time / s.dt > 1e8) a.fail("dt", "more than 1e8 steps requested");
   }
+  s.max_step_halvings = a.integer("max_step_halvings", 0);
   Params it = a.at("integrator");
   if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
   const std::string itype = it.choice("type", {"newmark", "generalized_alpha", "central_difference"});
@@ -177,6 +180,7 @@ void write_atomic(const fs::path& path, const std::string& text) {
 struct Totals {
   PhaseTimes phases;
   long iterations = 0;
+  int retries = 0;
   int max_iterations = 0;
   int steps = 0;
 };
@@ -220,7 +224,7 @@ int run_case(const RunOptions& opt) {
   int code = kOk;
   double t = 0.0, last_output_t = -1.0;
   const AnalysisSettings& an = c.ctx.analysis;
-  const long nsteps = static_cast<long>(std::ceil(an.end_time / an.dt - 1e-9));
+  const long nsteps = std::lround(std::ceil(an.end_time / an.dt * (1 - 1e-9)));
 
   auto write_summary = [&]() {
     Json s;
@@ -231,6 +235,7 @@ int run_case(const RunOptions& opt) {
     s["analysis"] = an.type;
     s["steps"] = tot.steps;
     s["steps_planned"] = nsteps;
+    s["step_retries"] = tot.retries;
     s["time"] = t;
     s["wall_time"] = since(t_start);
     s["newton_iterations"] = {{"total", tot.iterations},
@@ -285,41 +290,60 @@ int run_case(const RunOptions& opt) {
     write_summary();
 
     const NewtonSettings& nw = an.newton;
-    for (long step = 1; step <= nsteps; ++step) {
+    // Step loop. A step whose Newton iterations fail (divergence, an element inverted, a singular
+    // matrix) is retried from the same state with half the time step, up to max_step_halvings times;
+    // the next step goes back to the nominal dt. A remainder shorter than 1e-6 dt at the end is dropped.
+    long step = 0;
+    while (an.end_time - t > 1e-6 * an.dt) {
+      ++step;
       const auto t_step = Clock::now();
-      const double t_new = std::min(step * an.dt, an.end_time);
-      const double dt = t_new - t;
+      double dt = std::min(an.dt, an.end_time - t);
+      if (an.end_time - (t + dt) < 1e-6 * an.dt) dt = an.end_time - t;
       int iters_step = 0;
       double last_res = 0.0;
       for (auto& m : c.models) m->times() = PhaseTimes{};
-      for (auto& m : c.models) {
-        m->predict(t_new, dt);
-        bool ok = false;
-        for (int it = 1; it <= nw.max_iterations; ++it) {
-          const IterationReport r = m->solve_iteration();
-          ++iters_step;
-          const double rref = std::max(r.residual_ref, 1e-300);
-          last_res = r.residual / rref;
-          if (!std::isfinite(last_res) || last_res > 1e12)
-            throw SolverError("body '" + m->name() + "': Newton diverged at t = " + fmt(t_new) +
-                              " (relative residual " + fmt(last_res, 3) + ")");
-          if (r.converged) {
-            ok = true;
-            break;
+      for (int halving = 0;; ++halving) {
+        const double t_new = t + dt;
+        try {
+          for (auto& m : c.models) {
+            m->predict(t_new, dt);
+            bool ok = false;
+            for (int it = 1; it <= nw.max_iterations; ++it) {
+              const IterationReport r = m->solve_iteration();
+              ++iters_step;
+              const double rref = std::max(r.residual_ref, 1e-300);
+              last_res = r.residual / rref;
+              if (!std::isfinite(last_res) || last_res > 1e12)
+                throw SolverError("body '" + m->name() + "': Newton diverged at t = " + fmt(t_new) +
+                                  " (relative residual " + fmt(last_res, 3) + ")");
+              if (r.converged) {
+                ok = true;
+                break;
+              }
+            }
+            if (!ok)
+              throw SolverError("body '" + m->name() + "': Newton did not converge in " +
+                                std::to_string(nw.max_iterations) + " iterations at t = " + fmt(t_new) +
+                                " (relative residual " + fmt(last_res, 3) + ")");
           }
+          break;
+        } catch (const SolverError& e) {
+          if (halving >= an.max_step_halvings) throw;
+          if (!opt.quiet)
+            std::fprintf(stderr, "[%s] step at t=%.6g failed (%s); retrying with dt=%.3g\n", c.name.c_str(), t_new,
+                         e.what(), dt / 2);
+          dt /= 2;
+          ++tot.retries;
         }
-        if (!ok)
-          throw SolverError("body '" + m->name() + "': Newton did not converge in " +
-                            std::to_string(nw.max_iterations) + " iterations at t = " + fmt(t_new) +
-                            " (relative residual " + fmt(last_res, 3) + ")");
       }
+      const double t_new = t + dt;
       for (auto& m : c.models) m->finalize_step();
       t = t_new;
       ++tot.steps;
       tot.iterations += iters_step;
       tot.max_iterations = std::max(tot.max_iterations, iters_step);
       sample();
-      if (step % c.output_every == 0 || step == nsteps) output();
+      if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt) output();
       PhaseTimes ph;
       Index nn = 0, ne = 0;
       double area = 0;
@@ -337,9 +361,9 @@ int run_case(const RunOptions& opt) {
       log_csv.flush();
       if (!opt.quiet) {
         const double wall = since(t_start);
-        const double eta = wall / step * (nsteps - step);
-        std::fprintf(stderr, "[%s] step %ld/%ld t=%.6g dt=%.3g it=%d wall=%.2fs eta=%.1fs\n", c.name.c_str(), step,
-                     nsteps, t, dt, iters_step, wall, eta);
+        const double eta = wall / t * (an.end_time - t);
+        std::fprintf(stderr, "[%s] step %ld t=%.6g/%.6g dt=%.3g it=%d wall=%.2fs eta=%.1fs\n", c.name.c_str(), step,
+                     t, an.end_time, dt, iters_step, wall, eta);
       }
       if (step % 50 == 0) write_summary();
     }

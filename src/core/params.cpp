@@ -221,7 +221,10 @@ void apply_override(Json& doc, const std::string& assignment) {
       if (idx >= node->size()) throw InputError("--set", path, "array index out of range");
       node = &(*node)[idx];
     } else if (node->is_object()) {
-      if (!last && !node->contains(p)) throw InputError("--set", path, "no such key in the case file");
+      // A missing intermediate object is created (the case validation then checks the key).
+      node = &(*node)[p];
+    } else if (node->is_null()) {
+      *node = Json::object();
       node = &(*node)[p];
     } else {
       throw InputError("--set", path, "cannot descend into a value that is not an object or array");

@@ -11,7 +11,8 @@
 ///  - cells: order 1 -> VTK_TRIANGLE, 2 -> VTK_QUADRATIC_TRIANGLE, 3 -> VTK_LAGRANGE_TRIANGLE with the
 ///    node order of mesh.hpp, which is VTK's (vertices, then the edge nodes of edges 0-1, 1-2, 2-0, each
 ///    from its first vertex, then the interior node), so connectivity is written unchanged;
-///  - polydata (.vtp): one VTK_POLY_LINE per line, or one VTK_VERTEX per point when there are no lines.
+///  - polydata (.vtp): one polyline cell (Lines) per line, or one VTK_VERTEX (Verts) per point when there
+///    are no lines.
 #include <lagfsi/vtk_output.hpp>
 
 #include <vtkCellArray.h>

@@ -456,7 +456,12 @@ void SolidModel::finalize_step() {
   const Vec fext_new = external_force(state_.t);
   work_ext_ += 0.5 * (fext_old + fext_new).dot(state_.x - x_old);
   if (!is_static_ && (damp_mass_ > 0 || damp_stiff_ > 0))
-    work_damp_ += 0.5 * dt_ * (old_state_.v.dot(damping_times(old_state_.v)) + state_.v.dot(damping_times(state_.v)));
+  {
+    // Newmark's discrete dissipation: dt v_mid^T C v_mid with v_mid = (v_n + v_{n+1})/2 (exact balance
+    // for linear problems; the trapezoid of v^T C v would count high modes that flip sign every step).
+    const Vec vmid = 0.5 * (old_state_.v + state_.v);
+    work_damp_ += dt_ * vmid.dot(damping_times(vmid));
+  }
   Vec f;
   strain_energy_ = body_->internal_force(state_.x, f, nullptr);
   if (need_reaction_) {

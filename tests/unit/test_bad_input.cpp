@@ -152,9 +152,13 @@ TEST(BadInput, DegenerateGeometry) {
 }
 
 TEST(BadInput, UnknownOverridePath) {
+  // --set creates the missing object; validation names the unknown key.
   const Outcome o = run_json("bad_set", base_case(), "--set analysis.nothing.deeper=3");
   EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.message.find("--set"), std::string::npos) << o.message;
+  expect_one_line(o, "/analysis/nothing", "unknown key");
+  const Outcome o2 = run_json("bad_set_index", base_case(), "--set bodies.7.name=x");
+  EXPECT_EQ(o2.code, 2);
+  EXPECT_NE(o2.message.find("--set"), std::string::npos) << o2.message;
 }
 
 TEST(BadInput, NewtonDivergenceLeavesValidOutput) {

@@ -232,11 +232,14 @@ TEST(Remesh, WallOnlyElementsAreRemovedAndWallsAreNeverFreeSurface) {
   }
   EXPECT_EQ(r.free_surface, free_surface_by_edge_count(c, r.triangles));
   // Every fluid particle and the wall particles under the block are used.
-  for (std::size_t i = 0; i < c.p.size(); ++i)
-    if (c.kind[i] == ParticleKind::Fluid || (c.kind[i] == ParticleKind::Wall && c.p[i].x() >= 0 && c.p[i].x() <= nx - 1))
+  for (std::size_t i = 0; i < c.p.size(); ++i) {
+    if (c.kind[i] == ParticleKind::Fluid || (c.kind[i] == ParticleKind::Wall && c.p[i].x() >= 0 && c.p[i].x() <= nx - 1)) {
       EXPECT_EQ(r.connected[i], 1) << i;
-  for (std::size_t i = 0; i < c.p.size(); ++i)
-    if (c.kind[i] == ParticleKind::Ghost) EXPECT_EQ(r.connected[i], 0) << i;   // ghosts only touch walls here
+    }
+    if (c.kind[i] == ParticleKind::Ghost) {
+      EXPECT_EQ(r.connected[i], 0) << i;   // ghosts only touch walls here
+    }
+  }
 }
 
 // ------------------------------------------------------------------------------------------------ (5)
@@ -284,7 +287,7 @@ TEST(Remesh, RandomCloudMatchesBruteForceDelaunayAlphaTest) {
   const int n = 200;
   for (int i = 0; i < n; ++i) {
     const double k = u(rng);
-    c.add(u(rng), u(rng), k < 0.25 ? ParticleKind::Wall : (k < 0.3 ? ParticleKind::Ghost : ParticleKind::Fluid),
+    c.add(u(rng), u(rng), k < 0.4 ? ParticleKind::Wall : (k < 0.5 ? ParticleKind::Ghost : ParticleKind::Fluid),
           hs(rng));
   }
   const double alpha = 1.2;
@@ -443,11 +446,19 @@ TEST(Remesh, CloseFluidParticlesMatchesBruteForce) {
   const Index a = t.add(base.x(), base.y());
   const Index b = t.add(base.x() + 0.10, base.y());
   const Index cc = t.add(base.x() + 0.05, base.y() + 0.12);
+  // A chain d - e - f with d-e and e-f close but d-f not: removing e resolves both pairs, f stays.
+  const Vec2 base2(4.5, 14.5);
+  const Index d = t.add(base2.x() - 0.3, base2.y());
+  const Index e = t.add(base2.x(), base2.y());
+  const Index f = t.add(base2.x() + 0.3, base2.y() + 0.05);
+  ASSERT_LT((t.p[d] - t.p[e]).norm(), (t.p[e] - t.p[f]).norm());
   const RemeshResult rt = t.mesh(1.3);
   std::vector<Index> got3 = close_fluid_particles(t.p, t.kind, t.h, rt.triangles, fraction);
   std::vector<Index> expected3(planted.begin(), planted.end());
   expected3.push_back(b);
   expected3.push_back(cc);
+  expected3.push_back(e);
+  EXPECT_EQ(std::count(got3.begin(), got3.end(), d) + std::count(got3.begin(), got3.end(), f), 0);
   std::sort(expected3.begin(), expected3.end());
   EXPECT_EQ(got3, expected3);
   EXPECT_EQ(std::count(got3.begin(), got3.end(), a), 0);

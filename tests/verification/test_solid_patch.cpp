@@ -29,7 +29,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <random>
 #include <set>
@@ -61,7 +60,6 @@ int solve_static(const SolidBody& body, const std::vector<char>& fixed, const Ve
         g[i] = target[i] - x[i];
         r[i] = 0.0;
       }
-    if (std::getenv("PATCH_DEBUG")) std::printf("  it %d |r|/scale %.3e |dx| %.3e\n", it, r.norm() / scale, last_dx);
     // Converged: residual and last correction near round-off (the residual floor is ~2e-13 |f| at finite
     // strain, and ~1e-12 absolute at small strain where F^T F - I cancels); Newton converges
     // quadratically, so the last correction is far below the accuracy checked by the tests.

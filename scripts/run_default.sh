@@ -3,7 +3,7 @@
 # Output: out/<case>/ (ParaView: <body>.pvd; probes.csv, log.csv, summary.json) and out/<case>/comparison.png.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-case_name=${1:-cantilever_step_load}
+case_name=${1:-dam_break_tank}
 bash "$root/scripts/setup.sh"
 bash "$root/scripts/build.sh"
 cd "$root"

@@ -210,7 +210,6 @@ void apply_override(Json& doc, const std::string& assignment) {
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::string& p = parts[i];
     path += "/" + p;
-    const bool last = i + 1 == parts.size();
     if (node->is_array()) {
       size_t idx = 0;
       try {

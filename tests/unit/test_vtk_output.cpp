@@ -153,7 +153,12 @@ int expected_vtk_type(int order) {
 class VtuOrder : public ::testing::TestWithParam<int> {};
 
 INSTANTIATE_TEST_SUITE_P(VtkOutput, VtuOrder, ::testing::Values(1, 2, 3),
-                         [](const auto& info) { return "T" + std::to_string((info.param + 1) * (info.param + 2) / 2); });
+                         [](const auto& info) {
+                           // (GCC 12 warns -Wrestrict on "T" + std::to_string(...); append instead.)
+                           std::string name = "T";
+                           name += std::to_string((info.param + 1) * (info.param + 2) / 2);
+                           return name;
+                         });
 
 TEST_P(VtuOrder, WritesMeshAndFieldsThatVtkReadsBack) {
   const int order = GetParam();

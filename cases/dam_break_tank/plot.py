@@ -1,0 +1,65 @@
+"""Dam break in a tank (Koshizuka & Oka 1996): surge front Z = x/L against T = t sqrt(2g/L), column height
+and fluid area. Usage: /usr/bin/python3 cases/dam_break_tank/plot.py OUTDIR"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+from lagfsi_post import read_csv, out_dir_from_argv, save
+
+out = out_dir_from_argv("out/dam_break_tank")
+here = os.path.dirname(__file__)
+L, g = 0.146, 9.81
+scale = math.sqrt(2 * g / L)
+p = read_csv(os.path.join(out, "probes.csv"))
+ref = read_csv(os.path.join(here, "reference", "koshizuka_oka_1996_surge_front_pysph.csv"))
+dsph = read_csv(os.path.join(here, "reference", "koshizuka_oka_1996_surge_front_dualsphysics.csv"))
+T = [t * scale for t in p["time"]]
+Z = [x / L for x in p["front_x"]]
+
+
+def interp(x, xs, ys):
+    for i in range(1, len(xs)):
+        if xs[i] >= x:
+            s = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+            return ys[i - 1] + s * (ys[i] - ys[i - 1])
+    return ys[-1]
+
+
+errs = [interp(Tr, T, Z) - Zr for Tr, Zr in zip(ref["T"], ref["Z"]) if Zr < 4.0]
+rms = math.sqrt(sum(e * e for e in errs) / len(errs))
+errs2 = [interp(Tr, T, Z) - Zr for Tr, Zr in zip(dsph["T_nondim"], dsph["x_tip_over_L"]) if Zr < 4.0]
+rms2 = math.sqrt(sum(e * e for e in errs2) / len(errs2))
+impact = next((t for t, x in zip(p["time"], p["front_x"]) if x >= 4 * L - 1.5 * 0.0073), float("nan"))
+a0 = p["fluid_area"][0]
+drift = [100 * (a / a0 - 1) for a in p["fluid_area"]]
+print("front RMS against the DualSPHysics transcription %.3f" % rms2)
+print("front RMS (Z, up to the wall) %.3f; wall impact at %.3f s; area drift at the end %+.3f %% (max |drift| %.3f %%)"
+      % (rms, impact, drift[-1], max(abs(d) for d in drift)))
+
+fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+ax = axes[0]
+ax.plot(T, Z, label="lagfsi (PFEM)")
+ax.plot(ref["T"], ref["Z"], "ko", mfc="none", label="Koshizuka & Oka 1996 (pysph digitization)")
+ax.plot(dsph["T_nondim"], dsph["x_tip_over_L"], "k+", label="Koshizuka & Oka 1996 (DualSPHysics file)")
+ax.set_xlim(0, 3.5)
+ax.set_ylim(1, 4.1)
+ax.set_xlabel("T = t sqrt(2g/L)")
+ax.set_ylabel("Z = x_front / L")
+ax.set_title("front RMS %.2f (o) / %.2f (+), impact %.3f s" % (rms, rms2, impact))
+ax.legend(fontsize=7)
+ax.grid(alpha=0.3)
+ax = axes[1]
+ax.plot(p["time"], [h / L for h in p["column_height"]])
+ax.set_xlabel("t [s]")
+ax.set_ylabel("column height / L")
+ax.grid(alpha=0.3)
+ax = axes[2]
+ax.plot(p["time"], drift)
+ax.set_xlabel("t [s]")
+ax.set_ylabel("fluid area drift [%]")
+ax.grid(alpha=0.3)
+save(fig, out)

@@ -162,6 +162,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"walls", Json::array()},
               {"initial_velocity", Json::array({0.0, 0.0})},
               {"initial_pressure", Json{{"type", "zero"}}},
+              {"initial_state", Json{{"type", "given"}}},
               {"scheme", Json::object()}});
   name_ = b.string("name");
   if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
@@ -343,6 +344,30 @@ void FluidModel::build_particles(Params b) {
     for (Index i = 0; i < np; ++i) p_[i] = std::max(0.0, rho_ * g * (level - pts[i].y()));
   } else {
     ip.validate({{"type", "zero"}});
+  }
+
+  // Analytic initial states (they override initial_velocity and initial_pressure).
+  Params is = b.at("initial_state");
+  if (!is.has("type")) is.fail("type", "required key is missing");
+  if (is.choice("type", {"given", "solitary_wave"}) == "solitary_wave") {
+    // Laitone (1960) first-order solitary wave of height H on depth d, crest at x0, moving towards +x:
+    // eta = d + H sech^2(k (x - x0)), k = sqrt(3H / (4 d^3)),
+    // u = sqrt(g d) (H/d) sech^2, v = sqrt(3 g d) (H/d)^(3/2) (y/d) sech^2 tanh, p = rho g (eta - y).
+    is.validate({{"type", "solitary_wave"}, {"depth", nullptr}, {"height", nullptr}, {"crest", nullptr}});
+    const double d = is.positive("depth"), H = is.positive("height"), x0 = is.number("crest");
+    const double g = ctx_.gravity.norm();
+    if (!(g > 0)) is.fail("type", "a solitary wave needs gravity");
+    const double k = std::sqrt(3 * H / (4 * d * d * d));
+    for (Index i = 0; i < np; ++i) {
+      if (kind_[i] != ParticleKind::Fluid) continue;
+      const double xi = k * (pts[i].x() - x0), y = pts[i].y();
+      const double sech2 = 1.0 / (std::cosh(xi) * std::cosh(xi));
+      state_.v[2 * i] = std::sqrt(g * d) * (H / d) * sech2;
+      state_.v[2 * i + 1] = std::sqrt(3 * g * d) * std::pow(H / d, 1.5) * (y / d) * sech2 * std::tanh(xi);
+      p_[i] = std::max(0.0, rho_ * g * (d + H * sech2 - y));
+    }
+  } else {
+    is.validate({{"type", "given"}});
   }
 
   if (!remesh_) {
@@ -626,7 +651,7 @@ void FluidModel::initialize() {
     state_.a.segment<2>(2 * i) =
         ctx_.gravity + (mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : Vec2::Zero());
   }
-  for (const auto& [i, c] : slip_) state_.a[2 * i + c] = 0.0;
+  for (const auto& [i, c] : slip_) state_.a[2 * i + c] = state_.v[2 * i + c] = 0.0;
   times_.assembly += seconds_since(t0);
 }
 

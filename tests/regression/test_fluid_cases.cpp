@@ -70,3 +70,30 @@ TEST(DamBreakTank, FrontReachesTheWallAndAreaIsKept) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace lagfsi::testing;
+
+TEST(SloshingFree, PeriodWithinTwoPercentOfLinearTheory) {
+  // First sloshing mode of a 1 m tank with 0.5 m of water: omega^2 = g k tanh(k d), k = pi / L.
+  const RunResult r = run_case_file("cases/sloshing_free/case.json", "sloshing_free",
+                                    {"analysis.end_time=3.6"});
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv c = read_csv(r.out_dir / "probes.csv");
+  const double g = 9.81, k = M_PI, d = 0.5;
+  const double T1 = 2 * M_PI / std::sqrt(g * k * std::tanh(k * d));
+  // Period from the upward crossings of the still level at the left wall.
+  std::vector<double> ups;
+  const auto& t = c["time"];
+  const auto& e = c["eta_left"];
+  for (size_t i = 1; i < t.size(); ++i)
+    if (e[i - 1] < d && e[i] >= d) ups.push_back(t[i - 1] + (d - e[i - 1]) / (e[i] - e[i - 1]) * (t[i] - t[i - 1]));
+  ASSERT_GE(ups.size(), 2u);
+  const double T = (ups.back() - ups.front()) / static_cast<double>(ups.size() - 1);
+  EXPECT_NEAR(T, T1, 0.02 * T1) << "period " << T;
+  // Bounded: the amplitude never exceeds the initial one by more than 2 %.
+  for (double v : e) EXPECT_LT(std::abs(v - d), 1.02 * 0.005);
+}
+
+}  // namespace

@@ -220,7 +220,7 @@ int run_case(const RunOptions& opt) {
   const fs::path out = c.ctx.out_dir;
   std::ofstream probes_csv, log_csv;
   Totals tot;
-  std::string status = "completed", message;
+  std::string status = "running", message;
   int code = kOk;
   double t = 0.0, last_output_t = -1.0;
   const AnalysisSettings& an = c.ctx.analysis;
@@ -389,6 +389,7 @@ int run_case(const RunOptions& opt) {
     } catch (const std::exception&) {
     }
   }
+  if (code == kOk) status = "completed";
   try {
     write_summary();
   } catch (const std::exception& e) {

@@ -13,6 +13,7 @@
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/fluid_element.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/meshing/primitives.hpp>
 #include <lagfsi/meshing/remesh.hpp>
@@ -705,7 +706,6 @@ IterationReport FluidModel::solve_iteration() {
   const EvalPoint ev = integrator_->kinematics(x_);
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = ctx_.gravity;
-  const double nu = rho_ > 0 ? mu_ / rho_ : 0;
   Vec R = Vec::Zero(3 * np);
   double* jv = J_.valuePtr();
   std::fill(jv, jv + J_.nonZeros(), 0.0);
@@ -729,85 +729,37 @@ IterationReport FluidModel::solve_iteration() {
         Acc[k] = ev.a.segment<2>(2 * t[k]);
         P[k] = p_[t[k]];
       }
-      const double A2 = (X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[1] - X[0]).y() * (X[2] - X[0]).x();
-      if (!(A2 > 0.0)) {
+      PspgElementInput in;
+      for (int k = 0; k < 3; ++k) {
+        in.x[k] = X[k];
+        in.v[k] = V[k];
+        in.a[k] = Acc[k];
+        in.p[k] = P[k];
+        in.p_old[k] = p_old_[t[k]];
+      }
+      in.rho = rho_;
+      in.mu = mu_;
+      in.dt = dt_;
+      in.tau_U = tau_type_ == "automatic" ? 0.0 : tau_U_;
+      in.bulk = bulk_;
+      in.c_vol = c_vol_;
+      in.g = g;
+      in.lumped = lumped_;
+      in.c_m = cf.c_m;
+      in.c_c = cf.c_c;
+      Eigen::Matrix<double, 9, 1> r;
+      Eigen::Matrix<double, 9, 9> K;
+      double i2 = 0, g2 = 0;
+      if (!pspg_element(in, r, K, i2, g2)) {
+        const double A2 = (X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[1] - X[0]).y() * (X[2] - X[0]).x();
 #pragma omp critical(lagfsi_fluid_failure)
         failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
                   std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +
                   std::to_string(t_new_) + " (area " + std::to_string(A2 / 2) + ")";
         continue;
       }
-      const double A = 0.5 * A2;
-      Vec2 dN[3];
-      for (int k = 0; k < 3; ++k) {
-        const Vec2& b = X[(k + 1) % 3];
-        const Vec2& c = X[(k + 2) % 3];
-        dN[k] = Vec2(b.y() - c.y(), c.x() - b.x()) / A2;
-      }
-      // Stabilization parameter.
-      const double he = 2.0 * std::sqrt(A / std::numbers::pi);
-      const Vec2 vmean = (V[0] + V[1] + V[2]) / 3.0;
-      double tau;
-      if (tau_type_ == "automatic") {
-        const double s = std::pow(2.0 / dt_, 2) + std::pow(2.0 * vmean.norm() / he, 2) + std::pow(4.0 * nu / (he * he), 2);
-        tau = 1.0 / std::sqrt(s);
-      } else {
-        const double Re = tau_U_ * he / (2.0 * std::max(nu, 1e-300));
-        tau = he / (2.0 * tau_U_) * std::min(Re / 3.0, 1.0);
-      }
-      // Kinematics of the element.
-      Mat2 L = Mat2::Zero();  // velocity gradient
-      Vec2 gradp = Vec2::Zero();
-      double pmean = 0;
-      for (int k = 0; k < 3; ++k) {
-        L += V[k] * dN[k].transpose();
-        gradp += P[k] * dN[k];
-        pmean += P[k] / 3.0;
-      }
-      const Mat2 sym2 = L + L.transpose();  // 2 * strain rate
-      const double divv = L.trace();
-      const Vec2 amean = (Acc[0] + Acc[1] + Acc[2]) / 3.0;
-      const double m = rho_ * A / 3.0;
-
-      Eigen::Matrix<double, 9, 1> r = Eigen::Matrix<double, 9, 1>::Zero();
-      Eigen::Matrix<double, 9, 9> K = Eigen::Matrix<double, 9, 9>::Zero();
-      for (int a = 0; a < 3; ++a) {
-        // momentum
-        Vec2 inertia;
-        if (lumped_) {
-          inertia = m * Acc[a];
-        } else {
-          inertia = rho_ * A / 12.0 * (Acc[0] + Acc[1] + Acc[2] + Acc[a]);
-        }
-        const Vec2 visc = mu_ * A * sym2 * dN[a];
-        const Vec2 pres = -A * pmean * dN[a];
-        const Vec2 grav = -m * g;
-        r.segment<2>(3 * a) = inertia + visc + pres + grav;
-        inertia2 += inertia.squaredNorm();
-        gravity2 += grav.squaredNorm();
-        // continuity
-        r[3 * a + 2] = A / 3.0 * (divv + c_vol_) + tau * A * dN[a].dot(amean - g) + tau / rho_ * A * dN[a].dot(gradp);
-        // Slight compressibility, (1/K) dp/dt (lumped): physical for water (K = 2.2 GPa) and it makes the
-        // pressure of a fluid pocket without free surface (a corner filled by a wave, a trapped region)
-        // determined instead of leaving a singular constant mode.
-        if (bulk_ > 0) {
-          r[3 * a + 2] += A / 3.0 * (P[a] - p_old_[t[a]]) / (bulk_ * dt_);
-          K(3 * a + 2, 3 * a + 2) += A / 3.0 / (bulk_ * dt_);
-        }
-        for (int b = 0; b < 3; ++b) {
-          // d(momentum_a)/d(x_b): mass and viscous terms
-          const double mass_ab = lumped_ ? (a == b ? m : 0.0) : rho_ * A / 12.0 * (a == b ? 2.0 : 1.0);
-          const double dd = dN[a].dot(dN[b]);
-          Mat2 Kv = mu_ * A * (dd * Mat2::Identity() + dN[b] * dN[a].transpose());
-          K.block<2, 2>(3 * a, 3 * b) += cf.c_m * mass_ab * Mat2::Identity() + cf.c_c * Kv;
-          // d(momentum_a)/d(p_b)
-          K.block<2, 1>(3 * a, 3 * b + 2) += -A / 3.0 * dN[a];
-          // d(continuity_a)/d(x_b)
-          K.block<1, 2>(3 * a + 2, 3 * b) += (cf.c_c * A / 3.0 * dN[b] + cf.c_m * tau * A / 3.0 * dN[a]).transpose();
-          // d(continuity_a)/d(p_b)
-          K(3 * a + 2, 3 * b + 2) += tau / rho_ * A * dd;
-        }
-      }
+      inertia2 += i2;
+      gravity2 += g2;
       for (int a = 0; a < 3; ++a) {
         R.segment<3>(3 * t[a]) += r.segment<3>(3 * a);
         has_mass[t[a]] = 1;

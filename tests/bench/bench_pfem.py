@@ -3,7 +3,8 @@
 practical floor of a step (bench_pfem_floor: remesh + CHOLMOD factorization/solve of a P1 Laplacian).
 
 Runs `lagfsi run cases/dam_break_tank/case.json` at h = L/20, L/40, L/80 (dt = 1, 0.5, 0.25 ms; 0.1 s of
-flow at L/20 and L/40, 0.05 s at L/80: a per-step cost measurement, not a flow result) with --threads 1
+flow at L/20 and L/40, 0.02 s at L/80 (80 steps: one L/80 step takes ~1.5 s, 0.05 s of flow would take
+~6 min per run); a per-step cost measurement, not a flow result) with --threads 1
 and 2, reads each run's log.csv and reports per run: mean particles, steps, mean Newton iterations, and
 the wall time per particle per step (sum over steps of the phase time / sum over steps of the particle
 count), split into remesh+assembly (t_assembly, which includes the remeshing at the start of the step),
@@ -81,7 +82,7 @@ def main():
     for k in a.levels:
         h = L / k
         dt = 1e-3 * 20.0 / k
-        end = (0.1 if k <= 40 else 0.05) * a.time_scale
+        end = (0.1 if k <= 40 else 0.02) * a.time_scale
         for th in a.threads:
             run_dir = os.path.join(out, f"run_L{k}_t{th}")
             cmd = [lagfsi, "run", CASE, "-o", run_dir, "--quiet", "--threads", str(th),

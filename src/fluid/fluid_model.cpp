@@ -714,12 +714,10 @@ IterationReport FluidModel::solve_iteration() {
   std::string failure;
 
   const Index ne = static_cast<Index>(tri_.size());
-#pragma omp parallel if (ne >= 2000) reduction(+ : inertia2, gravity2)
-  for (const auto& elems : pattern_.colors()) {
-    const Index nce = static_cast<Index>(elems.size());
-#pragma omp for schedule(static)
-    for (Index ie = 0; ie < nce; ++ie) {
-      const Index e = elems[ie];
+  // One parallel loop over all elements with atomic additions (no colour barriers: on a loaded 2-core
+  // machine each OpenMP barrier of busy-waiting threads can cost a time slice).
+#pragma omp parallel for schedule(static) if (ne >= 2000) reduction(+ : inertia2, gravity2)
+    for (Index e = 0; e < ne; ++e) {
       const auto& t = tri_[e];
       Vec2 X[3], V[3], Acc[3];
       double P[3];
@@ -761,12 +759,19 @@ IterationReport FluidModel::solve_iteration() {
       inertia2 += i2;
       gravity2 += g2;
       for (int a = 0; a < 3; ++a) {
-        R.segment<3>(3 * t[a]) += r.segment<3>(3 * a);
+        for (int c = 0; c < 3; ++c) {
+#pragma omp atomic
+          R[3 * t[a] + c] += r[3 * a + c];
+        }
         has_mass[t[a]] = 1;
       }
-      pattern_.add(e, K, jv);
+      const int* sc = pattern_.scatter(e);
+      for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) {
+#pragma omp atomic
+          jv[sc[j * 9 + i]] += K(i, j);
+        }
     }
-  }
   if (!failure.empty()) throw SolverError("body '" + name_ + "': " + failure);
 
   // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.

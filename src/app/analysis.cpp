@@ -187,18 +187,25 @@ struct Totals {
 
 }  // namespace
 
-int check_case(const RunOptions& opt) {
+namespace {
+/// Builds the case; on bad input prints the one-line error and returns null.
+std::unique_ptr<Case> build_case_or_report(const RunOptions& opt, bool for_check) {
   try {
-    Case c = build_case(opt, true);
-    std::cout << c.root.json().dump(2) << "\n";
-    return kOk;
+    return std::make_unique<Case>(build_case(opt, for_check));
   } catch (const InputError& e) {
     std::cerr << "lagfsi: error: " << e.what() << "\n";
-    return kInputError;
   } catch (const std::exception& e) {
     std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
-    return kInputError;
   }
+  return nullptr;
+}
+}  // namespace
+
+int check_case(const RunOptions& opt) {
+  const auto c = build_case_or_report(opt, true);
+  if (!c) return kInputError;
+  std::cout << c->root.json().dump(2) << "\n";
+  return kOk;
 }
 
 int run_case(const RunOptions& opt) {
@@ -206,16 +213,8 @@ int run_case(const RunOptions& opt) {
 #ifdef LAGFSI_HAVE_OPENMP
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
 #endif
-  std::unique_ptr<Case> cp;
-  try {
-    cp = std::make_unique<Case>(build_case(opt, false));
-  } catch (const InputError& e) {
-    std::cerr << "lagfsi: error: " << e.what() << "\n";
-    return kInputError;
-  } catch (const std::exception& e) {
-    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
-    return kInputError;
-  }
+  const std::unique_ptr<Case> cp = build_case_or_report(opt, false);
+  if (!cp) return kInputError;
   Case& c = *cp;
   const fs::path out = c.ctx.out_dir;
   std::ofstream probes_csv, log_csv;

@@ -117,7 +117,6 @@ class FluidModel final : public PhysicsModel {
   int iter_in_step_ = 0;
   double close_fraction_ = 0.3;  // remove a fluid particle closer than this * h to another particle
   double flat_fraction_ = 0.01;  // drop elements with area below this * h^2
-  long removed_particles_ = 0, inserted_particles_ = 0;
   double insert_factor_ = 1.0;   // insert a particle at the centroid of elements larger than this * h^2
   double bulk_ = 2.2e9;          // bulk modulus of the slight compressibility (0: incompressible)
   std::string solver_type_ = "klu";
@@ -141,7 +140,7 @@ class FluidModel final : public PhysicsModel {
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double p_scale_ = 1;
 
-  Vec x_, dx_last_;                 // iterate of x_{n+1}
+  Vec x_;                           // iterate of x_{n+1}
   double t_new_ = 0, dt_ = 0;
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
   bool solved_once_ = false;
@@ -497,7 +496,6 @@ bool FluidModel::remove_close_particles() {
     ++kept;
   }
   if (kept == np) return false;
-  removed_particles_ += np - kept;
   kind_.resize(kept);
   hvec_.resize(kept);
   state_.x.conservativeResize(2 * kept);
@@ -545,7 +543,6 @@ bool FluidModel::insert_particles() {
     hvec_.push_back(hh);
     ++k;
   }
-  inserted_particles_ += nn - np;
   return true;
 }
 
@@ -602,11 +599,6 @@ void FluidModel::initialize() {
       if (on_wall[edges[k].first] && on_wall[edges[k].second]) continue;
       free_[edges[k].first] = free_[edges[k].second] = 1;
     }
-    for (Index i = 0; i < np; ++i)
-      if (free_[i] && on_wall[i]) {
-        // a wall node at the contact line keeps its pressure unknown only if no unshared free edge; keep it
-        // free surface (p = 0) as in the seed
-      }
   }
   area_ref_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
@@ -685,13 +677,8 @@ void FluidModel::predict(double t_new, double dt) {
   integrator_->begin_step(state_, dt);
   p_old_ = p_;
   x_ = state_.x + dt * state_.v;  // constant-velocity predictor
-  for (Index i = 0; i < np; ++i) {
-    if (kind_[i] == ParticleKind::Fluid) continue;
-    // prescribed wall motion
-    for (const auto& w : walls_)
-      for (Index j : w.particles)
-        if (j == i) x_.segment<2>(2 * i) = X0_.segment<2>(2 * i) + w.offset(t_new);
-  }
+  for (const auto& w : walls_)  // prescribed wall motion
+    for (Index j : w.particles) x_.segment<2>(2 * j) = X0_.segment<2>(2 * j) + w.offset(t_new);
   for (const auto& [i, c] : slip_) x_[2 * i + c] = state_.x[2 * i + c];
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) p_[i] = 0.0;
@@ -848,7 +835,7 @@ IterationReport FluidModel::solve_iteration() {
     last_dp_ = std::max(last_dp_, std::abs(dp));
   }
   if (!x_.allFinite() || !p_.allFinite()) throw SolverError("body '" + name_ + "': non-finite solution");
-  if (std::getenv("LAGFSI_DEBUG_NEWTON")) {
+  if (std::getenv("LAGFSI_DEBUG_NEWTON")) {  // developer aid: one line per Newton iteration on stderr
     Index worst = 0;
     for (Index i = 0; i < np; ++i)
       if (std::abs(d[3 * i]) + std::abs(d[3 * i + 1]) > std::abs(d[3 * worst]) + std::abs(d[3 * worst + 1])) worst = i;

@@ -99,8 +99,14 @@ class FluidModel final : public PhysicsModel {
   void build_particles(Params b);
   void remesh_now();
   bool remove_close_particles();
+  /// free_ and connected_ from tri_: particles of edges used by one element, unless both ends are on a wall
+  /// (`on_wall`); only Fluid particles are free surface.
+  void mark_free_surface(const std::vector<char>& on_wall);
   bool insert_particles();
   double element_area(const Vec& x, Index e) const;
+  /// The element kernel's input for element e at positions x (also its geometry), velocities v,
+  /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
+  PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
   void set_dirichlet();
 
   std::string name_;
@@ -400,6 +406,30 @@ double FluidModel::element_area(const Vec& x, Index e) const {
   return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
 }
 
+PspgElementInput FluidModel::element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m,
+                                           double c_c) const {
+  PspgElementInput in;
+  const auto& t = tri_[e];
+  for (int k = 0; k < 3; ++k) {
+    in.x[k] = x.segment<2>(2 * t[k]);
+    in.v[k] = v.segment<2>(2 * t[k]);
+    in.a[k] = a.segment<2>(2 * t[k]);
+    in.p[k] = p_[t[k]];
+    in.p_old[k] = p_old_.size() == p_.size() ? p_old_[t[k]] : p_[t[k]];
+  }
+  in.rho = rho_;
+  in.mu = mu_;
+  in.dt = dt_ > 0 ? dt_ : ctx_.analysis.dt;
+  in.tau_U = tau_type_ == "automatic" ? 0.0 : tau_U_;
+  in.bulk = bulk_;
+  in.c_vol = c_vol_;
+  in.g = ctx_.gravity;
+  in.lumped = lumped_;
+  in.c_m = c_m;
+  in.c_c = c_c;
+  return in;
+}
+
 double FluidModel::kinetic_energy() const {
   double e = 0;
   for (Index k = 0; k < static_cast<Index>(tri_.size()); ++k) {
@@ -444,24 +474,29 @@ void FluidModel::remesh_now() {
   }
   tri_.resize(kept);
   if (removed) {
-    // Free surface and connectivity of what is left (edges used once; walls are never free surface).
-    const Index np = n();
-    std::vector<std::pair<Index, Index>> edges;
-    edges.reserve(3 * tri_.size());
-    std::fill(connected_.begin(), connected_.end(), 0);
-    for (const auto& t : tri_)
-      for (int k = 0; k < 3; ++k) {
-        connected_[t[k]] = 1;
-        edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
-      }
-    std::sort(edges.begin(), edges.end());
-    free_.assign(np, 0);
-    for (size_t k = 0; k < edges.size(); ++k) {
-      const bool shared = (k + 1 < edges.size() && edges[k + 1] == edges[k]) || (k > 0 && edges[k - 1] == edges[k]);
-      if (shared) continue;
-      for (Index i : {edges[k].first, edges[k].second})
-        if (kind_[i] == ParticleKind::Fluid) free_[i] = 1;
+    std::vector<char> walls(n(), 0);
+    for (Index i = 0; i < n(); ++i) walls[i] = kind_[i] != ParticleKind::Fluid;
+    mark_free_surface(walls);
+  }
+}
+
+void FluidModel::mark_free_surface(const std::vector<char>& on_wall) {
+  const Index np = n();
+  std::vector<std::pair<Index, Index>> edges;
+  edges.reserve(3 * tri_.size());
+  connected_.assign(np, 0);
+  for (const auto& t : tri_)
+    for (int k = 0; k < 3; ++k) {
+      connected_[t[k]] = 1;
+      edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
     }
+  std::sort(edges.begin(), edges.end());
+  free_.assign(np, 0);
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const bool shared = (k + 1 < edges.size() && edges[k + 1] == edges[k]) || (k > 0 && edges[k - 1] == edges[k]);
+    if (shared || (on_wall[edges[k].first] && on_wall[edges[k].second])) continue;
+    for (Index i : {edges[k].first, edges[k].second})
+      if (kind_[i] == ParticleKind::Fluid) free_[i] = 1;
   }
 }
 
@@ -580,25 +615,10 @@ void FluidModel::initialize() {
   if (remesh_) {
     remesh_now();
   } else {
-    // Free surface of the fixed mesh: nodes of unshared edges that are not constrained by a wall.
-    free_.assign(np, 0);
-    connected_.assign(np, 0);
-    std::vector<std::pair<Index, Index>> edges;
-    for (const auto& t : tri_)
-      for (int k = 0; k < 3; ++k) {
-        connected_[t[k]] = 1;
-        edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
-      }
-    std::sort(edges.begin(), edges.end());
+    // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
     std::vector<char> on_wall(np, 0);
     for (const auto& [i, c] : slip_) on_wall[i] = 1;
-    for (size_t k = 0; k < edges.size(); ++k) {
-      const bool dup = (k + 1 < edges.size() && edges[k + 1] == edges[k]) || (k > 0 && edges[k - 1] == edges[k]);
-      if (dup) continue;
-      // an unshared edge lying on a wall is not free surface
-      if (on_wall[edges[k].first] && on_wall[edges[k].second]) continue;
-      free_[edges[k].first] = free_[edges[k].second] = 1;
-    }
+    mark_free_surface(on_wall);
   }
   area_ref_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
@@ -617,32 +637,24 @@ void FluidModel::initialize() {
   set_dirichlet();
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) p_[i] = 0.0;
+  // The element kernel's momentum rows with zero acceleration are the viscous, pressure and gravity
+  // forces r = f_visc - f_p - m g; with the lumped mass m_i, a0_i = -r_i / m_i.
   Vec force = Vec::Zero(2 * np), mass = Vec::Zero(np);
+  const Vec zero = Vec::Zero(2 * np);
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) {
-    const auto& t = tri_[e];
-    Vec2 X[3];
-    for (int k = 0; k < 3; ++k) X[k] = state_.x.segment<2>(2 * t[k]);
-    const double A2 = (X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[1] - X[0]).y() * (X[2] - X[0]).x();
-    if (!(A2 > 0)) continue;
-    Mat2 L = Mat2::Zero();
-    Vec2 dN[3];
-    double pmean = 0;
+    Eigen::Matrix<double, 9, 1> r;
+    Eigen::Matrix<double, 9, 9> K;
+    double i2 = 0, g2 = 0;
+    if (!pspg_element(element_input(e, state_.x, state_.v, zero, 0.0, 0.0), r, K, i2, g2)) continue;
+    const double m = rho_ * element_area(state_.x, e) / 3.0;
     for (int k = 0; k < 3; ++k) {
-      const Vec2& b = X[(k + 1) % 3];
-      const Vec2& c = X[(k + 2) % 3];
-      dN[k] = Vec2(b.y() - c.y(), c.x() - b.x()) / A2;
-      pmean += p_[t[k]] / 3.0;
-    }
-    for (int k = 0; k < 3; ++k) L += state_.v.segment<2>(2 * t[k]) * dN[k].transpose();
-    for (int k = 0; k < 3; ++k) {
-      force.segment<2>(2 * t[k]) += 0.5 * A2 * (pmean * dN[k] - mu_ * (L + L.transpose()) * dN[k]);
-      mass[t[k]] += rho_ * A2 / 6.0;
+      force.segment<2>(2 * tri_[e][k]) -= r.segment<2>(3 * k);
+      mass[tri_[e][k]] += m;
     }
   }
   for (Index i = 0; i < np; ++i) {
     if (kind_[i] != ParticleKind::Fluid) continue;
-    state_.a.segment<2>(2 * i) =
-        ctx_.gravity + (mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : Vec2::Zero());
+    state_.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : ctx_.gravity;
   }
   for (const auto& [i, c] : slip_) state_.a[2 * i + c] = state_.v[2 * i + c] = 0.0;
   times_.assembly += seconds_since(t0);
@@ -692,7 +704,7 @@ IterationReport FluidModel::solve_iteration() {
   const Index np = n();
   const EvalPoint ev = integrator_->kinematics(x_);
   const TangentCoefficients cf = integrator_->coefficients();
-  const Vec2 g = ctx_.gravity;
+  const Vec2 g = ctx_.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
   double* jv = J_.valuePtr();
   std::fill(jv, jv + J_.nonZeros(), 0.0);
@@ -706,41 +718,15 @@ IterationReport FluidModel::solve_iteration() {
 #pragma omp parallel for schedule(static) if (ne >= 2000) reduction(+ : inertia2, gravity2)
     for (Index e = 0; e < ne; ++e) {
       const auto& t = tri_[e];
-      Vec2 X[3], V[3], Acc[3];
-      double P[3];
-      for (int k = 0; k < 3; ++k) {
-        X[k] = ev.x.segment<2>(2 * t[k]);
-        V[k] = ev.v.segment<2>(2 * t[k]);
-        Acc[k] = ev.a.segment<2>(2 * t[k]);
-        P[k] = p_[t[k]];
-      }
-      PspgElementInput in;
-      for (int k = 0; k < 3; ++k) {
-        in.x[k] = X[k];
-        in.v[k] = V[k];
-        in.a[k] = Acc[k];
-        in.p[k] = P[k];
-        in.p_old[k] = p_old_[t[k]];
-      }
-      in.rho = rho_;
-      in.mu = mu_;
-      in.dt = dt_;
-      in.tau_U = tau_type_ == "automatic" ? 0.0 : tau_U_;
-      in.bulk = bulk_;
-      in.c_vol = c_vol_;
-      in.g = g;
-      in.lumped = lumped_;
-      in.c_m = cf.c_m;
-      in.c_c = cf.c_c;
+      const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
       Eigen::Matrix<double, 9, 1> r;
       Eigen::Matrix<double, 9, 9> K;
       double i2 = 0, g2 = 0;
       if (!pspg_element(in, r, K, i2, g2)) {
-        const double A2 = (X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[1] - X[0]).y() * (X[2] - X[0]).x();
 #pragma omp critical(lagfsi_fluid_failure)
         failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
                   std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +
-                  std::to_string(t_new_) + " (area " + std::to_string(A2 / 2) + ")";
+                  std::to_string(t_new_) + " (area " + std::to_string(element_area(ev.x, e)) + ")";
         continue;
       }
       inertia2 += i2;

@@ -10,50 +10,12 @@
 // with P1 shape functions on the current (last iterate) configuration, Newmark (or generalized-alpha)
 // kinematics a(x), v(x) from the shared time integrators, and the tangent at frozen geometry
 // (d/dx of grad N and A neglected; Ryzhakov et al. 2010). c_vol is the optional global volume correction.
-#include <lagfsi/assembly.hpp>
-#include <lagfsi/case.hpp>
-#include <lagfsi/error.hpp>
-#include <lagfsi/fluid_element.hpp>
-#include <lagfsi/linear_solver.hpp>
-#include <lagfsi/meshing/primitives.hpp>
-#include <lagfsi/meshing/remesh.hpp>
-#include <lagfsi/time_function.hpp>
-#include <lagfsi/time_integrator.hpp>
-#include <lagfsi/vtk_output.hpp>
-
-#include <algorithm>
-#include <cstdio>
-#include <cstdlib>
-#include <chrono>
-#include <cmath>
-#include <limits>
-#include <numbers>
+#include "fluid_model.hpp"
 
 namespace lagfsi {
+namespace fluid_detail {
 
 namespace {
-
-using meshing::ParticleKind;
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// A rigid wall: a polyline of particles (PFEM mode) or a line of constraints (fixed-connectivity mode),
-/// optionally moving: x(t) = X + value * f(t) (or value * int f for a prescribed velocity).
-struct Wall {
-  std::string name;
-  std::vector<Vec2> polyline;
-  bool slip = false;
-  Vec2 value = Vec2::Zero();
-  std::shared_ptr<TimeFunction> fn;
-  bool velocity = false;
-  std::vector<Index> particles;  // PFEM mode: its particles in polyline order
-  Vec2 offset(double t) const {
-    if (!fn) return Vec2::Zero();
-    return value * (velocity ? fn->integral(t) : fn->value(t));
-  }
-};
-
-class FluidModel;
 
 class FluidProbe final : public Probe {
  public:
@@ -68,90 +30,8 @@ class FluidProbe final : public Probe {
   double band_ = 0, coord_ = 0;
 };
 
-class FluidModel final : public PhysicsModel {
- public:
-  FluidModel(Params body, const CaseContext& ctx);
-  std::string name() const override { return name_; }
-  std::string type() const override { return "fluid"; }
-  Index num_nodes() const override { return static_cast<Index>(kind_.size()); }
-  Index num_elements() const override { return static_cast<Index>(tri_.size()); }
-  double fluid_area() const override { return area_end_; }
+}  // namespace
 
-  void initialize() override;
-  void predict(double t_new, double dt) override;
-  IterationReport solve_iteration() override;
-  void finalize_step() override;
-  void write_output(double t) override;
-  std::unique_ptr<Probe> make_probe(Params p) override;
-
-  // Read access for probes.
-  Index n() const { return static_cast<Index>(kind_.size()); }
-  Vec2 pos(Index i) const { return state_.x.segment<2>(2 * i); }
-  Vec2 vel(Index i) const { return state_.v.segment<2>(2 * i); }
-  double pressure(Index i) const { return p_[i]; }
-  bool is_fluid(Index i) const { return kind_[i] == ParticleKind::Fluid; }
-  bool is_connected(Index i) const { return connected_[i] != 0; }
-  double spacing() const { return h_; }
-  double kinetic_energy() const;
-  double area_end() const { return area_end_; }
-
- private:
-  void build_particles(Params b);
-  void remesh_now();
-  bool remove_close_particles();
-  /// free_ and connected_ from tri_: particles of edges used by one element, unless both ends are on a wall
-  /// (`on_wall`); only Fluid particles are free surface.
-  void mark_free_surface(const std::vector<char>& on_wall);
-  bool insert_particles();
-  double element_area(const Vec& x, Index e) const;
-  /// The element kernel's input for element e at positions x (also its geometry), velocities v,
-  /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
-  PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
-  void set_dirichlet();
-
-  std::string name_;
-  CaseContext ctx_;
-  double rho_ = 1000, mu_ = 1e-3, h_ = 0.01, alpha_ = 1.2;
-  bool remesh_ = true, lumped_ = true, p_free_dirichlet_ = true;
-  std::string tau_type_ = "automatic";
-  double tau_U_ = 1.0;
-  bool volume_correction_ = true;
-  double relax_time_ = 0.1;      // s: the volume correction closes an area error over this time
-  double tol_ = 1e-4;
-  int refactor_every_ = 0;       // 0: one factorization per step (the matrix barely changes within a
-                                 // step); k >= 1: refactorized every k iterations (1: Newton)
-  int iter_in_step_ = 0;
-  double close_fraction_ = 0.3;  // remove a fluid particle closer than this * h to another particle
-  double flat_fraction_ = 0.01;  // drop elements with area below this * h^2
-  double insert_factor_ = 1.0;   // insert a particle at the centroid of elements larger than this * h^2
-  double bulk_ = 2.2e9;          // bulk modulus of the slight compressibility (0: incompressible)
-  std::string solver_type_ = "klu";
-
-  std::vector<ParticleKind> kind_;
-  std::vector<Wall> walls_;
-  std::vector<double> hvec_;
-  Vec X0_;                          // initial positions (walls move relative to these)
-  KinematicState state_;            // x, v, a of all particles
-  Vec p_, p_old_;
-  std::unique_ptr<TimeIntegrator> integrator_;
-  std::unique_ptr<LinearSolver> solver_;
-
-  std::vector<std::array<Index, 3>> tri_;
-  std::vector<Index> conn_;
-  std::vector<std::uint8_t> free_, connected_;
-  std::vector<char> fixed_;         // per dof (3 per particle)
-  std::vector<std::pair<Index, int>> slip_;  // fixed-connectivity mode: (particle, component) constrained
-  ElementPattern pattern_;
-  SparseMatrix J_;
-  double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
-  double p_scale_ = 1;
-
-  Vec x_;                           // iterate of x_{n+1}
-  double t_new_ = 0, dt_ = 0;
-  double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
-  bool solved_once_ = false;
-  std::unique_ptr<PvdSeries> series_, wall_series_;
-};
 
 // ------------------------------------------------------------------------------------------ building
 
@@ -182,36 +62,49 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   remesh_ = b.boolean("remesh");
 
   Params s = b.at("scheme");
-  s.validate({{"type", "monolithic_pspg"},
-              {"tau", Json{{"type", "automatic"}}},
-              {"mass", "lumped"},
-              {"free_surface_pressure", "dirichlet"},
-              {"volume_correction", true},
-              {"volume_relaxation_time", 0.1},
-              {"tolerance", 1e-4},
-              {"refactorize_every", 0},
-              {"linear_solver", "klu"},
-              {"remove_close_fraction", 0.3},
-              {"insert_area_factor", 1.0},
-              {"bulk_modulus", 2.2e9},
-              {"flat_element_fraction", 0.01}});
-  s.choice("type", {"monolithic_pspg"});
-  Params tau = s.at("tau");
-  if (!tau.json().is_object() || !tau.has("type")) tau.fail("type", "required key is missing");
-  tau_type_ = tau.choice("type", {"automatic", "velocity_scale"});
-  if (tau_type_ == "automatic") {
-    tau.validate({{"type", "automatic"}});
+  if (!s.json().is_object()) s.fail("must be an object");
+  scheme_ = s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
+  // Keys common to both schemes (particles, mass conservation), then each scheme's own.
+  Json keys = {{"type", scheme_},
+               {"volume_correction", true},
+               {"volume_relaxation_time", 0.1},
+               {"remove_close_fraction", 0.3},
+               {"insert_area_factor", 1.0},
+               {"bulk_modulus", 2.2e9},
+               {"flat_element_fraction", 0.01}};
+  if (scheme_ == "monolithic_pspg") {
+    keys.update(Json{{"tau", Json{{"type", "automatic"}}},
+                     {"mass", "lumped"},
+                     {"free_surface_pressure", "dirichlet"},
+                     {"tolerance", 1e-4},
+                     {"refactorize_every", 0},
+                     {"linear_solver", "klu"}});
   } else {
-    tau.validate({{"type", "velocity_scale"}, {"U", nullptr}});
-    tau_U_ = tau.positive("U");
+    keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}});
   }
-  lumped_ = s.choice("mass", {"lumped", "consistent"}) == "lumped";
-  p_free_dirichlet_ = s.choice("free_surface_pressure", {"dirichlet", "natural"}) == "dirichlet";
+  s.validate(keys);
+  if (scheme_ == "monolithic_pspg") {
+    Params tau = s.at("tau");
+    if (!tau.json().is_object() || !tau.has("type")) tau.fail("type", "required key is missing");
+    tau_type_ = tau.choice("type", {"automatic", "velocity_scale"});
+    if (tau_type_ == "automatic") {
+      tau.validate({{"type", "automatic"}});
+    } else {
+      tau.validate({{"type", "velocity_scale"}, {"U", nullptr}});
+      tau_U_ = tau.positive("U");
+    }
+    lumped_ = s.choice("mass", {"lumped", "consistent"}) == "lumped";
+    p_free_dirichlet_ = s.choice("free_surface_pressure", {"dirichlet", "natural"}) == "dirichlet";
+    tol_ = s.positive("tolerance");
+    refactor_every_ = s.integer("refactorize_every", 0);
+    solver_type_ = s.choice("linear_solver", {"umfpack", "klu", "eigen_lu"});
+  } else {
+    // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
+    viscous_step_ = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
+    solver_type_ = s.choice("linear_solver", {"cholmod", "eigen_ldlt"});
+  }
   volume_correction_ = s.boolean("volume_correction");
   relax_time_ = s.positive("volume_relaxation_time");
-  tol_ = s.positive("tolerance");
-  refactor_every_ = s.integer("refactorize_every", 0);
-  solver_type_ = s.choice("linear_solver", {"umfpack", "klu", "eigen_lu"});
   close_fraction_ = s.non_negative("remove_close_fraction");
   bulk_ = s.non_negative("bulk_modulus");
   insert_factor_ = s.non_negative("insert_area_factor");
@@ -223,6 +116,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   integrator_ = itype == "generalized_alpha" ? make_generalized_alpha(it.number("rho_inf"))
                                              : make_newmark(it.number("beta"), it.number("gamma"));
   solver_ = make_linear_solver(solver_type_);
+  if (scheme_ == "fractional_step") viscous_solver_ = make_linear_solver(solver_type_);
   build_particles(b);
 }
 
@@ -240,8 +134,6 @@ void FluidModel::build_particles(Params b) {
     wall.polyline = w.points("points");
     if (wall.polyline.size() < 2) w.fail("points", "a wall needs at least two points");
     wall.slip = w.boolean("slip");
-    if (wall.slip && remesh_)
-      w.fail("slip", "slip walls are available with fixed connectivity (\"remesh\": false) only in this version");
     Params mo = w.at("motion");
     if (!mo.json().empty()) {
       if (!mo.has("type")) mo.fail("type", "required key is missing");
@@ -273,8 +165,10 @@ void FluidModel::build_particles(Params b) {
           if (found < 0) {
             w.particles.push_back(static_cast<Index>(pts.size()));
             add(p, ParticleKind::Wall);
+            slip_particle_.push_back(w.slip);
           } else {
             w.particles.push_back(found);
+            slip_particle_[found] = slip_particle_[found] || w.slip;
           }
         }
       }
@@ -418,7 +312,7 @@ PspgElementInput FluidModel::element_input(Index e, const Vec& x, const Vec& v, 
     in.p_old[k] = p_old_.size() == p_.size() ? p_old_[t[k]] : p_[t[k]];
   }
   in.rho = rho_;
-  in.mu = mu_;
+  in.mu = inviscid_element(e) ? 0.0 : mu_;
   in.dt = dt_ > 0 ? dt_ : ctx_.analysis.dt;
   in.tau_U = tau_type_ == "automatic" ? 0.0 : tau_U_;
   in.bulk = bulk_;
@@ -675,8 +569,17 @@ void FluidModel::predict(double t_new, double dt) {
   conn_.resize(3 * tri_.size());
   for (size_t e = 0; e < tri_.size(); ++e)
     for (int k = 0; k < 3; ++k) conn_[3 * e + k] = tri_[e][k];
-  pattern_ = ElementPattern(conn_, 3, np, 3);
-  J_ = pattern_.pattern();
+  if (scheme_ == "monolithic_pspg") {
+    pattern_ = ElementPattern(conn_, 3, np, 3);
+    J_ = pattern_.pattern();
+  } else {
+    poisson_pattern_ = ElementPattern(conn_, 3, np, 1);
+    poisson_ = poisson_pattern_.pattern();
+    if (viscous_implicit()) {
+      viscous_pattern_ = ElementPattern(conn_, 3, np, 2);
+      viscous_ = viscous_pattern_.pattern();
+    }
+  }
   set_dirichlet();
   area_remesh_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_remesh_ += element_area(state_.x, e);
@@ -686,7 +589,7 @@ void FluidModel::predict(double t_new, double dt) {
   // (0.1 s keeps it to a few Pa in a dam break, against about 10 Pa per step-sized T of 1 ms... per 0.1 %).
   c_vol_ = volume_correction_ && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
 
-  integrator_->begin_step(state_, dt);
+  if (scheme_ == "monolithic_pspg") integrator_->begin_step(state_, dt);
   p_old_ = p_;
   x_ = state_.x + dt * state_.v;  // constant-velocity predictor
   for (const auto& w : walls_)  // prescribed wall motion
@@ -700,6 +603,10 @@ void FluidModel::predict(double t_new, double dt) {
 }
 
 IterationReport FluidModel::solve_iteration() {
+  return scheme_ == "monolithic_pspg" ? newton_iteration() : fractional_step();
+}
+
+IterationReport FluidModel::newton_iteration() {
   auto t0 = Clock::now();
   const Index np = n();
   const EvalPoint ev = integrator_->kinematics(x_);
@@ -833,7 +740,13 @@ IterationReport FluidModel::solve_iteration() {
 }
 
 void FluidModel::finalize_step() {
-  integrator_->end_step(x_, state_);
+  if (scheme_ == "monolithic_pspg") {
+    integrator_->end_step(x_, state_);
+  } else {
+    state_.a = (v_new_ - state_.v) / dt_;
+    state_.v = v_new_;
+    state_.x = x_;
+  }
   area_end_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_end_ += element_area(state_.x, e);
   p_scale_ = std::max(p_scale_, p_.cwiseAbs().maxCoeff());
@@ -949,10 +862,10 @@ std::vector<double> FluidProbe::sample() const {
   return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
 }
 
-}  // namespace
+}  // namespace fluid_detail
 
 std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx) {
-  return std::make_unique<FluidModel>(std::move(body), ctx);
+  return std::make_unique<fluid_detail::FluidModel>(std::move(body), ctx);
 }
 
 }  // namespace lagfsi

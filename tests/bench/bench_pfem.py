@@ -65,6 +65,8 @@ def main():
     ap.add_argument("--build", default=os.path.join(REPO, "build-bench"))
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--levels", type=int, nargs="+", default=[20, 40, 80], help="L/h values")
+    ap.add_argument("--schemes", nargs="+", default=["monolithic_pspg", "fractional_step"],
+                    choices=["monolithic_pspg", "fractional_step"])
     ap.add_argument("--time-scale", type=float, default=1.0, help="multiply the simulated times")
     ap.add_argument("--floor-repeats", type=int, default=5)
     ap.add_argument("--omp-wait-policy", choices=["active", "passive"], default=None,
@@ -88,11 +90,11 @@ def main():
         h = L / k
         dt = 1e-3 * 20.0 / k
         end = (0.1 if k <= 40 else 0.02) * a.time_scale
-        for th in a.threads:
-            run_dir = os.path.join(out, f"run_L{k}_t{th}")
+        for scheme, th in ((s, t) for s in a.schemes for t in a.threads):
+            run_dir = os.path.join(out, f"run_{scheme}_L{k}_t{th}")
             cmd = [lagfsi, "run", CASE, "-o", run_dir, "--quiet", "--threads", str(th),
                    "--set", f"bodies.0.spacing={h!r}", "--set", f"analysis.dt={dt!r}",
-                   "--set", f"analysis.end_time={end!r}"]
+                   "--set", f"analysis.end_time={end!r}", "--set", f"bodies.0.scheme.type={scheme}"]
             t0 = time.time()
             ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
             env = dict(os.environ)
@@ -103,7 +105,7 @@ def main():
             ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
             cpu = (ru1.ru_utime - ru0.ru_utime) + (ru1.ru_stime - ru0.ru_stime)
             if p.returncode != 0:
-                print(f"bench_pfem: L/{k} threads {th}: exit {p.returncode}: {p.stderr.strip()}", file=sys.stderr)
+                print(f"bench_pfem: {scheme} L/{k} threads {th}: exit {p.returncode}: {p.stderr.strip()}", file=sys.stderr)
             rows = read_log(os.path.join(run_dir, "log.csv"))
             n = [float(r["nodes"]) for r in rows]
             sn = sum(n)
@@ -115,7 +117,7 @@ def main():
                                          ("t_assembly", "t_factorization", "t_solve", "t_output", "t_step"))
             fl = float(floor[k]["floor_us"])
             results.append({
-                "L_over_h": k, "h": f"{h:.6g}", "dt": f"{dt:.6g}", "end_time": f"{end:.6g}", "threads": th,
+                "scheme": scheme, "L_over_h": k, "h": f"{h:.6g}", "dt": f"{dt:.6g}", "end_time": f"{end:.6g}", "threads": th,
                 "steps": len(rows), "mean_particles": f"{sn / len(rows):.1f}",
                 "mean_elements": f"{sum(float(r['elements']) for r in rows) / len(rows):.1f}",
                 "mean_iterations": f"{sum(float(r['iterations']) for r in rows) / len(rows):.3f}",
@@ -126,7 +128,7 @@ def main():
                 "floor_us": f"{fl:.3f}", "step_over_floor": f"{step / fl:.2f}",
                 "run_wall_s": f"{wall:.2f}", "run_cpu_s": f"{cpu:.2f}", "exit_code": p.returncode,
             })
-            print(f"  L/{k} threads {th}: {len(rows)} steps, wall {wall:.1f} s, cpu {cpu:.1f} s "
+            print(f"  {scheme} L/{k} threads {th}: {len(rows)} steps, wall {wall:.1f} s, cpu {cpu:.1f} s "
                   f"(load {os.getloadavg()[0]:.1f})", flush=True)
 
     cols = list(results[0].keys())
@@ -139,12 +141,12 @@ def main():
     print(f"bench_pfem: dam break, times in us per particle per step (floor: bench_pfem_floor, 1 thread, "
           f"best of {a.floor_repeats}); load average before: {load0[0]:.2f}; "
           f"OMP_WAIT_POLICY={a.omp_wait_policy or os.environ.get('OMP_WAIT_POLICY', '(unset)')}")
-    hdr = ("L/h", "thr", "dt[ms]", "steps", "particles", "iter", "rem+asm", "factor", "solve", "output",
+    hdr = ("scheme", "L/h", "thr", "dt[ms]", "steps", "particles", "iter", "rem+asm", "factor", "solve", "output",
            "other", "step", "floor", "step/floor", "wall[s]", "cpu[s]")
-    print("%5s %4s %7s %6s %10s %6s | %8s %8s %8s %8s %8s %8s | %8s %10s | %7s %7s" % hdr)
+    print("%-15s %5s %4s %7s %6s %10s %6s | %8s %8s %8s %8s %8s %8s | %8s %10s | %7s %7s" % hdr)
     for r in results:
-        print("%5d %4d %7.3f %6d %10s %6s | %8s %8s %8s %8s %8s %8s | %8s %10s | %7s %7s" % (
-            r["L_over_h"], r["threads"], 1e3 * float(r["dt"]), r["steps"], r["mean_particles"],
+        print("%-15s %5d %4d %7.3f %6d %10s %6s | %8s %8s %8s %8s %8s %8s | %8s %10s | %7s %7s" % (
+            r["scheme"], r["L_over_h"], r["threads"], 1e3 * float(r["dt"]), r["steps"], r["mean_particles"],
             r["mean_iterations"][:5], r["remesh_assembly_us"], r["factorization_us"], r["solve_us"],
             r["output_us"], r["other_us"], r["step_us"], r["floor_us"], r["step_over_floor"], r["run_wall_s"], r["run_cpu_s"]))
     print(f"floor (bench_pfem_floor --csv):\n{floor_csv.rstrip()}")

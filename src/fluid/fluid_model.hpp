@@ -1,0 +1,157 @@
+#pragma once
+/// @file fluid_model.hpp (private to src/fluid)
+/// The PFEM fluid model shared by its schemes: particles, walls, remeshing, output and probes live in
+/// fluid_model.cpp; each scheme (monolithic_pspg in fluid_model.cpp, fractional_step in fractional_step.cpp)
+/// implements one step on the remeshed cloud.
+#include <lagfsi/assembly.hpp>
+#include <lagfsi/case.hpp>
+#include <lagfsi/error.hpp>
+#include <lagfsi/fluid_element.hpp>
+#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/meshing/primitives.hpp>
+#include <lagfsi/meshing/remesh.hpp>
+#include <lagfsi/time_function.hpp>
+#include <lagfsi/time_integrator.hpp>
+#include <lagfsi/vtk_output.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace lagfsi::fluid_detail {
+
+using meshing::ParticleKind;
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// A rigid wall: a polyline of particles (PFEM mode) or a line of constraints (fixed-connectivity mode),
+/// optionally moving: x(t) = X + value * f(t) (or value * int f for a prescribed velocity).
+struct Wall {
+  std::string name;
+  std::vector<Vec2> polyline;
+  bool slip = false;
+  Vec2 value = Vec2::Zero();
+  std::shared_ptr<TimeFunction> fn;
+  bool velocity = false;
+  std::vector<Index> particles;  // PFEM mode: its particles in polyline order
+  Vec2 offset(double t) const {
+    if (!fn) return Vec2::Zero();
+    return value * (velocity ? fn->integral(t) : fn->value(t));
+  }
+};
+
+class FluidModel final : public PhysicsModel {
+ public:
+  FluidModel(Params body, const CaseContext& ctx);
+  std::string name() const override { return name_; }
+  std::string type() const override { return "fluid"; }
+  Index num_nodes() const override { return static_cast<Index>(kind_.size()); }
+  Index num_elements() const override { return static_cast<Index>(tri_.size()); }
+  double fluid_area() const override { return area_end_; }
+
+  void initialize() override;
+  void predict(double t_new, double dt) override;
+  IterationReport solve_iteration() override;
+  void finalize_step() override;
+  void write_output(double t) override;
+  std::unique_ptr<Probe> make_probe(Params p) override;
+
+  // Read access for probes.
+  Index n() const { return static_cast<Index>(kind_.size()); }
+  Vec2 pos(Index i) const { return state_.x.segment<2>(2 * i); }
+  Vec2 vel(Index i) const { return state_.v.segment<2>(2 * i); }
+  double pressure(Index i) const { return p_[i]; }
+  bool is_fluid(Index i) const { return kind_[i] == ParticleKind::Fluid; }
+  bool is_connected(Index i) const { return connected_[i] != 0; }
+  double spacing() const { return h_; }
+  double kinetic_energy() const;
+  double area_end() const { return area_end_; }
+
+ private:
+  void build_particles(Params b);
+  void remesh_now();
+  bool remove_close_particles();
+  /// free_ and connected_ from tri_: particles of edges used by one element, unless both ends are on a wall
+  /// (`on_wall`); only Fluid particles are free surface.
+  void mark_free_surface(const std::vector<char>& on_wall);
+  bool insert_particles();
+  double element_area(const Vec& x, Index e) const;
+  /// The element kernel's input for element e at positions x (also its geometry), velocities v,
+  /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
+  PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
+  void set_dirichlet();
+  /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
+  /// wall transmits no shear (the free-slip condition, applied over the first layer of elements); the
+  /// normal velocity is still stopped by the wall particles' positions.
+  bool inviscid_element(Index e) const {
+    for (Index i : tri_[e])
+      if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
+    return false;
+  }
+  /// One Newton iteration of the monolithic PSPG scheme (fluid_model.cpp).
+  IterationReport newton_iteration();
+  /// The whole step of the fractional-step scheme (fractional_step.cpp).
+  IterationReport fractional_step();
+  /// Fractional step: the viscous predictor is implicit (the automatic choice: when the explicit one would
+  /// exceed its stability limit dt <= rho h_min^2 / (8 mu), h_min = 0.3 h).
+  bool viscous_implicit() const;
+
+  std::string name_;
+  CaseContext ctx_;
+  double rho_ = 1000, mu_ = 1e-3, h_ = 0.01, alpha_ = 1.2;
+  bool remesh_ = true, lumped_ = true, p_free_dirichlet_ = true;
+  std::string tau_type_ = "automatic";
+  double tau_U_ = 1.0;
+  bool volume_correction_ = true;
+  double relax_time_ = 0.1;      // s: the volume correction closes an area error over this time
+  double tol_ = 1e-4;
+  int refactor_every_ = 0;       // 0: one factorization per step (the matrix barely changes within a
+                                 // step); k >= 1: refactorized every k iterations (1: Newton)
+  int iter_in_step_ = 0;
+  double close_fraction_ = 0.3;  // remove a fluid particle closer than this * h to another particle
+  double flat_fraction_ = 0.01;  // drop elements with area below this * h^2
+  double insert_factor_ = 1.0;   // insert a particle at the centroid of elements larger than this * h^2
+  double bulk_ = 2.2e9;          // bulk modulus of the slight compressibility (0: incompressible)
+  std::string solver_type_ = "klu";
+  std::string scheme_ = "monolithic_pspg";
+  std::string viscous_step_ = "automatic";  // fractional step: automatic | explicit | implicit
+
+  std::vector<ParticleKind> kind_;
+  std::vector<Wall> walls_;
+  std::vector<char> slip_particle_;  // per wall particle (wall particles come first and are never removed)
+  std::vector<double> hvec_;
+  Vec X0_;                          // initial positions (walls move relative to these)
+  KinematicState state_;            // x, v, a of all particles
+  Vec p_, p_old_;
+  std::unique_ptr<TimeIntegrator> integrator_;
+  std::unique_ptr<LinearSolver> solver_;
+
+  std::vector<std::array<Index, 3>> tri_;
+  std::vector<Index> conn_;
+  std::vector<std::uint8_t> free_, connected_;
+  std::vector<char> fixed_;         // per dof (3 per particle)
+  std::vector<std::pair<Index, int>> slip_;  // fixed-connectivity mode: (particle, component) constrained
+  ElementPattern pattern_;
+  SparseMatrix J_;
+  double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
+  double p_scale_ = 1;
+
+  Vec x_;                           // iterate of x_{n+1}
+  double t_new_ = 0, dt_ = 0;
+  double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
+  bool solved_once_ = false;
+
+  // Fractional step: the pressure Poisson matrix (1 dof per particle) and the implicit viscous predictor
+  // (2 dofs per particle) on the step's mesh; the step's new velocities.
+  std::unique_ptr<LinearSolver> viscous_solver_;
+  ElementPattern poisson_pattern_, viscous_pattern_;
+  SparseMatrix poisson_, viscous_;
+  Vec v_new_;
+  std::unique_ptr<PvdSeries> series_, wall_series_;
+};
+
+}  // namespace lagfsi::fluid_detail

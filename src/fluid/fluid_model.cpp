@@ -575,10 +575,7 @@ void FluidModel::predict(double t_new, double dt) {
   } else {
     poisson_pattern_ = ElementPattern(conn_, 3, np, 1);
     poisson_ = poisson_pattern_.pattern();
-    if (viscous_implicit()) {
-      viscous_pattern_ = ElementPattern(conn_, 3, np, 2);
-      viscous_ = viscous_pattern_.pattern();
-    }
+    if (viscous_implicit()) viscous_ = poisson_;
   }
   set_dirichlet();
   area_remesh_ = 0;

@@ -145,11 +145,11 @@ class FluidModel final : public PhysicsModel {
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
   bool solved_once_ = false;
 
-  // Fractional step: the pressure Poisson matrix (1 dof per particle) and the implicit viscous predictor
-  // (2 dofs per particle) on the step's mesh; the step's new velocities.
+  // Fractional step: the pressure Poisson matrix and the implicit viscous predictor's matrix (both one dof
+  // per particle, one pattern) on the step's mesh; the step's new velocities.
   std::unique_ptr<LinearSolver> viscous_solver_;
-  ElementPattern poisson_pattern_, viscous_pattern_;
-  SparseMatrix poisson_, viscous_;
+  ElementPattern poisson_pattern_;
+  SparseMatrix poisson_, viscous_, viscous_stiffness_;
   Vec v_new_;
   std::unique_ptr<PvdSeries> series_, wall_series_;
 };

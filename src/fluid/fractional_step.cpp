@@ -4,8 +4,9 @@
 // lumped mass m_a = sum_e rho A_e / 3. Pressures p (positive in compression), per step:
 //
 //  1. predictor   m_a (u*_a - u^n_a) / dt = m_a g + sum_e A_e pbar^n_e grad N_a - sum_e mu A_e (L + L^T) grad N_a
-//                 with the viscous term at u^n (explicit) or at u* (implicit: a symmetric positive definite
-//                 system with two unknowns per particle); wall particles take the wall's velocity.
+//                 with the viscous term at u^n (explicit) or its Laplacian part at u* (implicit: one symmetric
+//                 positive definite scalar system for both components); wall particles take the wall's
+//                 velocity.
 //  2. pressure    (dt / rho) L dp + C dp = - sum_e (A_e / 3)(div u*_e + c_vol),   dp = p^{n+1} - p^n,
 //                 L_ab = sum_e A_e grad N_a . grad N_b (the Laplacian replaces D M^-1 G: the stabilization
 //                 of equal-order interpolation, Codina 2001), C = diag((A/3) / (K dt)) the slight
@@ -17,7 +18,7 @@
 // The hydrostatic state is a fixed point: with u = 0 and p linear in depth, pbar terms balance m g exactly
 // at every particle (one-point quadrature of the linear p is exact and the mass is lumped), so div u* = 0
 // and dp = 0. A step costs one CHOLMOD factorization of a scalar Laplacian (and, with the implicit viscous
-// predictor, of a vector one) instead of the monolithic scheme's Newton iterations on (x, y, p).
+// predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton iterations on (x, y, p).
 #include "fluid_model.hpp"
 
 namespace lagfsi::fluid_detail {
@@ -78,18 +79,21 @@ IterationReport FluidModel::fractional_step() {
     ustar[2 * i + c] = 0.0;
   }
 
-  // 1. Predictor: gravity and the pressure of the last step (and the explicit viscous force).
+  // 1. Predictor: gravity, the pressure of the last step and the viscous force. Explicit: all of
+  // mu A (L + L^T) grad N_a at u^n. Implicit: the Laplacian part mu A (grad N_a . grad N_b) u_b at u*
+  // (the stiff part, one scalar matrix for both components) and the transposed part mu A L^T grad N_a
+  // at u^n (it vanishes for a divergence-free field; keeping it explicit keeps the stress symmetric).
   const bool implicit = viscous_implicit();
   Vec force = Vec::Zero(2 * np);
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     const double pbar = (p_[t[0]] + p_[t[1]] + p_[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
-    if (!implicit && mu_ > 0 && !inviscid_element(e))
+    if (mu_ > 0 && !inviscid_element(e))
       for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * grad[e][k].transpose();
-    const Mat2 sym2 = L + L.transpose();
+    const Mat2 visc = implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
     for (int a = 0; a < 3; ++a)
-      force.segment<2>(2 * t[a]) += area[e] * (pbar * grad[e][a] - mu_ * sym2 * grad[e][a]);
+      force.segment<2>(2 * t[a]) += area[e] * (pbar * grad[e][a] - mu_ * visc * grad[e][a]);
   }
   for (Index i = 0; i < np; ++i) force.segment<2>(2 * i) += mass[i] * g;
   times_.assembly += seconds_since(t0);
@@ -98,51 +102,55 @@ IterationReport FluidModel::fractional_step() {
     for (Index k = 0; k < 2 * np; ++k)
       if (!vfixed[k]) ustar[k] = v[k] + dt * force[k] / mass[k / 2];
   } else {
-    // (M / dt + K_mu) u* = M u^n / dt + f, K_mu the viscous stiffness mu A ((grad N_a . grad N_b) I +
-    // grad N_b grad N_a^T): symmetric positive definite once the prescribed components are eliminated.
-    t0 = Clock::now();
-    double* kv = viscous_.valuePtr();
-    std::fill(kv, kv + viscous_.nonZeros(), 0.0);
-    Vec rhs = Vec::Zero(2 * np);
-    for (Index e = 0; e < ne; ++e) {
-      const auto& t = tri_[e];
-      Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero();
-      for (int a = 0; a < 3 && !inviscid_element(e); ++a)
-        for (int b = 0; b < 3; ++b)
-          K.block<2, 2>(2 * a, 2 * b) = mu_ * area[e] *
-                                        (grad[e][a].dot(grad[e][b]) * Mat2::Identity() + grad[e][b] * grad[e][a].transpose());
-      // Prescribed components move to the right-hand side.
-      for (int b = 0; b < 6; ++b) {
-        const Index gb = 2 * t[b / 2] + b % 2;
-        if (!vfixed[gb]) continue;
-        for (int a = 0; a < 6; ++a) rhs[2 * t[a / 2] + a % 2] -= K(a, b) * ustar[gb];
+    // Per component c: (M / dt + K) u*_c = M u^n_c / dt + f_c, K_ab = sum_e mu A grad N_a . grad N_b, the
+    // prescribed components eliminated (symmetric positive definite). Both components share the matrix
+    // unless a fixed mesh constrains one component only (slip walls), then each gets its own.
+    bool same = true;
+    for (Index i = 0; i < np && same; ++i) same = vfixed[2 * i] == vfixed[2 * i + 1];
+    for (int c = 0; c < 2; ++c) {
+      if (c == 1 && same) {
+        t0 = Clock::now();
+      } else {
+        t0 = Clock::now();
+        double* kv = viscous_.valuePtr();
+        std::fill(kv, kv + viscous_.nonZeros(), 0.0);
+        for (Index e = 0; e < ne; ++e) {
+          if (inviscid_element(e)) continue;
+          Eigen::Matrix3d K;
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) K(a, b) = mu_ * area[e] * grad[e][a].dot(grad[e][b]);
+          poisson_pattern_.add(e, K, kv);
+        }
+        viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
+        for (int col = 0; col < viscous_.outerSize(); ++col)
+          for (SparseMatrix::InnerIterator it(viscous_, col); it; ++it) {
+            if (vfixed[2 * it.row() + c] || vfixed[2 * it.col() + c])
+              it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+            else if (it.row() == it.col())
+              it.valueRef() += mass[it.row()] / dt;
+          }
+        times_.assembly += seconds_since(t0);
+        t0 = Clock::now();
+        try {
+          viscous_solver_->factorize(viscous_);
+        } catch (const SolverError& err) {
+          throw SolverError("body '" + name_ + "': viscous predictor: " + err.what());
+        }
+        times_.factorization += seconds_since(t0);
+        t0 = Clock::now();
       }
-      viscous_pattern_.add(e, K, kv);
+      Vec known = Vec::Zero(np), rhs(np);
+      for (Index i = 0; i < np; ++i)
+        if (vfixed[2 * i + c]) known[i] = ustar[2 * i + c];
+      const Vec moved = viscous_stiffness_ * known;
+      for (Index i = 0; i < np; ++i)
+        rhs[i] = vfixed[2 * i + c] ? ustar[2 * i + c] : mass[i] * v[2 * i + c] / dt + force[2 * i + c] - moved[i];
+      Vec u;
+      viscous_solver_->solve(rhs, u);
+      for (Index i = 0; i < np; ++i)
+        if (!vfixed[2 * i + c]) ustar[2 * i + c] = u[i];
+      times_.solve += seconds_since(t0);
     }
-    for (Index k = 0; k < 2 * np; ++k) rhs[k] += mass[k / 2] * v[k] / dt + force[k];
-    for (int c = 0; c < viscous_.outerSize(); ++c)
-      for (SparseMatrix::InnerIterator it(viscous_, c); it; ++it) {
-        if (vfixed[it.row()] || vfixed[it.col()])
-          it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-        else if (it.row() == it.col())
-          it.valueRef() += mass[it.row() / 2] / dt;
-      }
-    for (Index k = 0; k < 2 * np; ++k)
-      if (vfixed[k]) rhs[k] = ustar[k];
-    times_.assembly += seconds_since(t0);
-    t0 = Clock::now();
-    try {
-      viscous_solver_->factorize(viscous_);
-    } catch (const SolverError& err) {
-      throw SolverError("body '" + name_ + "': viscous predictor: " + err.what());
-    }
-    times_.factorization += seconds_since(t0);
-    t0 = Clock::now();
-    Vec u;
-    viscous_solver_->solve(rhs, u);
-    for (Index k = 0; k < 2 * np; ++k)
-      if (!vfixed[k]) ustar[k] = u[k];
-    times_.solve += seconds_since(t0);
   }
 
   // 2. Pressure increment.

@@ -179,6 +179,41 @@ TEST(BadInput, NewtonDivergenceLeavesValidOutput) {
   EXPECT_NE(ss.str().find("strip_00000.vtu"), std::string::npos);
 }
 
+/// A small valid fluid case (water at rest in a tank), for the fluid-specific mutations.
+json fluid_case() {
+  return json::parse(R"({
+    "name": "bad_input_fluid",
+    "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 2e-3},
+    "gravity": [0, -9.81],
+    "bodies": [{
+      "name": "water", "type": "fluid", "density": 1000, "viscosity": 1e-3, "spacing": 0.05,
+      "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.4, 0.2]}],
+      "walls": [{"points": [[0, 0.3], [0, 0], [0.4, 0], [0.4, 0.3]]}],
+      "scheme": {"type": "fractional_step"}
+    }]
+  })");
+}
+
+TEST(BadInput, FluidSchemeKeysAreSchemeSpecific) {
+  EXPECT_EQ(run_json("fluid_base", fluid_case()).code, 0);
+  json j = fluid_case();
+  j["bodies"][0]["scheme"]["tolerance"] = 1e-4;  // a key of the monolithic scheme only
+  Outcome o = run_json("fluid_scheme_key", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/scheme/tolerance", "unknown key");
+  EXPECT_NE(o.message.find("viscous_step"), std::string::npos) << "the fractional step's keys listed";
+  j = fluid_case();
+  j["bodies"][0]["scheme"]["type"] = "projection";
+  o = run_json("fluid_scheme_type", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/scheme/type", "fractional_step");
+  j = fluid_case();
+  j["bodies"][0]["scheme"]["viscous_step"] = "semi";
+  o = run_json("fluid_viscous_step", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/scheme/viscous_step", "implicit");
+}
+
 TEST(BadInput, UsageErrors) {
   const fs::path dir = fresh_dir("bad_input_usage");
   EXPECT_EQ(run_lagfsi("frobnicate", dir).exit_code, 1);

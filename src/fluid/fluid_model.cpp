@@ -551,6 +551,12 @@ void FluidModel::initialize() {
     state_.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : ctx_.gravity;
   }
   for (const auto& [i, c] : slip_) state_.a[2 * i + c] = state_.v[2 * i + c] = 0.0;
+  for (const auto& w : walls_)
+    if (w.fn)
+      for (Index j : w.particles) {
+        state_.v.segment<2>(2 * j) = w.velocity_at(0.0);
+        state_.a.segment<2>(2 * j) = w.acceleration_at(0.0);
+      }
   times_.assembly += seconds_since(t0);
 }
 
@@ -606,7 +612,16 @@ IterationReport FluidModel::solve_iteration() {
 IterationReport FluidModel::newton_iteration() {
   auto t0 = Clock::now();
   const Index np = n();
-  const EvalPoint ev = integrator_->kinematics(x_);
+  EvalPoint ev = integrator_->kinematics(x_);
+  // Moving walls: their particles' velocity and acceleration are those of the prescribed motion (from the
+  // trapezoidal rule they would alternate around it after the jump of the wall's velocity at the start,
+  // and the pressure in the tank then grows step after step).
+  for (const auto& w : walls_)
+    if (w.fn)
+      for (Index j : w.particles) {
+        ev.v.segment<2>(2 * j) = w.velocity_at(ev.t);
+        ev.a.segment<2>(2 * j) = w.acceleration_at(ev.t);
+      }
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = ctx_.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
@@ -739,6 +754,12 @@ IterationReport FluidModel::newton_iteration() {
 void FluidModel::finalize_step() {
   if (scheme_ == "monolithic_pspg") {
     integrator_->end_step(x_, state_);
+    for (const auto& w : walls_)
+      if (w.fn)
+        for (Index j : w.particles) {
+          state_.v.segment<2>(2 * j) = w.velocity_at(t_new_);
+          state_.a.segment<2>(2 * j) = w.acceleration_at(t_new_);
+        }
   } else {
     state_.a = (v_new_ - state_.v) / dt_;
     state_.v = v_new_;

@@ -42,6 +42,18 @@ struct Wall {
     if (!fn) return Vec2::Zero();
     return value * (velocity ? fn->integral(t) : fn->value(t));
   }
+  /// Prescribed velocity and acceleration (central differences of the offset in time; exact to round-off
+  /// for smooth functions, the mean slope across a kink of a table).
+  Vec2 velocity_at(double t) const {
+    if (!fn) return Vec2::Zero();
+    const double d = 1e-6;
+    return (offset(t + d) - offset(t - d)) / (2 * d);
+  }
+  Vec2 acceleration_at(double t) const {
+    if (!fn) return Vec2::Zero();
+    const double d = 1e-4;
+    return (offset(t + d) - 2.0 * offset(t) + offset(t - d)) / (d * d);
+  }
 };
 
 class FluidModel final : public PhysicsModel {

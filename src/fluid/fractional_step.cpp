@@ -61,19 +61,22 @@ IterationReport FluidModel::fractional_step() {
     for (Index i : t) mass[i] += rho_ * area[e] / 3.0;
   }
 
-  // Velocity components that are prescribed: wall particles (the wall's velocity over the step), slip
+  // Velocity components that are prescribed: wall particles (the wall's velocity), slip
   // constraints of fixed meshes (zero), fluid particles in no element (ballistic).
   std::vector<char> vfixed(2 * np, 0);
   Vec ustar = v;
   for (Index i = 0; i < np; ++i) {
     if (kind_[i] != ParticleKind::Fluid) {
       vfixed[2 * i] = vfixed[2 * i + 1] = 1;
-      ustar.segment<2>(2 * i) = (x_.segment<2>(2 * i) - x.segment<2>(2 * i)) / dt;
+      ustar.segment<2>(2 * i) = Vec2::Zero();
     } else if (!(mass[i] > 0)) {
       vfixed[2 * i] = vfixed[2 * i + 1] = 1;
       ustar.segment<2>(2 * i) = v.segment<2>(2 * i) + dt * g;
     }
   }
+  for (const auto& w : walls_)  // moving walls: the prescribed velocity at the end of the step
+    if (w.fn)
+      for (Index j : w.particles) ustar.segment<2>(2 * j) = w.velocity_at(t_new_);
   for (const auto& [i, c] : slip_) {
     vfixed[2 * i + c] = 1;
     ustar[2 * i + c] = 0.0;

@@ -28,6 +28,7 @@ class FluidProbe final : public Probe {
   std::string name_, type_;
   Vec2 a_ = Vec2::Zero(), b_ = Vec2::Zero();
   double band_ = 0, coord_ = 0;
+  bool mesh_method_ = true;
 };
 
 }  // namespace
@@ -836,9 +837,14 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     coord_ = p.number("wall");
     band_ = p.positive("band");
   } else if (type_ == "elevation") {
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"band", 1.5 * h}});
+    // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
+    // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
+    // particle noise of the surface, kept for comparison).
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"},
+                {"band", 1.5 * h}});
     coord_ = p.number("x");
     band_ = p.positive("band");
+    mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"from", nullptr}, {"to", nullptr},
                 {"tolerance", 0.5 * h}});
@@ -870,6 +876,16 @@ std::vector<double> FluidProbe::sample() const {
     return {count ? s / count : 0.0};
   }
   double best = -std::numeric_limits<double>::infinity();
+  if (type_ == "elevation" && mesh_method_) {
+    for (const auto& t : m_.triangles())
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 a = m_.pos(t[k]), b = m_.pos(t[(k + 1) % 3]);
+        const double da = a.x() - coord_, db = b.x() - coord_;
+        if (da * db > 0) continue;
+        best = std::max(best, da == db ? std::max(a.y(), b.y()) : a.y() + (b.y() - a.y()) * da / (da - db));
+      }
+    return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+  }
   for (Index i = 0; i < n; ++i) {
     if (!m_.is_fluid(i) || !m_.is_connected(i)) continue;
     const Vec2 q = m_.pos(i);

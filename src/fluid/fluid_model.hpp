@@ -80,6 +80,7 @@ class FluidModel final : public PhysicsModel {
   bool is_fluid(Index i) const { return kind_[i] == ParticleKind::Fluid; }
   bool is_connected(Index i) const { return connected_[i] != 0; }
   double spacing() const { return h_; }
+  const std::vector<std::array<Index, 3>>& triangles() const { return tri_; }
   double kinetic_energy() const;
   double area_end() const { return area_end_; }
 

@@ -194,3 +194,26 @@ inline std::tuple<double, double, double> check_sloshing_viscous(const Csv& c) {
 }
 
 }  // namespace lagfsi::testing
+
+namespace lagfsi::testing {
+
+/// Shaken tank (cases/sloshing_forced): RMS error of the elevation probe `col` (eta_left | eta_right) against
+/// the linear modal solution (reference/linear_modal_solution.csv) over t <= t_end, relative to the largest
+/// linear elevation there.
+inline double shaken_tank_error(const Csv& c, const std::string& col, double t_end) {
+  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/sloshing_forced/reference/linear_modal_solution.csv");
+  double e2 = 0, peak = 0;
+  int n = 0;
+  for (size_t k = 0; k < ref.rows(); ++k)
+    if (ref["time"][k] <= t_end) peak = std::max(peak, std::abs(ref[col][k]));
+  for (size_t i = 0; i < c.rows(); ++i) {
+    if (c["time"][i] > t_end) continue;
+    const double lin = interp(ref["time"], ref[col], c["time"][i]);
+    EXPECT_TRUE(std::isfinite(c[col][i])) << col << " at t " << c["time"][i];
+    e2 += std::pow(c[col][i] - 0.5 - lin, 2);
+    ++n;
+  }
+  return n && peak > 0 ? std::sqrt(e2 / n) / peak : 1e9;
+}
+
+}  // namespace lagfsi::testing

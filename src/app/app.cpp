@@ -17,7 +17,7 @@ const char* kUsageText =
     "       lagfsi --version | --help\n";
 
 const char* kHelp =
-    "lagfsi: 2D Lagrangian mechanics (positional FEM solids; PFEM fluid and FSI to come).\n\n"
+    "lagfsi: 2D Lagrangian mechanics (positional FEM solids, PFEM free-surface fluid; FSI to come).\n\n"
     "commands:\n"
     "  run CASE.json     run a case; writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu,\n"
     "                    probes.csv, log.csv, summary.json} (OUTDIR defaults to out/<case name>)\n"

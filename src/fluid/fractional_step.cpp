@@ -23,6 +23,15 @@
 
 namespace lagfsi::fluid_detail {
 
+namespace {
+/// Element loops run in parallel (OpenMP, above a size where threads pay) and add into shared nodal arrays.
+inline void atomic_add(double& target, double value) {
+#pragma omp atomic
+  target += value;
+}
+constexpr Index kParallelElements = 2000;
+}  // namespace
+
 bool FluidModel::viscous_implicit() const {
   if (viscous_step_ != "automatic") return viscous_step_ == "implicit";
   if (mu_ <= 0) return false;
@@ -44,21 +53,30 @@ IterationReport FluidModel::fractional_step() {
   std::vector<double> area(ne);
   std::vector<std::array<Vec2, 3>> grad(ne);
   Vec mass = Vec::Zero(np);
+  Index inverted = -1;
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     const Vec2 a = x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[1]), c = x.segment<2>(2 * t[2]);
     const double A2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-    if (!(A2 > 0.0))
-      throw SolverError("body '" + name_ + "': element " + std::to_string(e) + " (particles " +
-                        std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
-                        ") is inverted at t = " + std::to_string(t_new_ - dt));
+    if (!(A2 > 0.0)) {
+#pragma omp critical(lagfsi_fs_inverted)
+      inverted = e;
+      continue;
+    }
     area[e] = 0.5 * A2;
     for (int k = 0; k < 3; ++k) {
       const Vec2& p = x.segment<2>(2 * t[(k + 1) % 3]);
       const Vec2& q = x.segment<2>(2 * t[(k + 2) % 3]);
       grad[e][k] = Vec2(p.y() - q.y(), q.x() - p.x()) / A2;
     }
-    for (Index i : t) mass[i] += rho_ * area[e] / 3.0;
+    for (Index i : t) atomic_add(mass[i], rho_ * area[e] / 3.0);
+  }
+  if (inverted >= 0) {
+    const auto& t = tri_[inverted];
+    throw SolverError("body '" + name_ + "': element " + std::to_string(inverted) + " (particles " +
+                      std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+                      ") is inverted at t = " + std::to_string(t_new_ - dt));
   }
 
   // Velocity components that are prescribed: wall particles (the wall's velocity), slip
@@ -88,6 +106,7 @@ IterationReport FluidModel::fractional_step() {
   // at u^n (it vanishes for a divergence-free field; keeping it explicit keeps the stress symmetric).
   const bool implicit = viscous_implicit();
   Vec force = Vec::Zero(2 * np);
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     const double pbar = (p_[t[0]] + p_[t[1]] + p_[t[2]]) / 3.0;
@@ -95,8 +114,11 @@ IterationReport FluidModel::fractional_step() {
     if (mu_ > 0 && !inviscid_element(e))
       for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * grad[e][k].transpose();
     const Mat2 visc = implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
-    for (int a = 0; a < 3; ++a)
-      force.segment<2>(2 * t[a]) += area[e] * (pbar * grad[e][a] - mu_ * visc * grad[e][a]);
+    for (int a = 0; a < 3; ++a) {
+      const Vec2 f = area[e] * (pbar * grad[e][a] - mu_ * visc * grad[e][a]);
+      atomic_add(force[2 * t[a]], f.x());
+      atomic_add(force[2 * t[a] + 1], f.y());
+    }
   }
   for (Index i = 0; i < np; ++i) force.segment<2>(2 * i) += mass[i] * g;
   times_.assembly += seconds_since(t0);
@@ -117,12 +139,12 @@ IterationReport FluidModel::fractional_step() {
         t0 = Clock::now();
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
         for (Index e = 0; e < ne; ++e) {
           if (inviscid_element(e)) continue;
-          Eigen::Matrix3d K;
-          for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) K(a, b) = mu_ * area[e] * grad[e][a].dot(grad[e][b]);
-          poisson_pattern_.add(e, K, kv);
+          const int* sc = poisson_pattern_.scatter(e);
+          for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], mu_ * area[e] * grad[e][a].dot(grad[e][b]));
         }
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
         for (int col = 0; col < viscous_.outerSize(); ++col)
@@ -161,17 +183,17 @@ IterationReport FluidModel::fractional_step() {
   double* lv = poisson_.valuePtr();
   std::fill(lv, lv + poisson_.nonZeros(), 0.0);
   Vec rhs = Vec::Zero(np), comp = Vec::Zero(np);
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     double div = c_vol_;
     for (int k = 0; k < 3; ++k) div += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
-    Eigen::Matrix3d K;
+    const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
-      rhs[t[a]] -= area[e] / 3.0 * div;
-      if (bulk_ > 0) comp[t[a]] += area[e] / 3.0 / (bulk_ * dt);
-      for (int b = 0; b < 3; ++b) K(a, b) = dt / rho_ * area[e] * grad[e][a].dot(grad[e][b]);
+      atomic_add(rhs[t[a]], -area[e] / 3.0 * div);
+      if (bulk_ > 0) atomic_add(comp[t[a]], area[e] / 3.0 / (bulk_ * dt));
+      for (int b = 0; b < 3; ++b) atomic_add(lv[sc[b * 3 + a]], dt / rho_ * area[e] * grad[e][a].dot(grad[e][b]));
     }
-    poisson_pattern_.add(e, K, lv);
   }
   // Unknown pressures: connected particles off the free surface (fixed_ from set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
@@ -201,10 +223,14 @@ IterationReport FluidModel::fractional_step() {
   t0 = Clock::now();
   v_new_ = ustar;
   Vec du = Vec::Zero(2 * np);
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     const double dpbar = (dp[t[0]] + dp[t[1]] + dp[t[2]]) / 3.0;
-    for (int a = 0; a < 3; ++a) du.segment<2>(2 * t[a]) += area[e] * dpbar * grad[e][a];
+    for (int a = 0; a < 3; ++a) {
+      atomic_add(du[2 * t[a]], area[e] * dpbar * grad[e][a].x());
+      atomic_add(du[2 * t[a] + 1], area[e] * dpbar * grad[e][a].y());
+    }
   }
   for (Index k = 0; k < 2 * np; ++k)
     if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
@@ -225,6 +251,7 @@ IterationReport FluidModel::fractional_step() {
   // Report: the divergence left by the correction, relative to that of the predictor (the part the
   // Laplacian stabilization does not remove).
   double div_star = 0, div_new = 0;
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements) reduction(+ : div_star, div_new)
   for (Index e = 0; e < ne; ++e) {
     const auto& t = tri_[e];
     double d0 = 0, d1 = 0;

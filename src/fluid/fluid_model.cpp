@@ -250,7 +250,22 @@ void FluidModel::build_particles(Params b) {
   // Analytic initial states (they override initial_velocity and initial_pressure).
   Params is = b.at("initial_state");
   if (!is.has("type")) is.fail("type", "required key is missing");
-  if (is.choice("type", {"given", "solitary_wave"}) == "solitary_wave") {
+  const std::string ist = is.choice("type", {"given", "solitary_wave", "taylor_green"});
+  if (ist == "taylor_green") {
+    // Divergence-free cellular flow of amplitude U on a square [x0, x0 + L]^2 (a test of energy stability:
+    // without gravity the kinetic energy of a free blob can only decrease):
+    // u = U sin(pi X) cos(pi Y), v = -U cos(pi X) sin(pi Y), X = (x - x0) / L, Y = (y - y0) / L.
+    is.validate({{"type", "taylor_green"}, {"amplitude", nullptr}, {"origin", Json::array({0.0, 0.0})},
+                 {"length", nullptr}});
+    const double U = is.number("amplitude"), Lc = is.positive("length");
+    const Vec2 o = is.vec2("origin");
+    for (Index i = 0; i < np; ++i) {
+      if (kind_[i] != ParticleKind::Fluid) continue;
+      const double X = std::numbers::pi * (pts[i].x() - o.x()) / Lc, Y = std::numbers::pi * (pts[i].y() - o.y()) / Lc;
+      state_.v[2 * i] = U * std::sin(X) * std::cos(Y);
+      state_.v[2 * i + 1] = -U * std::cos(X) * std::sin(Y);
+    }
+  } else if (ist == "solitary_wave") {
     // Laitone (1960) first-order solitary wave of height H on depth d, crest at x0, moving towards +x:
     // eta = d + H sech^2(k (x - x0)), k = sqrt(3H / (4 d^3)),
     // u = sqrt(g d) (H/d) sech^2, v = sqrt(3 g d) (H/d)^(3/2) (y/d) sech^2 tanh, p = rho g (eta - y).
@@ -524,7 +539,10 @@ void FluidModel::initialize() {
       ymin = std::min(ymin, state_.x[2 * i + 1]);
       ymax = std::max(ymax, state_.x[2 * i + 1]);
     }
-  p_scale_ = std::max({rho_ * ctx_.gravity.norm() * (ymax - ymin), p_.cwiseAbs().maxCoeff(), 1e-12});
+  // Pressure scale of the convergence test: hydrostatic, initial and dynamic (rho v^2: a flow without gravity).
+  double v2 = 0;
+  for (Index i = 0; i < np; ++i) v2 = std::max(v2, state_.v.segment<2>(2 * i).squaredNorm());
+  p_scale_ = std::max({rho_ * ctx_.gravity.norm() * (ymax - ymin), p_.cwiseAbs().maxCoeff(), rho_ * v2, 1e-12});
   // Initial acceleration from the momentum equation with the lumped mass, the initial pressure (zero on
   // the free surface, as the solver will impose) and the initial velocity. An inconsistent a0 excites the
   // period-2 pressure oscillation of the trapezoidal rule on this index-2 system (a hydrostatic column

@@ -1,6 +1,6 @@
 // PFEM fluid, scheme "fractional_step": an incremental pressure-correction (projection) step of Chorin
 // (1968) and Goda (1979) on the particles' mesh at the start of the step (x_n, after remeshing), as used in
-// PFEM by Idelsohn, Onate & Del Pin (2004) and Oñate et al. (2014), with P1 velocity and pressure and
+// PFEM by Idelsohn, Oñate & Del Pin (2004, Int. J. Numer. Meth. Eng. 61:964), with P1 velocity and pressure and
 // lumped mass m_a = sum_e rho A_e / 3. Pressures p (positive in compression), per step:
 //
 //  1. predictor   m_a (u*_a - u^n_a) / dt = m_a g + sum_e A_e pbar^n_e grad N_a - sum_e mu A_e (L + L^T) grad N_a
@@ -18,7 +18,8 @@
 // The hydrostatic state is a fixed point: with u = 0 and p linear in depth, pbar terms balance m g exactly
 // at every particle (one-point quadrature of the linear p is exact and the mass is lumped), so div u* = 0
 // and dp = 0. A step costs one CHOLMOD factorization of a scalar Laplacian (and, with the implicit viscous
-// predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton iterations on (x, y, p).
+// predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton
+// iterations on (x, y, p).
 #include "fluid_model.hpp"
 
 namespace lagfsi::fluid_detail {
@@ -133,9 +134,7 @@ IterationReport FluidModel::fractional_step() {
     bool same = true;
     for (Index i = 0; i < np && same; ++i) same = vfixed[2 * i] == vfixed[2 * i + 1];
     for (int c = 0; c < 2; ++c) {
-      if (c == 1 && same) {
-        t0 = Clock::now();
-      } else {
+      if (c == 0 || !same) {
         t0 = Clock::now();
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
@@ -162,8 +161,8 @@ IterationReport FluidModel::fractional_step() {
           throw SolverError("body '" + name_ + "': viscous predictor: " + err.what());
         }
         times_.factorization += seconds_since(t0);
-        t0 = Clock::now();
       }
+      t0 = Clock::now();
       Vec known = Vec::Zero(np), rhs(np);
       for (Index i = 0; i < np; ++i)
         if (vfixed[2 * i + c]) known[i] = ustar[2 * i + c];

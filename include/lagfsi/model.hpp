@@ -21,8 +21,9 @@ namespace lagfsi {
 
 /// Wall-clock seconds spent per phase (accumulated by the model, reset by the driver each step).
 struct PhaseTimes {
-  double assembly = 0, factorization = 0, solve = 0, output = 0;
+  double remesh = 0, assembly = 0, factorization = 0, solve = 0, output = 0;
   PhaseTimes& operator+=(const PhaseTimes& o) {
+    remesh += o.remesh;
     assembly += o.assembly;
     factorization += o.factorization;
     solve += o.solve;
@@ -64,6 +65,9 @@ class PhysicsModel {
   virtual Index num_nodes() const = 0;
   virtual Index num_elements() const = 0;
   virtual double fluid_area() const { return 0.0; }
+  /// Fluid area of the step's mesh right after remeshing (before the step moved it); with fluid_area() of
+  /// the previous step it shows what remeshing added or removed.
+  virtual double fluid_area_remeshed() const { return 0.0; }
   PhaseTimes& times() { return times_; }
 
  protected:

@@ -240,7 +240,8 @@ int run_case(const RunOptions& opt) {
     s["newton_iterations"] = {{"total", tot.iterations},
                               {"mean", tot.steps ? double(tot.iterations) / tot.steps : 0.0},
                               {"max", tot.max_iterations}};
-    s["timing"] = {{"assembly", tot.phases.assembly},
+    s["timing"] = {{"remesh", tot.phases.remesh},
+                   {"assembly", tot.phases.assembly},
                    {"factorization", tot.phases.factorization},
                    {"solve", tot.phases.solve},
                    {"output", tot.phases.output}};
@@ -267,8 +268,8 @@ int run_case(const RunOptions& opt) {
     for (const auto& p : c.probes)
       for (const auto& col : p->columns()) probes_csv << "," << col;
     probes_csv << "\n" << std::setprecision(12);
-    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area,"
-               "t_assembly,t_factorization,t_solve,t_output,t_step\n"
+    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,"
+               "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step\n"
             << std::setprecision(10);
     auto sample = [&]() {
       probes_csv << t;
@@ -345,17 +346,18 @@ int run_case(const RunOptions& opt) {
       if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt) output();
       PhaseTimes ph;
       Index nn = 0, ne = 0;
-      double area = 0;
+      double area = 0, area_remeshed = 0;
       for (auto& m : c.models) {
         ph += m->times();
         nn += m->num_nodes();
         ne += m->num_elements();
         area += m->fluid_area();
+        area_remeshed += m->fluid_area_remeshed();
       }
       tot.phases += ph;
       const double wall_step = since(t_step);
       log_csv << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn << "," << ne
-              << "," << area << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
+              << "," << area_remeshed << "," << area << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
               << ph.output << "," << wall_step << "\n";
       log_csv.flush();
       if (!opt.quiet) {

@@ -580,7 +580,7 @@ void FluidModel::initialize() {
 }
 
 void FluidModel::predict(double t_new, double dt) {
-  const auto t0 = Clock::now();
+  auto t0 = Clock::now();
   t_new_ = t_new;
   dt_ = dt;
   if (remesh_ && solved_once_) {
@@ -589,6 +589,8 @@ void FluidModel::predict(double t_new, double dt) {
     if (removed) remesh_now();
     if (insert_particles()) remesh_now();
   }
+  times_.remesh += seconds_since(t0);
+  t0 = Clock::now();
   solved_once_ = true;
   const Index np = n();
   conn_.resize(3 * tri_.size());

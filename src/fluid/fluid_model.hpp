@@ -64,6 +64,7 @@ class FluidModel final : public PhysicsModel {
   Index num_nodes() const override { return static_cast<Index>(kind_.size()); }
   Index num_elements() const override { return static_cast<Index>(tri_.size()); }
   double fluid_area() const override { return area_end_; }
+  double fluid_area_remeshed() const override { return area_remesh_; }
 
   void initialize() override;
   void predict(double t_new, double dt) override;

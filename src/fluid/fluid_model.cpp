@@ -43,6 +43,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"viscosity", nullptr},
               {"spacing", nullptr},
               {"alpha", 1.2},
+              {"domain_margin", 0.1},
               {"remesh", true},
               {"regions", nullptr},
               {"particles", "structured"},
@@ -61,6 +62,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   alpha_ = b.positive("alpha");
   if (alpha_ < 1.0 || alpha_ > 5.0) b.fail("alpha", "must lie in [1, 5] (the literature uses 1.0-1.5)");
   remesh_ = b.boolean("remesh");
+  domain_margin_ = b.non_negative("domain_margin");
 
   Params s = b.at("scheme");
   if (!s.json().is_object()) s.fail("must be an object");
@@ -224,6 +226,22 @@ void FluidModel::build_particles(Params b) {
   if (pts.size() == static_cast<size_t>(n_wall)) regions.fail("the regions contain no fluid particle");
 
   const Index np = static_cast<Index>(pts.size());
+  if (remesh_) {
+    domain_lo_ = Vec2::Constant(std::numeric_limits<double>::infinity());
+    domain_hi_ = -domain_lo_;
+    for (const auto& q : pts) {
+      domain_lo_ = domain_lo_.cwiseMin(q);
+      domain_hi_ = domain_hi_.cwiseMax(q);
+    }
+    for (const auto& w : walls_)
+      for (const auto& q : w.polyline) {
+        domain_lo_ = domain_lo_.cwiseMin(q);
+        domain_hi_ = domain_hi_.cwiseMax(q);
+      }
+    const double margin = domain_margin_ * (domain_hi_ - domain_lo_).maxCoeff();
+    domain_lo_ -= Vec2::Constant(margin);
+    domain_hi_ += Vec2::Constant(margin);
+  }
   state_.x.resize(2 * np);
   for (Index i = 0; i < np; ++i) state_.x.segment<2>(2 * i) = pts[i];
   X0_ = state_.x;
@@ -428,6 +446,11 @@ bool FluidModel::remove_close_particles() {
       if (fa == fb) continue;
       if ((pts[a] - pts[b]).norm() < close_fraction_ * h_) drop[fa ? a : b] = 1;
     }
+  return drop_particles(drop);
+}
+
+bool FluidModel::drop_particles(const std::vector<char>& drop) {
+  const Index np = n();
   Index kept = 0;
   for (Index i = 0; i < np; ++i) {
     if (drop[i]) continue;
@@ -449,6 +472,29 @@ bool FluidModel::remove_close_particles() {
   X0_.conservativeResize(2 * kept);
   p_.conservativeResize(kept);
   return true;
+}
+
+bool FluidModel::drop_outside_domain() {
+  // Fluid particles that left the domain box (walls and initial fluid, enlarged by domain_margin times the
+  // larger side) are gone: a jet that falls off the end of a floor would otherwise fly forever.
+  if (domain_lo_.x() > domain_hi_.x()) return false;
+  std::vector<char> drop(n(), 0);
+  bool any = false;
+  Index fluid_left = 0;
+  for (Index i = 0; i < n(); ++i) {
+    if (kind_[i] != ParticleKind::Fluid) continue;
+    const Vec2 q = state_.x.segment<2>(2 * i);
+    if (q.x() < domain_lo_.x() || q.y() < domain_lo_.y() || q.x() > domain_hi_.x() || q.y() > domain_hi_.y()) {
+      drop[i] = 1;
+      any = true;
+    } else {
+      ++fluid_left;
+    }
+  }
+  if (!any) return false;
+  if (fluid_left == 0)
+    throw SolverError("body '" + name_ + "': all fluid particles left the domain box by t = " + std::to_string(t_new_));
+  return drop_particles(drop);
 }
 
 bool FluidModel::insert_particles() {
@@ -584,6 +630,7 @@ void FluidModel::predict(double t_new, double dt) {
   t_new_ = t_new;
   dt_ = dt;
   if (remesh_ && solved_once_) {
+    drop_outside_domain();
     remesh_now();
     const bool removed = remove_close_particles();
     if (removed) remesh_now();

@@ -89,6 +89,10 @@ class FluidModel final : public PhysicsModel {
   void build_particles(Params b);
   void remesh_now();
   bool remove_close_particles();
+  /// Removes the flagged particles (fluid only), compacting every per-particle array.
+  bool drop_particles(const std::vector<char>& drop);
+  /// Removes the fluid particles outside the domain box; throws SolverError when none is left.
+  bool drop_outside_domain();
   /// free_ and connected_ from tri_: particles of edges used by one element, unless both ends are on a wall
   /// (`on_wall`); only Fluid particles are free surface.
   void mark_free_surface(const std::vector<char>& on_wall);
@@ -136,7 +140,9 @@ class FluidModel final : public PhysicsModel {
 
   std::vector<ParticleKind> kind_;
   std::vector<Wall> walls_;
-  std::vector<char> slip_particle_;  // per wall particle (wall particles come first and are never removed)
+  std::vector<char> slip_particle_;
+  double domain_margin_ = 0.1;       // the domain box: walls and initial fluid, enlarged by this * larger side
+  Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity  // per wall particle (wall particles come first and are never removed)
   std::vector<double> hvec_;
   Vec X0_;                          // initial positions (walls move relative to these)
   KinematicState state_;            // x, v, a of all particles

@@ -8,33 +8,47 @@ namespace lagfsi {
 
 ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn)
     : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
-  // Node adjacency (each node is its own neighbour, also when it is in no element).
-  std::vector<std::vector<Index>> adj(num_nodes);
-  for (Index n = 0; n < num_nodes; ++n) adj[n].push_back(n);
+  // Node adjacency in compressed rows (each node is its own neighbour, also when it is in no element):
+  // count, fill, then sort and deduplicate each row in place.
+  std::vector<int> start(num_nodes + 1, 0);
+  for (Index n = 0; n < num_nodes; ++n) start[n + 1] = 1;
+  for (Index e = 0; e < ne_; ++e) {
+    const Index* c = conn.data() + static_cast<size_t>(e) * npe;
+    for (int a = 0; a < npe; ++a) start[c[a] + 1] += npe;
+  }
+  for (Index n = 0; n < num_nodes; ++n) start[n + 1] += start[n];
+  std::vector<Index> adj(start[num_nodes]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (Index n = 0; n < num_nodes; ++n) adj[fill[n]++] = n;
   for (Index e = 0; e < ne_; ++e) {
     const Index* c = conn.data() + static_cast<size_t>(e) * npe;
     for (int a = 0; a < npe; ++a)
-      for (int b = 0; b < npe; ++b) adj[c[a]].push_back(c[b]);
+      for (int b = 0; b < npe; ++b) adj[fill[c[a]]++] = c[b];
   }
+  std::vector<int> count(num_nodes);
+  for (Index n = 0; n < num_nodes; ++n) {
+    Index* first = adj.data() + start[n];
+    Index* last = adj.data() + start[n + 1];
+    std::sort(first, last);
+    count[n] = static_cast<int>(std::unique(first, last) - first);
+  }
+  // The CSC pattern (symmetric: columns = rows), written straight into the matrix.
   const Index nd = num_nodes * dpn;
-  std::vector<int> outer(nd + 1, 0), inner;
-  for (auto& v : adj) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
   size_t nnz = 0;
-  for (const auto& v : adj) nnz += v.size() * dpn * dpn;
-  inner.reserve(nnz);
+  for (Index n = 0; n < num_nodes; ++n) nnz += static_cast<size_t>(count[n]) * dpn * dpn;
+  pattern_.resize(nd, nd);
+  pattern_.resizeNonZeros(static_cast<Index>(nnz));
+  int* outer = pattern_.outerIndexPtr();
+  int* inner = pattern_.innerIndexPtr();
+  outer[0] = 0;
+  int pos = 0;
   for (Index i = 0; i < num_nodes; ++i)
     for (int c = 0; c < dpn; ++c) {
-      outer[dpn * i + c + 1] = outer[dpn * i + c] + static_cast<int>(dpn * adj[i].size());
-      for (Index j : adj[i])
-        for (int d = 0; d < dpn; ++d) inner.push_back(dpn * j + d);
+      for (int k = 0; k < count[i]; ++k)
+        for (int d = 0; d < dpn; ++d) inner[pos++] = dpn * adj[start[i] + k] + d;
+      outer[dpn * i + c + 1] = pos;
     }
-  std::vector<double> values(inner.size(), 0.0);
-  pattern_ = Eigen::Map<const SparseMatrix>(nd, nd, static_cast<int>(inner.size()), outer.data(), inner.data(),
-                                            values.data());
-  pattern_.makeCompressed();
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + nnz, 0.0);
 
   scatter_.resize(static_cast<size_t>(ne_) * m_ * m_);
   const int* op = pattern_.outerIndexPtr();

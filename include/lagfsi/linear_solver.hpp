@@ -9,7 +9,8 @@
 /// factorize) throw lagfsi::SolverError.
 ///
 /// Types (the string used in case files):
-///  - "cholmod"     CHOLMOD supernodal Cholesky (A symmetric positive definite; lower triangle used)
+///  - "cholmod"     CHOLMOD simplicial Cholesky (A symmetric positive definite; lower triangle used)
+///  - "cholmod_supernodal"  CHOLMOD supernodal Cholesky (faster than simplicial only with an optimized BLAS)
 ///  - "umfpack"     UMFPACK unsymmetric multifrontal LU
 ///  - "klu"         KLU (circuit-style LU; good for small, very sparse systems)
 ///  - "eigen_lu"    Eigen::SparseLU with COLAMD ordering

@@ -104,7 +104,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   } else {
     // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
     viscous_step_ = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
-    solver_type_ = s.choice("linear_solver", {"cholmod", "eigen_ldlt"});
+    solver_type_ = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
   }
   volume_correction_ = s.boolean("volume_correction");
   relax_time_ = s.positive("volume_relaxation_time");

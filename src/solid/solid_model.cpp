@@ -323,7 +323,7 @@ void SolidModel::factorize(const SparseMatrix& H) {
   try {
     solver_->factorize(H);
   } catch (const SolverError& e) {
-    if (solver_type_ != "cholmod") throw;
+    if (solver_type_ != "cholmod" && solver_type_ != "cholmod_supernodal") throw;
     // An indefinite tangent (buckling, strong compression): switch to LU for the rest of the run.
     if (!warned_fallback_)
       std::cerr << "lagfsi: warning: body '" << name_ << "': " << e.what() << "; switching to umfpack\n";

@@ -80,8 +80,8 @@ double solve_residual(const std::string& type, const SparseMatrix& A_given, cons
   return relative_residual(A_full, x, b);
 }
 
-const std::vector<std::string> kAll{"cholmod", "umfpack", "klu", "eigen_lu", "eigen_ldlt"};
-const std::vector<std::string> kSymmetric{"cholmod", "eigen_ldlt"};
+const std::vector<std::string> kAll{"cholmod", "cholmod_supernodal", "umfpack", "klu", "eigen_lu", "eigen_ldlt"};
+const std::vector<std::string> kSymmetric{"cholmod", "cholmod_supernodal", "eigen_ldlt"};
 const std::vector<std::string> kLU{"umfpack", "klu", "eigen_lu"};
 
 }  // namespace
@@ -94,7 +94,8 @@ INSTANTIATE_TEST_SUITE_P(LinearSolver, EverySolver, ::testing::ValuesIn(kAll),
 TEST_P(EverySolver, TypeStringRoundTrips) {
   auto solver = make_linear_solver(GetParam());
   EXPECT_EQ(solver->type(), GetParam());
-  EXPECT_EQ(solver->symmetric_only(), GetParam() == "cholmod" || GetParam() == "eigen_ldlt");
+  EXPECT_EQ(solver->symmetric_only(),
+            GetParam() == "cholmod" || GetParam() == "cholmod_supernodal" || GetParam() == "eigen_ldlt");
   EXPECT_EQ(solver->symbolic_analyses(), 0);
 }
 
@@ -306,8 +307,10 @@ TEST(LinearSolver, CholmodRejectsIndefiniteMatrixAndRecovers) {
 TEST(LinearSolver, CholmodRejectsNegativeDefiniteMatrix) {
   SparseMatrix A = laplacian(5, 0.1);
   A = -A;
-  auto solver = make_linear_solver("cholmod");
-  EXPECT_THROW(solver->factorize(A), SolverError);
+  for (const char* type : {"cholmod", "cholmod_supernodal"}) {
+    auto solver = make_linear_solver(type);
+    EXPECT_THROW(solver->factorize(A), SolverError) << type;
+  }
 }
 
 TEST(LinearSolver, UnknownTypeThrowsInvalidArgumentListingTheValidTypes) {

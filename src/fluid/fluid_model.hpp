@@ -117,6 +117,9 @@ class FluidModel final : public PhysicsModel {
   /// Fractional step: the viscous predictor is implicit (the automatic choice: when the explicit one would
   /// exceed its stability limit dt <= rho h_min^2 / (8 mu), h_min = 0.3 h).
   bool viscous_implicit() const;
+  /// Factorizes a matrix of the fractional step (time counted as factorization); a failure names the body
+  /// and `what`.
+  void factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what);
 
   std::string name_;
   CaseContext ctx_;

@@ -31,7 +31,30 @@ inline void atomic_add(double& target, double value) {
   target += value;
 }
 constexpr Index kParallelElements = 2000;
+
+/// Rows and columns of the prescribed unknowns (fixed(i)) become those of the identity; `diag(i)` is added to
+/// the diagonal of the others.
+template <class Fixed, class Diag>
+void constrain(SparseMatrix& A, const Fixed& fixed, const Diag& diag) {
+  for (int col = 0; col < A.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(A, col); it; ++it) {
+      if (fixed(it.row()) || fixed(it.col()))
+        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+      else if (it.row() == it.col())
+        it.valueRef() += diag(it.row());
+    }
+}
 }  // namespace
+
+void FluidModel::factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what) {
+  const auto t0 = Clock::now();
+  try {
+    solver.factorize(A);
+  } catch (const SolverError& err) {
+    throw SolverError("body '" + name_ + "': " + what + ": " + err.what());
+  }
+  times_.factorization += seconds_since(t0);
+}
 
 bool FluidModel::viscous_implicit() const {
   if (viscous_step_ != "automatic") return viscous_step_ == "implicit";
@@ -146,21 +169,9 @@ IterationReport FluidModel::fractional_step() {
             for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], mu_ * area[e] * grad[e][a].dot(grad[e][b]));
         }
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
-        for (int col = 0; col < viscous_.outerSize(); ++col)
-          for (SparseMatrix::InnerIterator it(viscous_, col); it; ++it) {
-            if (vfixed[2 * it.row() + c] || vfixed[2 * it.col() + c])
-              it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-            else if (it.row() == it.col())
-              it.valueRef() += mass[it.row()] / dt;
-          }
+        constrain(viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; }, [&](Index i) { return mass[i] / dt; });
         times_.assembly += seconds_since(t0);
-        t0 = Clock::now();
-        try {
-          viscous_solver_->factorize(viscous_);
-        } catch (const SolverError& err) {
-          throw SolverError("body '" + name_ + "': viscous predictor: " + err.what());
-        }
-        times_.factorization += seconds_since(t0);
+        factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
       t0 = Clock::now();
       Vec known = Vec::Zero(np), rhs(np);
@@ -196,23 +207,11 @@ IterationReport FluidModel::fractional_step() {
   }
   // Unknown pressures: connected particles off the free surface (fixed_ from set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
-  for (int c = 0; c < poisson_.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(poisson_, c); it; ++it) {
-      if (fixed_[3 * it.row() + 2] || fixed_[3 * it.col() + 2])
-        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-      else if (it.row() == it.col())
-        it.valueRef() += comp[it.row()];
-    }
+  constrain(poisson_, [&](Index i) { return fixed_[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) rhs[i] = 0.0;
   times_.assembly += seconds_since(t0);
-  t0 = Clock::now();
-  try {
-    solver_->factorize(poisson_);
-  } catch (const SolverError& err) {
-    throw SolverError("body '" + name_ + "': pressure step: " + err.what());
-  }
-  times_.factorization += seconds_since(t0);
+  factorize_step_matrix(*solver_, poisson_, "pressure step");
   t0 = Clock::now();
   Vec dp;
   solver_->solve(rhs, dp);

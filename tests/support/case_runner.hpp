@@ -43,12 +43,13 @@ inline RunResult run_lagfsi(const std::string& args, const fs::path& work_dir) {
   return r;
 }
 
-/// Runs a case file from cases/ with overrides; output in a fresh folder named `tag`.
+/// Runs a case file from cases/ with overrides (and extra command-line options); output in a fresh folder
+/// named `tag`.
 inline RunResult run_case_file(const std::string& case_rel, const std::string& tag,
-                               const std::vector<std::string>& sets = {}) {
+                               const std::vector<std::string>& sets = {}, const std::string& options = "") {
   const fs::path dir = fresh_dir(tag);
   std::string args = "run \"" + (fs::path(LAGFSI_SOURCE_DIR) / case_rel).string() + "\" -o \"" +
-                     (dir / "out").string() + "\" --quiet";
+                     (dir / "out").string() + "\" --quiet " + options;
   for (const auto& s : sets) args += " --set '" + s + "'";
   RunResult r = run_lagfsi(args, dir);
   r.out_dir = dir / "out";

@@ -22,15 +22,11 @@ inline Csv probes_of(const RunResult& r) {
   return read_csv(r.out_dir / "probes.csv");
 }
 
+/// One OpenMP thread (as ctest sets, also when a test binary runs by hand): a fixed summation order keeps the
+/// remeshed runs, which are sensitive to round-off, reproducible.
 inline RunResult run_case_1thread(const std::string& case_rel, const std::string& tag,
-                           const std::vector<std::string>& sets = {}) {
-  const fs::path dir = fresh_dir(tag);
-  std::string args = "run \"" + (fs::path(LAGFSI_SOURCE_DIR) / case_rel).string() + "\" -o \"" +
-                     (dir / "out").string() + "\" --quiet --threads 1";
-  for (const auto& s : sets) args += " --set '" + s + "'";
-  RunResult r = run_lagfsi(args, dir);
-  r.out_dir = dir / "out";
-  return r;
+                                  const std::vector<std::string>& sets = {}) {
+  return run_case_file(case_rel, tag, sets, "--threads 1");
 }
 
 /// Linear interpolation of ys(xs) at x; NaN outside [xs.front(), xs.back()].

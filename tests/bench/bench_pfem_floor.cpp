@@ -29,26 +29,18 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.hpp"
+
 using namespace lagfsi;
 using lagfsi::meshing::ParticleKind;
-using Clock = std::chrono::steady_clock;
+using lagfsi::bench::best_of;
+using lagfsi::bench::Clock;
+using lagfsi::bench::seconds;
 
 namespace {
 
 constexpr double kL = 0.146;
 
-double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
-
-template <class F>
-double best_of(int n, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < n; ++i) {
-    const auto t0 = Clock::now();
-    f(i);
-    best = std::min(best, seconds(t0));
-  }
-  return best;
-}
 
 struct Cloud {
   std::vector<Vec2> points;

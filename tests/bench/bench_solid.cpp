@@ -14,25 +14,15 @@
 #include <algorithm>
 #include <vector>
 
+#include "bench_timing.hpp"
+
 #ifdef LAGFSI_HAVE_OPENMP
 #include <omp.h>
 #endif
 
 using namespace lagfsi;
-using Clock = std::chrono::steady_clock;
-
-static double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
-
-template <class F>
-static double best_of(int n, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < n; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, seconds(t0));
-  }
-  return best;
-}
+using lagfsi::bench::best_of;
+using lagfsi::bench::Clock;
 
 int main(int argc, char** argv) {
   const int target = argc > 1 ? std::atoi(argv[1]) : 50000;

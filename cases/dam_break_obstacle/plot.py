@@ -3,14 +3,13 @@ connected fluid) and floor front against time, with the time the jet reaches the
 right wall and on the obstacle's upstream face; fluid area; and, if the VTK Python module is available,
 snapshots at 0.1-0.5 s (the seed's Figs. 39-43). Usage: /usr/bin/python3 cases/dam_break_obstacle/plot.py OUTDIR"""
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, save, read_particle_snapshots, plot_particle_snapshots
 
 out = out_dir_from_argv("out/dam_break_obstacle")
 W, h = 0.584, 0.0073
@@ -25,26 +24,7 @@ print("ran to t = %.3f s; jet reaches the right wall (largest x >= W - 1.5 h) at
       "first non-zero at %.4f s (issue: 0.30-0.35 s); area drift at 0.3 s %+.2f %%, at the end %+.2f %%, "
       "max |drift| %.2f %%" % (t[-1], hit, wet, drift[i03], drift[-1], max(abs(d) for d in drift)))
 
-snap_times = [0.1, 0.2, 0.3, 0.4, 0.5]
-snaps = []
-try:
-    import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
-    pvd = open(os.path.join(out, "water.pvd")).read()
-    files = [(float(m.group(1)), m.group(2)) for m in re.finditer(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
-    for ts in snap_times:
-        tt, f = min(files, key=lambda x: abs(x[0] - ts))
-        if abs(tt - ts) > 0.02:
-            continue
-        r = vtk.vtkXMLUnstructuredGridReader()
-        r.SetFileName(os.path.join(out, f))
-        r.Update()
-        g = r.GetOutput()
-        X = vtk_to_numpy(g.GetPoints().GetData())
-        snaps.append((tt, X[:, 0], X[:, 1], vtk_to_numpy(g.GetPointData().GetArray("pressure")),
-                      vtk_to_numpy(g.GetPointData().GetArray("kind"))))
-except (ImportError, OSError):
-    pass
+snaps = read_particle_snapshots(out, "water.pvd", [0.1, 0.2, 0.3, 0.4, 0.5], 0.02)
 
 fig = plt.figure(figsize=(16, 8.5 if snaps else 4.2))
 rows = 2 if snaps else 1
@@ -72,14 +52,5 @@ ax.set_xlabel("t [s]")
 ax.set_ylabel("fluid area drift [%]")
 for a in fig.axes:
     a.grid(alpha=0.3)
-for k, (tt, x, y, pr, kind) in enumerate(snaps):
-    ax = fig.add_subplot(2, len(snaps), len(snaps) + k + 1)
-    fl = kind == 0
-    ax.plot(x[~fl], y[~fl], "k.", ms=1)
-    ax.scatter(x[fl], y[fl], c=pr[fl], s=2, cmap="viridis", vmin=0, vmax=3000)
-    ax.set_xlim(-0.01, W + 0.01)
-    ax.set_ylim(-0.01, 0.45)
-    ax.set_aspect("equal")
-    ax.set_title("t = %.2f s" % tt, fontsize=9)
-    ax.tick_params(labelsize=7)
+plot_particle_snapshots(fig, snaps, (-0.01, W + 0.01), (-0.01, 0.45), 3000)
 save(fig, out)

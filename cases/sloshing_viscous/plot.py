@@ -4,14 +4,13 @@ the particles coloured by pressure. Usage: /usr/bin/python3 cases/sloshing_visco
 import json
 import math
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, save, read_particle_snapshots, plot_particle_snapshots
 
 out = out_dir_from_argv("out/sloshing_viscous")
 p = read_csv(os.path.join(out, "probes.csv"))
@@ -50,25 +49,7 @@ period = (peaks[-1] - peaks[0]) / (len(peaks) - 1) if len(peaks) > 1 else float(
 print("first-mode period from %d left-wall maxima: %.3f s; linear theory %.3f s (%+.1f %%)"
       % (len(peaks), period, T_lin, 100 * (period / T_lin - 1)))
 
-snaps = []
-try:
-    import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
-    pvd = open(os.path.join(out, "fluid.pvd")).read()
-    files = [(float(m.group(1)), m.group(2)) for m in re.finditer(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
-    for ts in [0.0, 0.2, 0.4, 0.6, 1.0, t[-1]]:
-        tt, f = min(files, key=lambda x: abs(x[0] - ts))
-        if abs(tt - ts) > 0.05 or any(abs(tt - s[0]) < 1e-9 for s in snaps):
-            continue
-        r = vtk.vtkXMLUnstructuredGridReader()
-        r.SetFileName(os.path.join(out, f))
-        r.Update()
-        g = r.GetOutput()
-        X = vtk_to_numpy(g.GetPoints().GetData())
-        snaps.append((tt, X[:, 0], X[:, 1], vtk_to_numpy(g.GetPointData().GetArray("pressure")),
-                      vtk_to_numpy(g.GetPointData().GetArray("kind"))))
-except (ImportError, OSError):
-    pass
+snaps = read_particle_snapshots(out, "fluid.pvd", [0.0, 0.2, 0.4, 0.6, 1.0, t[-1]], 0.05)
 
 fig = plt.figure(figsize=(16, 8 if snaps else 4.2))
 rows = 2 if snaps else 1
@@ -92,14 +73,5 @@ ax.set_xlabel("t [s]")
 ax.set_ylabel("fluid area drift [%]")
 for a in fig.axes:
     a.grid(alpha=0.3)
-for k, (tt, x, y, pr, kind) in enumerate(snaps):
-    ax = fig.add_subplot(2, len(snaps), len(snaps) + k + 1)
-    fl = kind == 0
-    ax.plot(x[~fl], y[~fl], "k.", ms=1)
-    ax.scatter(x[fl], y[fl], c=pr[fl], s=2, cmap="viridis", vmin=0, vmax=3500)
-    ax.set_xlim(-0.01, 0.51)
-    ax.set_ylim(-0.01, 0.51)
-    ax.set_aspect("equal")
-    ax.set_title("t = %.2f s" % tt, fontsize=9)
-    ax.tick_params(labelsize=7)
+plot_particle_snapshots(fig, snaps, (-0.01, 0.51), (-0.01, 0.51), 3500)
 save(fig, out)

@@ -20,8 +20,6 @@
 using namespace lagfsi;
 using lagfsi::meshing::ParticleKind;
 using lagfsi::bench::best_of;
-using lagfsi::bench::Clock;
-using lagfsi::bench::seconds;
 
 namespace {
 

@@ -537,6 +537,17 @@ bool FluidModel::insert_particles() {
   return true;
 }
 
+void FluidModel::set_wall_motion(double t, Vec& v, Vec& a) const {
+  for (const auto& w : walls_) {
+    if (!w.fn) continue;
+    const Vec2 vw = w.velocity_at(t), aw = w.acceleration_at(t);
+    for (Index j : w.particles) {
+      v.segment<2>(2 * j) = vw;
+      a.segment<2>(2 * j) = aw;
+    }
+  }
+}
+
 void FluidModel::set_dirichlet() {
   const Index np = n();
   fixed_.assign(3 * np, 0);
@@ -616,12 +627,7 @@ void FluidModel::initialize() {
     state_.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : ctx_.gravity;
   }
   for (const auto& [i, c] : slip_) state_.a[2 * i + c] = state_.v[2 * i + c] = 0.0;
-  for (const auto& w : walls_)
-    if (w.fn)
-      for (Index j : w.particles) {
-        state_.v.segment<2>(2 * j) = w.velocity_at(0.0);
-        state_.a.segment<2>(2 * j) = w.acceleration_at(0.0);
-      }
+  set_wall_motion(0.0, state_.v, state_.a);
   times_.assembly += seconds_since(t0);
 }
 
@@ -684,12 +690,7 @@ IterationReport FluidModel::newton_iteration() {
   // Moving walls: their particles' velocity and acceleration are those of the prescribed motion (from the
   // trapezoidal rule they would alternate around it after the jump of the wall's velocity at the start,
   // and the pressure in the tank then grows step after step).
-  for (const auto& w : walls_)
-    if (w.fn)
-      for (Index j : w.particles) {
-        ev.v.segment<2>(2 * j) = w.velocity_at(ev.t);
-        ev.a.segment<2>(2 * j) = w.acceleration_at(ev.t);
-      }
+  set_wall_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = ctx_.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
@@ -822,12 +823,7 @@ IterationReport FluidModel::newton_iteration() {
 void FluidModel::finalize_step() {
   if (scheme_ == "monolithic_pspg") {
     integrator_->end_step(x_, state_);
-    for (const auto& w : walls_)
-      if (w.fn)
-        for (Index j : w.particles) {
-          state_.v.segment<2>(2 * j) = w.velocity_at(t_new_);
-          state_.a.segment<2>(2 * j) = w.acceleration_at(t_new_);
-        }
+    set_wall_motion(t_new_, state_.v, state_.a);
   } else {
     state_.a = (v_new_ - state_.v) / dt_;
     state_.v = v_new_;

@@ -102,6 +102,8 @@ class FluidModel final : public PhysicsModel {
   /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
   PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
   void set_dirichlet();
+  /// Velocity and acceleration of the moving walls' particles at time t (their prescribed motion).
+  void set_wall_motion(double t, Vec& v, Vec& a) const;
   /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
   /// wall transmits no shear (the free-slip condition, applied over the first layer of elements); the
   /// normal velocity is still stopped by the wall particles' positions.

@@ -118,7 +118,7 @@ IterationReport FluidModel::fractional_step() {
   }
   for (const auto& w : walls_)  // moving walls: the prescribed velocity at the end of the step
     if (w.fn)
-      for (Index j : w.particles) ustar.segment<2>(2 * j) = w.velocity_at(t_new_);
+      for (const Vec2 vw = w.velocity_at(t_new_); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
   for (const auto& [i, c] : slip_) {
     vfixed[2 * i + c] = 1;
     ustar[2 * i + c] = 0.0;

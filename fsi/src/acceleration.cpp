@@ -64,6 +64,13 @@ class IqnIls final : public Acceleration {
     while (static_cast<int>(old_.size()) > reuse_) old_.pop_back();
   }
 
+  void reset() override {
+    old_.clear();
+    r_.clear();
+    xt_.clear();
+    columns_ = 0;
+  }
+
   Vec update(const Vec& x, const Vec& x_tilde) override {
     const Vec r = x_tilde - x;
     if (!r_.empty() && r_.back().size() != r.size()) throw SolverError("iqn_ils: the interface changed size within a step");

@@ -20,7 +20,8 @@ CouplingReport dirichlet_neumann_step(const DirichletSide& dirichlet, const Neum
                         std::to_string(x.size()));
     ++rep.iterations;
     rep.residual = (xt - x).norm();
-    rep.reference = reference > 0 ? reference : std::max((xt - x0).norm(), 1e-300);
+    const Vec& origin = settings.origin.size() == x.size() ? settings.origin : x0;
+    rep.reference = reference > 0 ? reference : std::max((xt - origin).norm(), settings.reference_floor);
     if (!std::isfinite(rep.residual)) {
       x = xt;
       return rep;

@@ -39,6 +39,7 @@ struct PhaseTimes {
 struct IterationReport {
   double residual = 0, residual_ref = 0, increment = 0, increment_ref = 1;
   bool converged = false;
+  int inner_iterations = 0;  ///< a composite model (a coupling): the sub-solver iterations this call ran
 };
 
 /// One or more columns of probes.csv.
@@ -69,9 +70,19 @@ class PhysicsModel {
   /// the previous step it shows what remeshing added or removed.
   virtual double fluid_area_remeshed() const { return 0.0; }
   PhaseTimes& times() { return times_; }
+  /// A coupling: iterations of its last step (0 when the step needed none) and its final interface
+  /// residual (relative); 0 for a single body.
+  virtual int coupling_iterations() const { return 0; }
+  virtual double coupling_residual() const { return 0.0; }
 
  protected:
   PhaseTimes times_;
 };
+
+/// Runs m.solve_iteration() until the model reports convergence (after m.predict()). Returns the
+/// iterations done (inner ones for composite models). Throws SolverError naming the body when the relative
+/// residual is not finite or above 1e12, or when max_iterations pass without convergence; `relative`
+/// receives the last relative residual.
+int iterate_to_convergence(PhysicsModel& m, int max_iterations, double t_new, double* relative = nullptr);
 
 }  // namespace lagfsi

@@ -1,6 +1,7 @@
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/fsi/dirichlet_neumann.hpp>
 #include <lagfsi/linear_solver.hpp>
 
 #include <chrono>
@@ -26,6 +27,7 @@ const Json& case_defaults() {
       {"analysis", nullptr},
       {"gravity", Json::array({0.0, 0.0})},
       {"bodies", nullptr},
+      {"couplings", Json::array()},
       {"probes", Json::array()},
       {"output", Json::object()},
   };
@@ -42,21 +44,27 @@ const std::map<std::string, ModelBuilder>& model_registry() {
 
 namespace {
 
+/// Registry of coupling types (fsi/): the "type" string of an entry of "couplings" to its builder, which
+/// gets the two bodies it couples.
+using CouplingBuilder =
+    std::function<std::unique_ptr<PhysicsModel>(Params, const CaseContext&, PhysicsModel& fluid, PhysicsModel& structure)>;
+const std::map<std::string, CouplingBuilder>& coupling_registry() {
+  static const std::map<std::string, CouplingBuilder> r = {{"dirichlet_neumann", fsi::make_dirichlet_neumann}};
+  return r;
+}
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::string fmt(double x, int prec = 6) {
-  std::ostringstream o;
-  o << std::setprecision(prec) << x;
-  return o.str();
-}
 
 /// Everything built from the case file.
 struct Case {
   Params root;
   CaseContext ctx;
   std::string name;
-  std::vector<std::unique_ptr<PhysicsModel>> models;
+  std::vector<std::unique_ptr<PhysicsModel>> models;     ///< the bodies (output, probes, sizes, timing)
+  std::vector<std::unique_ptr<PhysicsModel>> couplings;  ///< each steps the bodies it couples
+  std::vector<PhysicsModel*> steppers;                   ///< what the driver steps: uncoupled bodies, couplings
   std::vector<std::unique_ptr<Probe>> probes;
   int output_every = 1;
   bool vtk = true;
@@ -142,6 +150,38 @@ Case build_case(const RunOptions& opt, bool for_check) {
     for (size_t j = 0; j + 1 < c.models.size(); ++j)
       if (c.models[j]->name() == c.models.back()->name()) b.fail("name", "duplicate body name");
   }
+  // Couplings: each takes two bodies out of the driver's hands.
+  Params couplings = c.root.at("couplings");
+  std::vector<std::string> coupling_types;
+  for (const auto& [k, v] : coupling_registry()) coupling_types.push_back(k);
+  std::vector<PhysicsModel*> coupled;
+  auto body_named = [&](Params q, const std::string& key) -> PhysicsModel& {
+    if (!q.has(key)) q.fail(key, "required key is missing");
+    const std::string nm = q.string(key);
+    for (auto& m : c.models)
+      if (m->name() == nm) {
+        if (std::find(coupled.begin(), coupled.end(), m.get()) != coupled.end())
+          q.fail(key, "body '" + nm + "' is already coupled");
+        coupled.push_back(m.get());
+        return *m;
+      }
+    q.fail(key, "no body named '" + nm + "'");
+  };
+  for (size_t i = 0; i < couplings.size(); ++i) {
+    Params q = couplings.at(i);
+    if (!q.json().is_object()) q.fail("expected an object");
+    if (!q.has("type")) q.fail("type", "required key is missing");
+    const std::string type = q.choice("type", coupling_types);
+    PhysicsModel& fluid = body_named(q, "fluid");
+    PhysicsModel& structure = body_named(q, "structure");
+    c.couplings.push_back(coupling_registry().at(type)(q, c.ctx, fluid, structure));
+    for (const auto& m : c.models)
+      if (m->name() == c.couplings.back()->name()) q.fail("name", "a body has the same name");
+  }
+  for (auto& m : c.models)
+    if (std::find(coupled.begin(), coupled.end(), m.get()) == coupled.end()) c.steppers.push_back(m.get());
+  for (auto& m : c.couplings) c.steppers.push_back(m.get());
+
   Params probes = c.root.at("probes");
   std::vector<std::string> names;
   for (size_t i = 0; i < probes.size(); ++i) {
@@ -153,6 +193,8 @@ Case build_case(const RunOptions& opt, bool for_check) {
     const std::string body = p.string("body");
     PhysicsModel* m = nullptr;
     for (auto& mm : c.models)
+      if (mm->name() == body) m = mm.get();
+    for (auto& mm : c.couplings)
       if (mm->name() == body) m = mm.get();
     if (!m) p.fail("body", "no body named '" + body + "'");
     auto probe = m->make_probe(p);
@@ -183,6 +225,11 @@ struct Totals {
   int retries = 0;
   int max_iterations = 0;
   int steps = 0;
+  // Couplings: steps that iterated, their iterations, the largest final interface residual.
+  int coupled_steps = 0;
+  long coupling_iterations = 0;
+  int coupling_max = 0;
+  double coupling_residual_max = 0;
 };
 
 }  // namespace
@@ -240,6 +287,12 @@ int run_case(const RunOptions& opt) {
     s["newton_iterations"] = {{"total", tot.iterations},
                               {"mean", tot.steps ? double(tot.iterations) / tot.steps : 0.0},
                               {"max", tot.max_iterations}};
+    if (!c.couplings.empty())
+      s["coupling"] = {{"coupled_steps", tot.coupled_steps},
+                       {"iterations_total", tot.coupling_iterations},
+                       {"iterations_mean", tot.coupled_steps ? double(tot.coupling_iterations) / tot.coupled_steps : 0.0},
+                       {"iterations_max", tot.coupling_max},
+                       {"residual_max", tot.coupling_residual_max}};
     s["timing"] = {{"remesh", tot.phases.remesh},
                    {"assembly", tot.phases.assembly},
                    {"factorization", tot.phases.factorization},
@@ -269,7 +322,7 @@ int run_case(const RunOptions& opt) {
       for (const auto& col : p->columns()) probes_csv << "," << col;
     probes_csv << "\n" << std::setprecision(12);
     log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,"
-               "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step\n"
+               "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n"
             << std::setprecision(10);
     auto sample = [&]() {
       probes_csv << t;
@@ -285,6 +338,7 @@ int run_case(const RunOptions& opt) {
     };
 
     for (auto& m : c.models) m->initialize();
+    for (auto& m : c.couplings) m->initialize();
     output();
     sample();
     write_summary();
@@ -301,30 +355,14 @@ int run_case(const RunOptions& opt) {
       if (an.end_time - (t + dt) < 1e-6 * an.dt) dt = an.end_time - t;
       int iters_step = 0;
       double last_res = 0.0;
+      for (auto& m : c.couplings) m->times() = PhaseTimes{};
       for (auto& m : c.models) m->times() = PhaseTimes{};
       for (int halving = 0;; ++halving) {
         const double t_new = t + dt;
         try {
-          for (auto& m : c.models) {
+          for (PhysicsModel* m : c.steppers) {
             m->predict(t_new, dt);
-            bool ok = false;
-            for (int it = 1; it <= nw.max_iterations; ++it) {
-              const IterationReport r = m->solve_iteration();
-              ++iters_step;
-              const double rref = std::max(r.residual_ref, 1e-300);
-              last_res = r.residual / rref;
-              if (!std::isfinite(last_res) || last_res > 1e12)
-                throw SolverError("body '" + m->name() + "': Newton diverged at t = " + fmt(t_new) +
-                                  " (relative residual " + fmt(last_res, 3) + ")");
-              if (r.converged) {
-                ok = true;
-                break;
-              }
-            }
-            if (!ok)
-              throw SolverError("body '" + m->name() + "': Newton did not converge in " +
-                                std::to_string(nw.max_iterations) + " iterations at t = " + fmt(t_new) +
-                                " (relative residual " + fmt(last_res, 3) + ")");
+            iters_step += iterate_to_convergence(*m, nw.max_iterations, t_new, &last_res);
           }
           break;
         } catch (const SolverError& e) {
@@ -337,7 +375,19 @@ int run_case(const RunOptions& opt) {
         }
       }
       const double t_new = t + dt;
-      for (auto& m : c.models) m->finalize_step();
+      for (PhysicsModel* m : c.steppers) m->finalize_step();
+      int fsi_iterations = 0;
+      double fsi_residual = 0;
+      for (auto& m : c.couplings) {
+        fsi_iterations += m->coupling_iterations();
+        fsi_residual = std::max(fsi_residual, m->coupling_residual());
+      }
+      if (fsi_iterations > 0) {
+        ++tot.coupled_steps;
+        tot.coupling_iterations += fsi_iterations;
+        tot.coupling_max = std::max(tot.coupling_max, fsi_iterations);
+        tot.coupling_residual_max = std::max(tot.coupling_residual_max, fsi_residual);
+      }
       t = t_new;
       ++tot.steps;
       tot.iterations += iters_step;
@@ -358,7 +408,7 @@ int run_case(const RunOptions& opt) {
       const double wall_step = since(t_step);
       log_csv << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn << "," << ne
               << "," << area_remeshed << "," << area << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
-              << ph.output << "," << wall_step << "\n";
+              << ph.output << "," << wall_step << "," << fsi_iterations << "," << fsi_residual << "\n";
       log_csv.flush();
       if (!opt.quiet) {
         const double wall = since(t_start);

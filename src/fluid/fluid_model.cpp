@@ -394,7 +394,8 @@ void FluidModel::remesh_now() {
       walls += kind_[i] != ParticleKind::Fluid;
       free_fluid += kind_[i] == ParticleKind::Fluid && free_[i];
     }
-    if ((walls == 2 && free_fluid == 1) || element_area(state_.x, static_cast<Index>(e)) < flat_fraction_ * h_ * h_) {
+    if ((walls == 2 && free_fluid == 1) || element_area(state_.x, static_cast<Index>(e)) < flat_fraction_ * h_ * h_ ||
+        (ghost_particles_ > 0 && crosses_structure(static_cast<Index>(e)))) {
       removed = true;
       continue;
     }
@@ -668,15 +669,155 @@ void FluidModel::predict(double t_new, double dt) {
 
   if (scheme_ == "monolithic_pspg") integrator_->begin_step(state_, dt);
   p_old_ = p_;
-  x_ = state_.x + dt * state_.v;  // constant-velocity predictor
+  contact_ = false;
+  for (const auto& t : tri_)
+    for (Index i : t) contact_ = contact_ || is_ghost(i);
+  start_iterations();
+  times_.assembly += seconds_since(t0);
+}
+
+void FluidModel::start_iterations() {
+  const Index np = n();
+  p_ = p_old_;
+  x_ = state_.x + dt_ * state_.v;  // constant-velocity predictor
   for (const auto& w : walls_)  // prescribed wall motion
-    for (Index j : w.particles) x_.segment<2>(2 * j) = X0_.segment<2>(2 * j) + w.offset(t_new);
+    for (Index j : w.particles) x_.segment<2>(2 * j) = X0_.segment<2>(2 * j) + w.offset(t_new_);
   for (const auto& [i, c] : slip_) x_[2 * i + c] = state_.x[2 * i + c];
+  if (ghost_x_.size() > 0)
+    for (size_t g = 0; g < ghost_index_.size(); ++g)
+      if (!ghost_merged_[g]) x_.segment<2>(2 * ghost_index_[g]) = ghost_x_.segment<2>(2 * g);
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) p_[i] = 0.0;
   last_dx_ = last_dp_ = prev_dx_ = std::numeric_limits<double>::infinity();
   iter_in_step_ = 0;
-  times_.assembly += seconds_since(t0);
+}
+
+// ------------------------------------------------------------------------------------------ ghosts
+
+int FluidModel::add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) {
+  if (!remesh_) throw std::invalid_argument("body '" + name_ + "': ghost particles need \"remesh\": true");
+  if (ghost_particles_ > 0 || !ghost_index_.empty())
+    throw std::invalid_argument("body '" + name_ + "': only one coupled structure per fluid in this version");
+  Index n_wall = 0;
+  while (n_wall < n() && kind_[n_wall] == ParticleKind::Wall) ++n_wall;
+  ghost_begin_ = n_wall;
+  // Ghosts on a wall particle are merged with it; the others become new particles after the walls.
+  std::vector<Vec2> fresh;
+  std::vector<Index> local(points.size(), -1);
+  int merged = 0;
+  for (size_t g = 0; g < points.size(); ++g) {
+    Index found = -1;
+    for (Index j = 0; j < n_wall && found < 0; ++j)
+      if ((state_.x.segment<2>(2 * j) - points[g]).norm() < 0.25 * h_) found = j;
+    if (found >= 0) {
+      ghost_index_.push_back(found);
+      ghost_merged_.push_back(1);
+      ++merged;
+    } else {
+      local[g] = static_cast<Index>(fresh.size());
+      ghost_index_.push_back(n_wall + static_cast<Index>(fresh.size()));
+      ghost_merged_.push_back(0);
+      fresh.push_back(points[g]);
+    }
+  }
+  ghost_particles_ = static_cast<Index>(fresh.size());
+  ghost_neighbours_.assign(fresh.size(), {});
+  for (const auto& [a, b] : adjacent) {
+    if (local[a] < 0 || local[b] < 0) continue;
+    ghost_neighbours_[local[a]].push_back(n_wall + local[b]);
+    ghost_neighbours_[local[b]].push_back(n_wall + local[a]);
+  }
+  // Rebuild the cloud: walls, ghosts, then the fluid particles not within h/2 of a ghost.
+  const Index np = n();
+  std::vector<Index> order;
+  for (Index i = 0; i < n_wall; ++i) order.push_back(i);
+  for (Index i = n_wall; i < np; ++i) {
+    bool near = false;
+    for (const auto& q : fresh) near = near || (state_.x.segment<2>(2 * i) - q).norm() < 0.5 * h_;
+    if (!near) order.push_back(i);
+  }
+  const Index nn = static_cast<Index>(order.size() + fresh.size());
+  std::vector<ParticleKind> kind(nn);
+  std::vector<double> hv(nn, h_);
+  Vec x(2 * nn), v = Vec::Zero(2 * nn), a = Vec::Zero(2 * nn), X0(2 * nn), p = Vec::Zero(nn);
+  Index k = 0;
+  auto copy = [&](Index i) {
+    kind[k] = kind_[i];
+    hv[k] = hvec_[i];
+    x.segment<2>(2 * k) = state_.x.segment<2>(2 * i);
+    v.segment<2>(2 * k) = state_.v.segment<2>(2 * i);
+    a.segment<2>(2 * k) = state_.a.segment<2>(2 * i);
+    X0.segment<2>(2 * k) = X0_.segment<2>(2 * i);
+    p[k] = p_[i];
+    ++k;
+  };
+  for (Index i = 0; i < n_wall; ++i) copy(i);
+  for (const auto& q : fresh) {
+    // The ghost starts with the initial pressure of the nearest fluid particle (the fractional step
+    // corrects pressures by increments, so a ghost started at zero would keep a wrong load for many steps).
+    kind[k] = ParticleKind::Ghost;
+    x.segment<2>(2 * k) = q;
+    X0.segment<2>(2 * k) = q;
+    double best = std::numeric_limits<double>::infinity();
+    for (Index i = n_wall; i < np; ++i) {
+      const double d = (state_.x.segment<2>(2 * i) - q).squaredNorm();
+      if (kind_[i] == ParticleKind::Fluid && d < best) {
+        best = d;
+        p[k] = p_[i];
+      }
+    }
+    ++k;
+  }
+  for (size_t j = static_cast<size_t>(n_wall); j < order.size(); ++j) copy(order[j]);
+  kind_ = std::move(kind);
+  hvec_ = std::move(hv);
+  state_.x = std::move(x);
+  state_.v = std::move(v);
+  state_.a = std::move(a);
+  X0_ = std::move(X0);
+  p_ = std::move(p);
+  // The domain box holds the structure's boundary too.
+  if (domain_lo_.x() <= domain_hi_.x()) {
+    const double margin = domain_margin_ * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * domain_margin_);
+    for (const auto& q : points) {
+      domain_lo_ = domain_lo_.cwiseMin(q - Vec2::Constant(margin));
+      domain_hi_ = domain_hi_.cwiseMax(q + Vec2::Constant(margin));
+    }
+  }
+  ghost_force_ = Vec::Zero(2 * static_cast<Index>(points.size()));
+  return merged;
+}
+
+void FluidModel::set_ghost_motion(const Vec& x, const Vec& v, const Vec& a) {
+  const Index ng = static_cast<Index>(ghost_index_.size());
+  if (x.size() != 2 * ng || v.size() != 2 * ng || a.size() != 2 * ng)
+    throw SolverError("body '" + name_ + "': ghost motion of the wrong size");
+  ghost_x_ = x;
+  ghost_v_ = v;
+  ghost_a_ = a;
+  if (x_.size() == state_.x.size())
+    for (Index g = 0; g < ng; ++g)
+      if (!ghost_merged_[g]) x_.segment<2>(2 * ghost_index_[g]) = x.segment<2>(2 * g);
+}
+
+void FluidModel::set_ghost_rates(Vec& v, Vec& a) const {
+  if (ghost_v_.size() == 0) return;
+  for (size_t g = 0; g < ghost_index_.size(); ++g) {
+    if (ghost_merged_[g]) continue;
+    v.segment<2>(2 * ghost_index_[g]) = ghost_v_.segment<2>(2 * g);
+    a.segment<2>(2 * ghost_index_[g]) = ghost_a_.segment<2>(2 * g);
+  }
+}
+
+bool FluidModel::crosses_structure(Index e) const {
+  const auto& t = tri_[e];
+  for (int k = 0; k < 3; ++k) {
+    const Index i = t[k], j = t[(k + 1) % 3];
+    if (!is_ghost(i) || !is_ghost(j)) continue;
+    const auto& nb = ghost_neighbours_[i - ghost_begin_];
+    if (std::find(nb.begin(), nb.end(), j) == nb.end()) return true;
+  }
+  return false;
 }
 
 IterationReport FluidModel::solve_iteration() {
@@ -691,6 +832,7 @@ IterationReport FluidModel::newton_iteration() {
   // trapezoidal rule they would alternate around it after the jump of the wall's velocity at the start,
   // and the pressure in the tank then grows step after step).
   set_wall_motion(ev.t, ev.v, ev.a);
+  set_ghost_rates(ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = ctx_.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
@@ -711,6 +853,9 @@ IterationReport FluidModel::newton_iteration() {
       Eigen::Matrix<double, 9, 9> K;
       double i2 = 0, g2 = 0;
       if (!pspg_element(in, r, K, i2, g2)) {
+        // Turned over by two prescribed particles sliding past each other (see fractional_step.cpp):
+        // left out of this step, removed by the next remesh.
+        if (prescribed_in(e) >= 2) continue;
 #pragma omp critical(lagfsi_fluid_failure)
         failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
                   std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +
@@ -762,6 +907,11 @@ IterationReport FluidModel::newton_iteration() {
       else if (k % 3 == 2)
         it.valueRef() *= sp;
     }
+  // Forces on the ghost particles: the reactions of their prescribed momentum rows, sign flipped (the
+  // residual there is the force the structure applies to the fluid).
+  for (size_t gi = 0; gi < ghost_index_.size(); ++gi)
+    for (int c = 0; c < 2; ++c)
+      ghost_force_[2 * gi + c] = ghost_merged_[gi] ? 0.0 : -R[3 * ghost_index_[gi] + c];
   double rm2 = 0;
   for (Index i = 0; i < 3 * np; ++i) {
     if (fixed_[i]) R[i] = 0.0;
@@ -824,6 +974,7 @@ void FluidModel::finalize_step() {
   if (scheme_ == "monolithic_pspg") {
     integrator_->end_step(x_, state_);
     set_wall_motion(t_new_, state_.v, state_.a);
+    set_ghost_rates(state_.v, state_.a);
   } else {
     state_.a = (v_new_ - state_.v) / dt_;
     state_.v = v_new_;

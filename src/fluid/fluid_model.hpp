@@ -7,6 +7,7 @@
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fluid_element.hpp>
+#include <lagfsi/interface.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/meshing/primitives.hpp>
 #include <lagfsi/meshing/remesh.hpp>
@@ -56,7 +57,7 @@ struct Wall {
   }
 };
 
-class FluidModel final : public PhysicsModel {
+class FluidModel final : public PhysicsModel, public InterfaceFluid {
  public:
   FluidModel(Params body, const CaseContext& ctx);
   std::string name() const override { return name_; }
@@ -72,6 +73,13 @@ class FluidModel final : public PhysicsModel {
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
+
+  // InterfaceFluid (interface.hpp): ghost particles of a structure's wet boundary.
+  int add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) override;
+  bool in_contact() const override { return contact_; }
+  void set_ghost_motion(const Vec& x, const Vec& v, const Vec& a) override;
+  void restart_step() override { start_iterations(); }
+  Vec ghost_forces() const override { return ghost_force_; }
 
   // Read access for probes.
   Index n() const { return static_cast<Index>(kind_.size()); }
@@ -102,6 +110,15 @@ class FluidModel final : public PhysicsModel {
   /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
   PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
   void set_dirichlet();
+  /// The step's first iterate (after remeshing, or again when a coupling re-solves the step): pressures
+  /// of the last step, positions moved with the last velocities, walls and ghosts at their prescribed places.
+  void start_iterations();
+  /// Ghost particle g's index in the cloud (a wall particle's when merged with one).
+  bool is_ghost(Index i) const { return i >= ghost_begin_ && i < ghost_begin_ + ghost_particles_; }
+  /// Ghost velocities and accelerations into v and a (the prescribed motion of the step).
+  void set_ghost_rates(Vec& v, Vec& a) const;
+  /// An element with two ghost particles that are not neighbours along the structure crosses it.
+  bool crosses_structure(Index e) const;
   /// Velocity and acceleration of the moving walls' particles at time t (their prescribed motion).
   void set_wall_motion(double t, Vec& v, Vec& a) const;
   /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
@@ -111,6 +128,12 @@ class FluidModel final : public PhysicsModel {
     for (Index i : tri_[e])
       if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
     return false;
+  }
+  /// Particles of element e whose motion is prescribed (walls, ghosts).
+  int prescribed_in(Index e) const {
+    int k = 0;
+    for (Index i : tri_[e]) k += kind_[i] != ParticleKind::Fluid;
+    return k;
   }
   /// One Newton iteration of the monolithic PSPG scheme (fluid_model.cpp).
   IterationReport newton_iteration();
@@ -177,6 +200,16 @@ class FluidModel final : public PhysicsModel {
   SparseMatrix poisson_, viscous_, viscous_stiffness_;
   Vec v_new_;
   std::unique_ptr<PvdSeries> series_, wall_series_;
+
+  // Ghost particles (interface.hpp): particles ghost_begin_ .. + ghost_particles_ (after the walls, before
+  // the fluid, so their indices never change); ghost_index_[g] is ghost g's particle (a wall particle when
+  // merged); the step's prescribed motion and the forces on them.
+  Index ghost_begin_ = 0, ghost_particles_ = 0;
+  std::vector<Index> ghost_index_;
+  std::vector<char> ghost_merged_;
+  std::vector<std::vector<Index>> ghost_neighbours_;  // per ghost particle (local), neighbouring ghost particles
+  Vec ghost_x_, ghost_v_, ghost_a_, ghost_force_;
+  bool contact_ = false;
 };
 
 }  // namespace lagfsi::fluid_detail

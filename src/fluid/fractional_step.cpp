@@ -123,6 +123,15 @@ IterationReport FluidModel::fractional_step() {
     vfixed[2 * i + c] = 1;
     ustar[2 * i + c] = 0.0;
   }
+  // Ghost particles: the mean velocity of the structure's boundary over the step, (x_{n+1} - x_n)/dt. The
+  // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
+  // step's mesh motion consistent with the boundary's; the structure's own v_{n+1} (trapezoidal rule)
+  // alternates around it after a sudden load and would pump pressure spikes into the fluid.
+  for (size_t gi = 0; gi < ghost_index_.size() && ghost_x_.size() > 0; ++gi)
+    if (!ghost_merged_[gi]) {
+      const Index i = ghost_index_[gi];
+      ustar.segment<2>(2 * i) = (ghost_x_.segment<2>(2 * gi) - x.segment<2>(2 * i)) / dt;
+    }
 
   // 1. Predictor: gravity, the pressure of the last step and the viscous force. Explicit: all of
   // mu A (L + L^T) grad N_a at u^n. Implicit: the Laplacian part mu A (grad N_a . grad N_b) u_b at u*
@@ -233,6 +242,29 @@ IterationReport FluidModel::fractional_step() {
   for (Index k = 0; k < 2 * np; ++k)
     if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
   p_ += dp;
+  if (!ghost_index_.empty()) {
+    // Forces on the ghost particles: what the structure must apply to give them the prescribed velocity,
+    // F = m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor), sign flipped.
+    Vec Ku = Vec::Zero(2 * np);
+    if (implicit)
+      for (Index e = 0; e < ne; ++e) {
+        const auto& t = tri_[e];
+        if (inviscid_element(e) || !(is_ghost(t[0]) || is_ghost(t[1]) || is_ghost(t[2]))) continue;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            Ku.segment<2>(2 * t[a]) += mu_ * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+      }
+    for (size_t gi = 0; gi < ghost_index_.size(); ++gi) {
+      const Index i = ghost_index_[gi];
+      if (ghost_merged_[gi]) {
+        ghost_force_.segment<2>(2 * gi).setZero();
+        continue;
+      }
+      const Vec2 inertia = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt;
+      ghost_force_.segment<2>(2 * gi) =
+          force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
+    }
+  }
   for (Index i = 0; i < np; ++i)
     if (kind_[i] == ParticleKind::Fluid) x_.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
   for (const auto& [i, c] : slip_) x_[2 * i + c] = x[2 * i + c];
@@ -241,11 +273,19 @@ IterationReport FluidModel::fractional_step() {
 
   // An element turned inside out within the step: a particle crossed the opposite side of its element
   // (a wall, or a neighbour at an impact). Remeshing would hide it, but the flow there was not resolved:
-  // the step is rejected and the driver retries it with half the time step.
+  // the step is rejected and the driver retries it with half the time step. An element with one fluid
+  // particle and two prescribed ones (walls, ghosts) that turns over is a moving boundary sliding past
+  // another (a gate's tip over the floor): no time step resolves that, and remeshing removes it.
   for (Index e = 0; e < ne; ++e)
-    if (!(element_area(x_, e) > 0))
+    if (!(element_area(x_, e) > 0) && prescribed_in(e) < 2) {
+      if (std::getenv("LAGFSI_DEBUG_NEWTON"))
+        for (Index i : tri_[e])
+          std::fprintf(stderr, "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n", int(i),
+                       int(kind_[i]), int(free_[i]), x[2 * i], x[2 * i + 1], x_[2 * i], x_[2 * i + 1], v_new_[2 * i],
+                       v_new_[2 * i + 1], ustar[2 * i], ustar[2 * i + 1]);
       throw SolverError("body '" + name_ + "': element " + std::to_string(e) + " turned inside out within the step at t = " +
                         std::to_string(t_new_));
+    }
   // Report: the divergence left by the correction, relative to that of the predictor (the part the
   // Laplacian stabilization does not remove).
   double div_star = 0, div_new = 0;

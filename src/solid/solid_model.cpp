@@ -3,6 +3,7 @@
 #include <lagfsi/case.hpp>
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/interface.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/solid.hpp>
 #include <lagfsi/time_function.hpp>
@@ -80,7 +81,7 @@ class EnergyProbe final : public Probe {
   std::string name_, kind_;
 };
 
-class SolidModel final : public PhysicsModel {
+class SolidModel final : public PhysicsModel, public InterfaceStructure {
  public:
   SolidModel(Params body, const CaseContext& ctx);
 
@@ -95,6 +96,15 @@ class SolidModel final : public PhysicsModel {
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
+
+  // InterfaceStructure (interface.hpp)
+  InterfaceBoundary make_interface(Params select) const override;
+  void set_interface_forces(const std::vector<Index>& nodes, const Vec& forces) override;
+  void restart_step() override;
+  void set_augmented_mass(double factor) override { aug_factor_ = factor; }
+  void interface_kinematics(const std::vector<Index>& nodes, const Vec& x, Vec& v, Vec& a) const override;
+  Vec interface_positions(const std::vector<Index>& nodes) const override { return gather(x_, nodes); }
+  Vec interface_positions_old(const std::vector<Index>& nodes) const override { return gather(state_.x, nodes); }
 
   // Read access for probes.
   const SolidBody& body() const { return *body_; }
@@ -113,6 +123,11 @@ class SolidModel final : public PhysicsModel {
   void apply_dirichlet(SparseMatrix& H, Vec& r) const;
   void factorize(const SparseMatrix& H);
   Vec damping_times(const Vec& v) const;
+  static Vec gather(const Vec& full, const std::vector<Index>& nodes) {
+    Vec out(2 * nodes.size());
+    for (size_t k = 0; k < nodes.size(); ++k) out.segment<2>(2 * k) = full.segment<2>(2 * nodes[k]);
+    return out;
+  }
 
   std::string name_;
   CaseContext ctx_;
@@ -140,6 +155,10 @@ class SolidModel final : public PhysicsModel {
   Vec reaction_;
   std::unique_ptr<PvdSeries> series_;
   bool warned_fallback_ = false;
+  // Partitioned coupling: interface forces of the step (and of the last step, for the work), augmented mass.
+  Vec f_iface_, f_iface_old_;
+  double aug_factor_ = 1.0;
+  Vec x_aug_prev_;
 };
 
 // ------------------------------------------------------------------------------------------ building
@@ -389,15 +408,19 @@ IterationReport SolidModel::solve_iteration() {
     const EvalPoint ev = integrator_->kinematics(x_);
     const TangentCoefficients c = integrator_->coefficients();
     strain_energy_ = body_->internal_force(ev.x, f_int_, &H_);
-    const Vec fext = external_force(ev.t);
+    Vec fext = external_force(ev.t);
+    if (f_iface_.size() == nd) fext += f_iface_;
     const Vec inertia = body_->mass() * ev.a;
     const Vec damping = damping_times(ev.v);
     r = inertia + damping + f_int_ - fext;
+    // Augmented mass of a coupling iterate: (factor - 1) c_m M (x - x_prev), zero at convergence.
+    const bool augmented = aug_factor_ > 1.0 && x_aug_prev_.size() == nd;
+    if (augmented) r += (aug_factor_ - 1.0) * c.c_m * (body_->mass() * (x_ - x_aug_prev_));
     // H = c_m M + c_c C + c_k K, all on the same pattern.
     const double* m = body_->mass().valuePtr();
     double* h = H_.valuePtr();
     const double* k0 = damp_stiff_ > 0 ? K0_.valuePtr() : nullptr;
-    const double cm = c.c_m + c.c_c * damp_mass_;
+    const double cm = c.c_m * (augmented ? aug_factor_ : 1.0) + c.c_c * damp_mass_;
     for (Index i = 0; i < H_.nonZeros(); ++i) {
       h[i] = c.c_k * h[i] + cm * m[i];
       if (k0) h[i] += c.c_c * damp_stiff_ * k0[i];
@@ -455,6 +478,12 @@ void SolidModel::finalize_step() {
   // Energy bookkeeping (trapezoidal): external work and damping dissipation.
   const Vec fext_new = external_force(state_.t);
   work_ext_ += 0.5 * (fext_old + fext_new).dot(state_.x - x_old);
+  if (f_iface_.size() == body_->num_dofs()) {  // work of the interface forces (trapezoidal)
+    if (f_iface_old_.size() != f_iface_.size()) f_iface_old_ = Vec::Zero(f_iface_.size());
+    work_ext_ += 0.5 * (f_iface_old_ + f_iface_).dot(state_.x - x_old);
+    f_iface_old_ = f_iface_;
+  }
+  x_aug_prev_.resize(0);
   if (!is_static_ && (damp_mass_ > 0 || damp_stiff_ > 0))
   {
     // Newmark's discrete dissipation: dt v_mid^T C v_mid with v_mid = (v_n + v_{n+1})/2 (exact balance
@@ -466,6 +495,7 @@ void SolidModel::finalize_step() {
   strain_energy_ = body_->internal_force(state_.x, f, nullptr);
   if (need_reaction_) {
     reaction_ = f - fext_new;
+    if (f_iface_.size() == reaction_.size()) reaction_ -= f_iface_;
     if (!is_static_) reaction_ += body_->mass() * state_.a + damping_times(state_.v);
   }
   times_.assembly += seconds_since(t0);
@@ -493,6 +523,50 @@ void SolidModel::write_output(double t) {
                     {"green_strain", 3, s.green}};
   series_->write(t, d);
   times_.output += seconds_since(t0);
+}
+
+// ------------------------------------------------------------------------------------------ coupling
+
+InterfaceBoundary SolidModel::make_interface(Params select) const {
+  const auto& nodes = body_->mesh().nodes;
+  const auto sel = select_nodes(select, nodes);
+  std::set<Index> in(sel.begin(), sel.end());
+  InterfaceBoundary ib;
+  std::set<Index> used;
+  for (const auto& e : boundary_edges(body_->mesh())) {
+    bool all = true;
+    for (Index n : e.nodes) all = all && in.count(n);
+    if (!all) continue;
+    ib.edges.push_back(e.nodes);
+    used.insert(e.nodes.begin(), e.nodes.end());
+  }
+  if (ib.edges.empty()) select.fail("the selection contains no boundary edge of body '" + name_ + "'");
+  ib.nodes.assign(used.begin(), used.end());
+  for (Index n : ib.nodes) ib.reference.push_back(nodes[n]);
+  return ib;
+}
+
+void SolidModel::set_interface_forces(const std::vector<Index>& nodes, const Vec& forces) {
+  if (is_static_) throw SolverError("body '" + name_ + "': interface forces need a dynamic analysis");
+  f_iface_ = Vec::Zero(body_->num_dofs());
+  for (size_t k = 0; k < nodes.size(); ++k) f_iface_.segment<2>(2 * nodes[k]) = forces.segment<2>(2 * k);
+}
+
+void SolidModel::restart_step() {
+  // Newton restarts from the last iterate (it converges to the same solution from any nearby start, and
+  // the last coupling iterate is the best guess); the augmented mass measures motion from it.
+  x_aug_prev_ = x_;
+  last_increment_ = std::numeric_limits<double>::infinity();
+  last_residual_ = std::numeric_limits<double>::infinity();
+}
+
+void SolidModel::interface_kinematics(const std::vector<Index>& nodes, const Vec& x, Vec& v, Vec& a) const {
+  Vec full = x_;
+  for (size_t k = 0; k < nodes.size(); ++k) full.segment<2>(2 * nodes[k]) = x.segment<2>(2 * k);
+  KinematicState s;
+  integrator_->end_step(full, s);
+  v = gather(s.v, nodes);
+  a = gather(s.a, nodes);
 }
 
 // ------------------------------------------------------------------------------------------ probes

@@ -41,6 +41,9 @@ class Acceleration {
   /// iteration of a step; a new size is allowed at a new step, when the interface changed).
   virtual Vec update(const Vec& x, const Vec& x_tilde) = 0;
   virtual void end_step() {}
+  /// Forgets everything kept from earlier iterations and steps (after a failed step: a model built on
+  /// another mesh or contact state can send the next iterate far off).
+  virtual void reset() {}
   /// Columns of the least-squares model in use (iqn_ils; 0 for the others), for logs and tests.
   virtual int model_columns() const { return 0; }
 };

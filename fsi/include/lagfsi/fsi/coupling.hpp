@@ -23,6 +23,10 @@ namespace lagfsi::fsi {
 struct CouplingSettings {
   int max_iterations = 50;
   double tolerance = 1e-6;  ///< relative to the reference interface motion
+  /// Interface positions at the start of the step: with reference = 0 the residual is compared with the
+  /// step's motion |x~ - origin| (empty: the initial guess x_0 stands for it), never below reference_floor.
+  Vec origin;
+  double reference_floor = 1e-300;
 };
 
 struct CouplingReport {
@@ -38,7 +42,7 @@ using NeumannSide = std::function<Vec(const Vec& interface_forces)>;
 
 /// Runs the loop of one time step. `x` holds the initial guess on entry and the last accepted interface
 /// positions on exit (x~ of the converged pass). `reference` > 0 fixes the residual scale; 0 takes the motion
-/// of the interface within the step, |x~ - x_0|, with a floor of 1e-300.
+/// of the interface within the step, |x~ - origin| (settings), with the settings' floor.
 CouplingReport dirichlet_neumann_step(const DirichletSide& dirichlet, const NeumannSide& neumann,
                                       Acceleration& acceleration, Vec& x, const CouplingSettings& settings,
                                       double reference = 0.0);

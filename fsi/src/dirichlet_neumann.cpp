@@ -1,0 +1,306 @@
+#include <lagfsi/error.hpp>
+#include <lagfsi/fsi/acceleration.hpp>
+#include <lagfsi/fsi/coupling.hpp>
+#include <lagfsi/fsi/dirichlet_neumann.hpp>
+#include <lagfsi/interface.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace lagfsi::fsi {
+
+namespace {
+
+/// 1D Lagrange shape functions of order p (nodes at s_j = j/p, j = 0..p) at s in [0, 1].
+std::vector<double> lagrange_1d(int p, double s) {
+  std::vector<double> N(p + 1, 1.0);
+  for (int j = 0; j <= p; ++j)
+    for (int m = 0; m <= p; ++m)
+      if (m != j) N[j] *= (s - double(m) / p) / (double(j - m) / p);
+  return N;
+}
+
+class DirichletNeumann;
+
+class CouplingProbe final : public Probe {
+ public:
+  CouplingProbe(const DirichletNeumann& c, std::string name, std::string type, int comp)
+      : c_(c), name_(std::move(name)), type_(std::move(type)), comp_(comp) {}
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const DirichletNeumann& c_;
+  std::string name_, type_;
+  int comp_;
+};
+
+class DirichletNeumann final : public PhysicsModel {
+ public:
+  DirichletNeumann(Params p, const CaseContext& ctx, PhysicsModel& fluid, PhysicsModel& structure);
+  std::string name() const override { return name_; }
+  std::string type() const override { return "dirichlet_neumann"; }
+  Index num_nodes() const override { return 0; }
+  Index num_elements() const override { return 0; }
+  void initialize() override;
+  void predict(double t_new, double dt) override;
+  IterationReport solve_iteration() override;
+  void finalize_step() override;
+  void write_output(double) override {}
+  std::unique_ptr<Probe> make_probe(Params p) override;
+  int coupling_iterations() const override { return last_iterations_; }
+  double coupling_residual() const override { return last_residual_; }
+
+  Vec2 total_interface_force() const {
+    Vec2 f = Vec2::Zero();
+    for (Index k = 0; k + 1 < node_forces_.size(); k += 2) f += node_forces_.segment<2>(k);
+    return f;
+  }
+
+ private:
+  /// Prescribes the ghosts from interface node positions x and re-solves the fluid; returns node forces.
+  Vec solve_fluid(const Vec& x);
+  /// Loads the structure with node forces f and re-solves it (from its last iterate when `restart`, which
+  /// also sets the augmented mass's reference); returns its interface node positions.
+  Vec solve_structure(const Vec& f, bool restart = true);
+
+  std::string name_;
+  CaseContext ctx_;
+  PhysicsModel& fluid_model_;
+  PhysicsModel& structure_model_;
+  InterfaceFluid* fluid_ = nullptr;
+  InterfaceStructure* structure_ = nullptr;
+  InterfaceBoundary boundary_;
+  std::unique_ptr<InterfaceMap> map_;
+  std::unique_ptr<Acceleration> acceleration_;
+  CouplingSettings settings_;
+  double t_new_ = 0, dt_ = 0;
+  int inner_ = 0;
+  int restarts_ = 0;  // coupled steps whose loop was restarted with the accelerator's memory cleared
+  int last_iterations_ = 0;
+  double last_residual_ = 0;
+  Vec node_forces_;  // forces of the fluid on the interface nodes (last solve)
+};
+
+std::string fmt(double x, int prec = 6) {
+  std::ostringstream o;
+  o << std::setprecision(prec) << x;
+  return o.str();
+}
+
+DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsModel& fluid, PhysicsModel& structure)
+    : ctx_(ctx), fluid_model_(fluid), structure_model_(structure) {
+  p.validate({{"name", "fsi"},
+              {"type", "dirichlet_neumann"},
+              {"fluid", nullptr},
+              {"structure", nullptr},
+              {"interface", nullptr},
+              {"ghost_spacing", 0.0},
+              {"acceleration", Json{{"type", "aitken"}}},
+              {"max_iterations", 50},
+              {"tolerance", 1e-6},
+              {"reference_floor", 1e-9},
+              {"augmented_mass", 1.0}});
+  name_ = p.string("name");
+  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
+    p.fail("name", "must be a non-empty name without spaces or slashes");
+  fluid_ = dynamic_cast<InterfaceFluid*>(&fluid);
+  structure_ = dynamic_cast<InterfaceStructure*>(&structure);
+  if (!fluid_) p.fail("fluid", "body '" + fluid.name() + "' is a " + fluid.type() + ", not a fluid");
+  if (!structure_) p.fail("structure", "body '" + structure.name() + "' is a " + structure.type() + ", not a structure");
+  if (ctx.analysis.type != "dynamic") p.fail("type", "a coupling needs a dynamic analysis");
+  settings_.max_iterations = p.integer("max_iterations", 1);
+  settings_.tolerance = p.positive("tolerance");
+  settings_.reference_floor = p.positive("reference_floor");
+  const double aug = p.number("augmented_mass");
+  if (!(aug >= 1.0)) p.fail("augmented_mass", "must be at least 1 (1: off)");
+  structure_->set_augmented_mass(aug);
+  acceleration_ = make_acceleration(p.at("acceleration"));
+
+  boundary_ = structure_->make_interface(p.at("interface"));
+  map_ = std::make_unique<InterfaceMap>(boundary_, p.non_negative("ghost_spacing"));
+  try {
+    fluid_->add_ghosts(map_->reference(), map_->adjacent());
+  } catch (const std::invalid_argument& e) {
+    p.fail("fluid", e.what());
+  }
+  node_forces_ = Vec::Zero(2 * static_cast<Index>(boundary_.nodes.size()));
+}
+
+void DirichletNeumann::initialize() {
+  // The bodies are initialized by the driver; the ghosts start where the structure is, at rest with it.
+  const Vec x = structure_->interface_positions_old(boundary_.nodes);
+  const Vec zero = Vec::Zero(x.size());
+  fluid_->set_ghost_motion(map_->to_ghosts(x), map_->to_ghosts(zero), map_->to_ghosts(zero));
+}
+
+void DirichletNeumann::predict(double t_new, double dt) {
+  t_new_ = t_new;
+  dt_ = dt;
+  structure_model_.predict(t_new, dt);
+  fluid_model_.predict(t_new, dt);
+  inner_ = 0;
+}
+
+Vec DirichletNeumann::solve_fluid(const Vec& x) {
+  Vec v, a;
+  structure_->interface_kinematics(boundary_.nodes, x, v, a);
+  fluid_->set_ghost_motion(map_->to_ghosts(x), map_->to_ghosts(v), map_->to_ghosts(a));
+  fluid_->restart_step();
+  inner_ += iterate_to_convergence(fluid_model_, ctx_.analysis.newton.max_iterations, t_new_);
+  node_forces_ = map_->to_nodes(fluid_->ghost_forces());
+  return node_forces_;
+}
+
+Vec DirichletNeumann::solve_structure(const Vec& f, bool restart) {
+  structure_->set_interface_forces(boundary_.nodes, f);
+  if (restart) structure_->restart_step();
+  inner_ += iterate_to_convergence(structure_model_, ctx_.analysis.newton.max_iterations, t_new_);
+  return structure_->interface_positions(boundary_.nodes);
+}
+
+IterationReport DirichletNeumann::solve_iteration() {
+  IterationReport rep;
+  rep.converged = true;
+  rep.increment_ref = 1;
+  if (!fluid_->in_contact()) {
+    // Apart: the structure alone, then the fluid with the ghosts where it went (they may touch next step).
+    node_forces_.setZero();
+    const Vec x = solve_structure(node_forces_, false);
+    solve_fluid(x);
+    node_forces_.setZero();
+    last_iterations_ = 0;
+    last_residual_ = 0;
+    rep.inner_iterations = inner_;
+    return rep;
+  }
+  const Vec x0 = structure_->interface_positions(boundary_.nodes);  // the structure's predictor
+  settings_.origin = structure_->interface_positions_old(boundary_.nodes);
+  CouplingReport cr;
+  int passes = 0;
+  for (int attempt = 0;; ++attempt) {
+    // A loop that fails (a sub-solver throws, or no convergence) is run once more from the predictor with
+    // the accelerator's memory cleared: a quasi-Newton model built on earlier steps' meshes and contact
+    // states can send an iterate far off at an impact. A second failure goes to the driver (dt/2).
+    Vec x = x0;
+    try {
+      cr = dirichlet_neumann_step([this](const Vec& xi) { return solve_fluid(xi); },
+                                  [this](const Vec& f) { return solve_structure(f); }, *acceleration_, x, settings_);
+      passes += cr.iterations;
+      if (cr.converged || attempt > 0) break;
+    } catch (const SolverError&) {
+      if (attempt > 0) throw;
+      passes += settings_.max_iterations;  // unknown; counted as a full loop
+    }
+    ++restarts_;
+    acceleration_->reset();
+    structure_model_.predict(t_new_, dt_);
+  }
+  cr.iterations = passes;
+  last_iterations_ = cr.iterations;
+  last_residual_ = cr.residual / std::max(cr.reference, 1e-300);
+  if (!cr.converged)
+    throw SolverError("coupling '" + name_ + "': the interface did not converge in " + std::to_string(cr.iterations) +
+                      " iterations at t = " + fmt(t_new_) + " (relative residual " + fmt(last_residual_, 3) + ")");
+  rep.residual = last_residual_;
+  rep.residual_ref = 1;
+  rep.inner_iterations = inner_;
+  return rep;
+}
+
+void DirichletNeumann::finalize_step() {
+  structure_model_.finalize_step();
+  fluid_model_.finalize_step();
+}
+
+std::unique_ptr<Probe> DirichletNeumann::make_probe(Params p) {
+  const std::string t = p.choice("type", {"interface_force", "iterations"});
+  if (t == "interface_force") {
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"component", "x"}});
+    return std::make_unique<CouplingProbe>(*this, p.string("name"), t, p.choice("component", {"x", "y"}) == "x" ? 0 : 1);
+  }
+  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+  return std::make_unique<CouplingProbe>(*this, p.string("name"), t, 0);
+}
+
+std::vector<double> CouplingProbe::sample() const {
+  if (type_ == "iterations") return {double(c_.coupling_iterations())};
+  return {c_.total_interface_force()[comp_]};
+}
+
+}  // namespace
+
+InterfaceMap::InterfaceMap(const InterfaceBoundary& boundary, double spacing)
+    : nodes_(static_cast<Index>(boundary.nodes.size())) {
+  std::map<Index, Index> local;  // global node -> interface index
+  for (size_t k = 0; k < boundary.nodes.size(); ++k) local[boundary.nodes[k]] = static_cast<Index>(k);
+  auto index_of = [&](Index node) {
+    const auto it = local.find(node);
+    if (it == local.end()) throw std::invalid_argument("interface edge node " + std::to_string(node) + " is not an interface node");
+    return it->second;
+  };
+  if (spacing == 0) {
+    // Matching interface: one ghost per node; neighbours along each edge.
+    for (size_t k = 0; k < boundary.nodes.size(); ++k) {
+      ghosts_.push_back({{static_cast<Index>(k), 1.0}});
+      reference_.push_back(boundary.reference[k]);
+    }
+    for (const auto& e : boundary.edges)
+      for (size_t j = 0; j + 1 < e.size(); ++j) adjacent_.push_back({index_of(e[j]), index_of(e[j + 1])});
+    return;
+  }
+  // Non-matching: ghosts along each edge at about `spacing`; the ones at a vertex are shared.
+  std::map<Index, Index> at_vertex;  // global vertex node -> ghost
+  for (const auto& e : boundary.edges) {
+    const int order = static_cast<int>(e.size()) - 1;
+    double length = 0;
+    for (size_t j = 0; j + 1 < e.size(); ++j)
+      length += (boundary.reference[index_of(e[j + 1])] - boundary.reference[index_of(e[j])]).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
+    Index previous = -1;
+    for (int k = 0; k <= n; ++k) {
+      Index g = -1;
+      const Index vertex = k == 0 ? e.front() : (k == n ? e.back() : -1);
+      if (vertex >= 0 && at_vertex.count(vertex)) g = at_vertex[vertex];
+      if (g < 0) {
+        std::vector<std::pair<Index, double>> w;
+        Vec2 X = Vec2::Zero();
+        const auto N = lagrange_1d(order, double(k) / n);
+        for (int j = 0; j <= order; ++j) {
+          if (std::abs(N[j]) < 1e-14) continue;
+          w.push_back({index_of(e[j]), N[j]});
+          X += N[j] * boundary.reference[index_of(e[j])];
+        }
+        g = static_cast<Index>(ghosts_.size());
+        ghosts_.push_back(std::move(w));
+        reference_.push_back(X);
+        if (vertex >= 0) at_vertex[vertex] = g;
+      }
+      if (previous >= 0) adjacent_.push_back({previous, g});
+      previous = g;
+    }
+  }
+}
+
+Vec InterfaceMap::to_ghosts(const Vec& nodal) const {
+  Vec out = Vec::Zero(2 * num_ghosts());
+  for (size_t g = 0; g < ghosts_.size(); ++g)
+    for (const auto& [a, w] : ghosts_[g]) out.segment<2>(2 * g) += w * nodal.segment<2>(2 * a);
+  return out;
+}
+
+Vec InterfaceMap::to_nodes(const Vec& ghost) const {
+  Vec out = Vec::Zero(2 * nodes_);
+  for (size_t g = 0; g < ghosts_.size(); ++g)
+    for (const auto& [a, w] : ghosts_[g]) out.segment<2>(2 * a) += w * ghost.segment<2>(2 * g);
+  return out;
+}
+
+std::unique_ptr<PhysicsModel> make_dirichlet_neumann(Params p, const CaseContext& ctx, PhysicsModel& fluid,
+                                                     PhysicsModel& structure) {
+  return std::make_unique<DirichletNeumann>(std::move(p), ctx, fluid, structure);
+}
+
+}  // namespace lagfsi::fsi

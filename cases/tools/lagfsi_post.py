@@ -100,3 +100,44 @@ def plot_particle_snapshots(fig, snaps, xlim, ylim, pmax):
         ax.set_aspect("equal")
         ax.set_title("t = %.2f s" % tt, fontsize=9)
         ax.tick_params(labelsize=7)
+
+
+def coupling_lines(out_dir):
+    """Lines on a coupled run (summary.json, log.csv, probes.csv): coupled steps, FSI iterations per coupled
+    step (mean, max), the largest final interface residual, restarts, wall time and the fluid area drift."""
+    with open(os.path.join(out_dir, "summary.json")) as f:
+        s = json.load(f)
+    c = s.get("coupling", {})
+    lines = ["%s: %d steps (%d coupled), FSI iterations per coupled step mean %.2f max %d, final interface "
+             "residual <= %.2g, %d restarted loops, wall time %.1f s (%d threads)" %
+             (s["case"], s["steps"], c.get("coupled_steps", 0), c.get("iterations_mean", 0.0),
+              c.get("iterations_max", 0), c.get("residual_max", 0.0), c.get("restarts", 0), s["wall_time"],
+              s["threads"])]
+    log = read_csv(os.path.join(out_dir, "log.csv"))
+    area = log["fluid_area"]
+    if area and area[0] > 0:
+        lines.append("fluid area drift: %+.2f %% at the end, largest %+.2f %%" %
+                     (100 * (area[-1] / area[0] - 1), max((100 * (a / area[0] - 1) for a in area), key=abs)))
+    return lines
+
+
+def peak(t, u, t_max=None):
+    """Largest value of u (up to t_max) and its time."""
+    best = None
+    for ti, ui in zip(t, u):
+        if t_max is not None and ti > t_max:
+            break
+        if best is None or ui > best[1]:
+            best = (ti, ui)
+    return best
+
+
+def interp(x, xs, ys):
+    """Linear interpolation of ys(xs) at x (xs increasing), clamped at the ends."""
+    if x <= xs[0]:
+        return ys[0]
+    for i in range(1, len(xs)):
+        if xs[i] >= x:
+            s = (x - xs[i - 1]) / (xs[i] - xs[i - 1]) if xs[i] > xs[i - 1] else 0.0
+            return ys[i - 1] + s * (ys[i] - ys[i - 1])
+    return ys[-1]

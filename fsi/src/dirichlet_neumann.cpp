@@ -52,6 +52,7 @@ class DirichletNeumann final : public PhysicsModel {
   std::unique_ptr<Probe> make_probe(Params p) override;
   int coupling_iterations() const override { return last_iterations_; }
   double coupling_residual() const override { return last_residual_; }
+  int coupling_restarts() const override { return restarts_; }
 
   Vec2 total_interface_force() const {
     Vec2 f = Vec2::Zero();
@@ -79,6 +80,9 @@ class DirichletNeumann final : public PhysicsModel {
   double t_new_ = 0, dt_ = 0;
   int inner_ = 0;
   int restarts_ = 0;  // coupled steps whose loop was restarted with the accelerator's memory cleared
+  int fluid_passes_ = 0;  // fluid solves of the current loop
+  Vec last_motion_;       // interface motion of the last step (x_n - x_{n-1}), for the first guess
+  double dt_prev_ = 0;
   int last_iterations_ = 0;
   double last_residual_ = 0;
   Vec node_forces_;  // forces of the fluid on the interface nodes (last solve)
@@ -145,6 +149,7 @@ void DirichletNeumann::predict(double t_new, double dt) {
 }
 
 Vec DirichletNeumann::solve_fluid(const Vec& x) {
+  ++fluid_passes_;
   Vec v, a;
   structure_->interface_kinematics(boundary_.nodes, x, v, a);
   fluid_->set_ghost_motion(map_->to_ghosts(x), map_->to_ghosts(v), map_->to_ghosts(a));
@@ -176,23 +181,30 @@ IterationReport DirichletNeumann::solve_iteration() {
     rep.inner_iterations = inner_;
     return rep;
   }
-  const Vec x0 = structure_->interface_positions(boundary_.nodes);  // the structure's predictor
+  // First interface guess: the last step's motion repeated, x_n + (dt / dt_prev)(x_n - x_{n-1}) (the
+  // structure's own predictor, x_n, starts every loop one step's motion away; extrapolating with v_n and a_n
+  // of the trapezoidal rule, which alternate after an impact, sent the first pass far off).
   settings_.origin = structure_->interface_positions_old(boundary_.nodes);
+  Vec x0 = settings_.origin;
+  if (last_motion_.size() == x0.size() && dt_prev_ > 0) x0 += (dt_ / dt_prev_) * last_motion_;
   CouplingReport cr;
   int passes = 0;
   for (int attempt = 0;; ++attempt) {
-    // A loop that fails (a sub-solver throws, or no convergence) is run once more from the predictor with
-    // the accelerator's memory cleared: a quasi-Newton model built on earlier steps' meshes and contact
-    // states can send an iterate far off at an impact. A second failure goes to the driver (dt/2).
+    // A loop that fails after its first pass (a sub-solver throws on an accelerated iterate, or no
+    // convergence) is run once more from the predictor with the accelerator's memory cleared: a
+    // quasi-Newton model built on earlier steps' meshes and contact states can send an iterate far off at an
+    // impact. A failure of the first pass (the predictor: nothing accelerated yet) or of the second loop
+    // goes to the driver, which retries the step with dt/2.
     Vec x = x0;
+    fluid_passes_ = 0;
     try {
       cr = dirichlet_neumann_step([this](const Vec& xi) { return solve_fluid(xi); },
                                   [this](const Vec& f) { return solve_structure(f); }, *acceleration_, x, settings_);
       passes += cr.iterations;
       if (cr.converged || attempt > 0) break;
     } catch (const SolverError&) {
-      if (attempt > 0) throw;
-      passes += settings_.max_iterations;  // unknown; counted as a full loop
+      if (attempt > 0 || fluid_passes_ <= 1) throw;
+      passes += fluid_passes_;
     }
     ++restarts_;
     acceleration_->reset();
@@ -211,6 +223,9 @@ IterationReport DirichletNeumann::solve_iteration() {
 }
 
 void DirichletNeumann::finalize_step() {
+  const Vec x_old = structure_->interface_positions_old(boundary_.nodes);
+  last_motion_ = structure_->interface_positions(boundary_.nodes) - x_old;
+  dt_prev_ = dt_;
   structure_model_.finalize_step();
   fluid_model_.finalize_step();
 }

@@ -74,6 +74,8 @@ class PhysicsModel {
   /// residual (relative); 0 for a single body.
   virtual int coupling_iterations() const { return 0; }
   virtual double coupling_residual() const { return 0.0; }
+  /// A coupling: steps whose loop was restarted so far (after a failed loop).
+  virtual int coupling_restarts() const { return 0; }
 
  protected:
   PhaseTimes times_;

@@ -287,8 +287,10 @@ int run_case(const RunOptions& opt) {
     s["newton_iterations"] = {{"total", tot.iterations},
                               {"mean", tot.steps ? double(tot.iterations) / tot.steps : 0.0},
                               {"max", tot.max_iterations}};
+    int restarts = 0;
+    for (const auto& m : c.couplings) restarts += m->coupling_restarts();
     if (!c.couplings.empty())
-      s["coupling"] = {{"coupled_steps", tot.coupled_steps},
+      s["coupling"] = {{"coupled_steps", tot.coupled_steps}, {"restarts", restarts},
                        {"iterations_total", tot.coupling_iterations},
                        {"iterations_mean", tot.coupled_steps ? double(tot.coupling_iterations) / tot.coupled_steps : 0.0},
                        {"iterations_max", tot.coupling_max},

@@ -669,6 +669,10 @@ void FluidModel::predict(double t_new, double dt) {
 
   if (scheme_ == "monolithic_pspg") integrator_->begin_step(state_, dt);
   p_old_ = p_;
+  // A new mesh: new matrices. Re-solves of the step (restart_step) keep the factorizations (the monolithic
+  // scheme's Jacobian of the first pass, the fractional step's matrices, which depend on the mesh only).
+  iter_in_step_ = 0;
+  step_factorized_ = false;
   contact_ = false;
   for (const auto& t : tri_)
     for (Index i : t) contact_ = contact_ || is_ghost(i);
@@ -689,7 +693,6 @@ void FluidModel::start_iterations() {
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) p_[i] = 0.0;
   last_dx_ = last_dp_ = prev_dx_ = std::numeric_limits<double>::infinity();
-  iter_in_step_ = 0;
 }
 
 // ------------------------------------------------------------------------------------------ ghosts
@@ -970,7 +973,38 @@ IterationReport FluidModel::newton_iteration() {
   return rep;
 }
 
+void FluidModel::account_energy() {
+  // On the step's mesh at x_n (lumped masses m_i = sum rho A/3, walls and ghosts included: their share of
+  // the fluid moves with them): work of gravity sum m_i g . (x_{n+1} - x_n) and viscous dissipation
+  // dt sum_e 2 mu A eps(v):eps(v) of the step's velocity (v_{n+1} for the fractional step, the mean of
+  // v_n and v_{n+1} for the trapezoidal rule).
+  const Index ne = static_cast<Index>(tri_.size());
+  Vec v_end = scheme_ == "monolithic_pspg" ? Vec(2.0 / dt_ * (x_ - state_.x) - state_.v) : v_new_;
+  const Vec v = scheme_ == "monolithic_pspg" ? Vec(0.5 * (state_.v + v_end)) : v_end;
+  double gw = 0, diss = 0;
+  for (Index e = 0; e < ne; ++e) {
+    const auto& t = tri_[e];
+    const double A = element_area(state_.x, e);
+    if (!(A > 0)) continue;
+    Mat2 L = Mat2::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& p = state_.x.segment<2>(2 * t[(k + 1) % 3]);
+      const Vec2& q = state_.x.segment<2>(2 * t[(k + 2) % 3]);
+      const Vec2 grad = Vec2(p.y() - q.y(), q.x() - p.x()) / (2 * A);
+      L += v.segment<2>(2 * t[k]) * grad.transpose();
+      gw += rho_ * A / 3.0 * ctx_.gravity.dot(x_.segment<2>(2 * t[k]) - state_.x.segment<2>(2 * t[k]));
+    }
+    if (mu_ > 0 && !inviscid_element(e)) {
+      const Mat2 eps = 0.5 * (L + L.transpose());
+      diss += dt_ * 2.0 * mu_ * A * (eps.array() * eps.array()).sum();
+    }
+  }
+  gravity_work_ += gw;
+  dissipation_ += diss;
+}
+
 void FluidModel::finalize_step() {
+  account_energy();
   if (scheme_ == "monolithic_pspg") {
     integrator_->end_step(x_, state_);
     set_wall_motion(t_new_, state_.v, state_.a);
@@ -1033,7 +1067,7 @@ void FluidModel::write_output(double t) {
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
-                                          "kinetic_energy"});
+                                          "kinetic_energy", "gravity_work", "viscous_dissipation"});
   return std::make_unique<FluidProbe>(*this, p.string("name"), t, p);
 }
 
@@ -1074,6 +1108,8 @@ std::vector<double> FluidProbe::sample() const {
   const Index n = m_.n();
   if (type_ == "fluid_area") return {m_.area_end()};
   if (type_ == "kinetic_energy") return {m_.kinetic_energy()};
+  if (type_ == "gravity_work") return {m_.gravity_work()};
+  if (type_ == "viscous_dissipation") return {m_.viscous_dissipation()};
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
     const Vec2 d = b_ - a_;

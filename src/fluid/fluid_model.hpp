@@ -91,6 +91,9 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double spacing() const { return h_; }
   const std::vector<std::array<Index, 3>>& triangles() const { return tri_; }
   double kinetic_energy() const;
+  /// Work of gravity on the fluid and viscous dissipation since the start (account_energy()).
+  double gravity_work() const { return gravity_work_; }
+  double viscous_dissipation() const { return dissipation_; }
   double area_end() const { return area_end_; }
 
  private:
@@ -110,6 +113,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c.
   PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
   void set_dirichlet();
+  /// Adds the step's gravity work and viscous dissipation (before the state is updated).
+  void account_energy();
   /// The step's first iterate (after remeshing, or again when a coupling re-solves the step): pressures
   /// of the last step, positions moved with the last velocities, walls and ghosts at their prescribed places.
   void start_iterations();
@@ -157,7 +162,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double tol_ = 1e-4;
   int refactor_every_ = 0;       // 0: one factorization per step (the matrix barely changes within a
                                  // step); k >= 1: refactorized every k iterations (1: Newton)
-  int iter_in_step_ = 0;
+  int iter_in_step_ = 0;           // monolithic: iterations of the step (all coupling passes)
+  bool step_factorized_ = false;   // fractional step: the step's matrices are factorized (reused by re-solves)
   double close_fraction_ = 0.3;  // remove a fluid particle closer than this * h to another particle
   double flat_fraction_ = 0.01;  // drop elements with area below this * h^2
   double insert_factor_ = 1.0;   // insert a particle at the centroid of elements larger than this * h^2
@@ -210,6 +216,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::vector<std::vector<Index>> ghost_neighbours_;  // per ghost particle (local), neighbouring ghost particles
   Vec ghost_x_, ghost_v_, ghost_a_, ghost_force_;
   bool contact_ = false;
+  double gravity_work_ = 0, dissipation_ = 0;
 };
 
 }  // namespace lagfsi::fluid_detail

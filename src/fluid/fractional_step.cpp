@@ -166,7 +166,8 @@ IterationReport FluidModel::fractional_step() {
     bool same = true;
     for (Index i = 0; i < np && same; ++i) same = vfixed[2 * i] == vfixed[2 * i + 1];
     for (int c = 0; c < 2; ++c) {
-      if (c == 0 || !same) {
+      // The matrix depends on the step's mesh only: a re-solve of the step (a coupling pass) reuses it.
+      if ((c == 0 && !step_factorized_) || !same) {
         t0 = Clock::now();
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
@@ -197,10 +198,11 @@ IterationReport FluidModel::fractional_step() {
     }
   }
 
-  // 2. Pressure increment.
+  // 2. Pressure increment (the matrix, like the viscous one, only once per step's mesh).
   t0 = Clock::now();
+  const bool assemble = !step_factorized_;
   double* lv = poisson_.valuePtr();
-  std::fill(lv, lv + poisson_.nonZeros(), 0.0);
+  if (assemble) std::fill(lv, lv + poisson_.nonZeros(), 0.0);
   Vec rhs = Vec::Zero(np), comp = Vec::Zero(np);
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
@@ -210,17 +212,19 @@ IterationReport FluidModel::fractional_step() {
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
       atomic_add(rhs[t[a]], -area[e] / 3.0 * div);
+      if (!assemble) continue;
       if (bulk_ > 0) atomic_add(comp[t[a]], area[e] / 3.0 / (bulk_ * dt));
       for (int b = 0; b < 3; ++b) atomic_add(lv[sc[b * 3 + a]], dt / rho_ * area[e] * grad[e][a].dot(grad[e][b]));
     }
   }
   // Unknown pressures: connected particles off the free surface (fixed_ from set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
-  constrain(poisson_, [&](Index i) { return fixed_[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
+  if (assemble) constrain(poisson_, [&](Index i) { return fixed_[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
   for (Index i = 0; i < np; ++i)
     if (fixed_[3 * i + 2]) rhs[i] = 0.0;
   times_.assembly += seconds_since(t0);
-  factorize_step_matrix(*solver_, poisson_, "pressure step");
+  if (assemble) factorize_step_matrix(*solver_, poisson_, "pressure step");
+  step_factorized_ = true;
   t0 = Clock::now();
   Vec dp;
   solver_->solve(rhs, dp);

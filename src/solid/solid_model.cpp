@@ -113,6 +113,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   double kinetic_energy() const { return 0.5 * state_.v.dot(body_->mass() * state_.v); }
   double strain_energy() const { return strain_energy_; }
   double external_work() const { return work_ext_; }
+  double interface_work() const { return work_iface_; }
   double dissipated() const { return work_damp_; }
   double initial_energy() const { return energy0_; }
 
@@ -157,6 +158,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   bool warned_fallback_ = false;
   // Partitioned coupling: interface forces of the step (and of the last step, for the work), augmented mass.
   Vec f_iface_, f_iface_old_;
+  double work_iface_ = 0;  // part of work_ext_ done by the interface forces
   double aug_factor_ = 1.0;
   Vec x_aug_prev_;
 };
@@ -480,7 +482,9 @@ void SolidModel::finalize_step() {
   work_ext_ += 0.5 * (fext_old + fext_new).dot(state_.x - x_old);
   if (f_iface_.size() == body_->num_dofs()) {  // work of the interface forces (trapezoidal)
     if (f_iface_old_.size() != f_iface_.size()) f_iface_old_ = Vec::Zero(f_iface_.size());
-    work_ext_ += 0.5 * (f_iface_old_ + f_iface_).dot(state_.x - x_old);
+    const double w = 0.5 * (f_iface_old_ + f_iface_).dot(state_.x - x_old);
+    work_ext_ += w;
+    work_iface_ += w;
     f_iface_old_ = f_iface_;
   }
   x_aug_prev_.resize(0);
@@ -591,7 +595,7 @@ std::unique_ptr<Probe> SolidModel::make_probe(Params p) {
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
   return std::make_unique<EnergyProbe>(
       *this, p.string("name"),
-      p.choice("kind", {"kinetic", "strain", "external_work", "dissipated", "total", "balance"}));
+      p.choice("kind", {"kinetic", "strain", "external_work", "interface_work", "dissipated", "total", "balance"}));
 }
 
 DisplacementProbe::DisplacementProbe(const SolidModel& m, std::string name, Index e, double xi1, double xi2,
@@ -629,6 +633,7 @@ std::vector<double> EnergyProbe::sample() const {
   if (kind_ == "kinetic") return {m_.kinetic_energy()};
   if (kind_ == "strain") return {m_.strain_energy()};
   if (kind_ == "external_work") return {m_.external_work()};
+  if (kind_ == "interface_work") return {m_.interface_work()};
   if (kind_ == "dissipated") return {m_.dissipated()};
   const double total = m_.kinetic_energy() + m_.strain_energy();
   if (kind_ == "total") return {total};

@@ -1,0 +1,145 @@
+// Regression of the coupled cases (fsi/): each case file at CI size against its reference, with the
+// tolerances stated in the case README (the values reached where the reference is not met).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "fluid_checks.hpp"
+
+namespace {
+
+using namespace lagfsi::testing;
+
+nlohmann::json summary_of(const RunResult& r) {
+  std::ifstream in(r.out_dir / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+/// Every coupled step converged to the interface tolerance; returns the mean FSI iterations per coupled step.
+double check_coupling(const RunResult& r, int min_coupled_steps) {
+  const auto s = summary_of(r);
+  EXPECT_EQ(s["status"], "completed");
+  EXPECT_GE(s["coupling"]["coupled_steps"].get<int>(), min_coupled_steps);
+  EXPECT_LE(s["coupling"]["residual_max"].get<double>(), 1e-6);
+  return s["coupling"]["iterations_mean"].get<double>();
+}
+
+/// Reference series (time, value) from a CSV with '#' comments; `component` filters a component column.
+std::vector<std::pair<double, double>> reference(const std::string& rel, const std::string& tcol, const std::string& vcol,
+                                                 const std::string& component = "") {
+  std::ifstream in(fs::path(LAGFSI_SOURCE_DIR) / rel);
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<std::pair<double, double>> out;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    auto col = [&](const std::string& name) {
+      for (size_t k = 0; k < header.size(); ++k)
+        if (header[k] == name) return cells.at(k);
+      throw std::runtime_error("no column " + name + " in " + rel);
+    };
+    if (!component.empty() && col("component") != component) continue;
+    out.push_back({std::stod(col(tcol)), std::stod(col(vcol))});
+  }
+  EXPECT_FALSE(out.empty()) << rel;
+  return out;
+}
+
+double rms_against(const Csv& c, const std::string& col, const std::vector<std::pair<double, double>>& ref, double t_max) {
+  double e2 = 0;
+  int n = 0;
+  for (const auto& [t, v] : ref) {
+    if (t > t_max) continue;
+    const double s = interp(c["time"], c[col], t);
+    EXPECT_FALSE(std::isnan(s)) << col << " at t = " << t;
+    e2 += (s - v) * (s - v);
+    ++n;
+  }
+  return n ? std::sqrt(e2 / n) : std::nan("");
+}
+
+TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
+  // Seed 7.3.1, monolithic PSPG fluid, matching interface, IQN-ILS, 1 s. No digitized reference: the wall
+  // must oscillate about its static deflection under the water load, 9.77 mm by beam theory (README), up to
+  // the amplification by the plate's own weight (P-delta, at most 1.35) and the drop of the water level as
+  // the wall leans: the mean after the start-up lies in [1.0, 1.3] x 9.77 mm (measured 11.1 mm). The first
+  // overshoot, about twice the static value for a suddenly applied load, lies in [1.8, 2.8] x 9.77 mm
+  // (measured 23.3 mm at 0.169 s).
+  const auto r = run_case_1thread("cases/flexible_tank/case.json", "fsi_flexible_tank", {"output.every=50"});
+  const Csv c = probes_of(r);
+  ASSERT_GT(c.rows(), 900u);
+  const double w = 9.77e-3;
+  double mean = 0, first_peak = 0;
+  int n = 0;
+  for (size_t i = 0; i < c.rows(); ++i) {
+    if (c["time"][i] <= 0.3) first_peak = std::max(first_peak, c["tip_ux"][i]);
+    if (c["time"][i] >= 0.2) {
+      mean += c["tip_ux"][i];
+      ++n;
+    }
+  }
+  mean /= n;
+  EXPECT_GT(mean, 1.0 * w);
+  EXPECT_LT(mean, 1.3 * w);
+  EXPECT_GT(first_peak, 1.8 * w);
+  EXPECT_LT(first_peak, 2.8 * w);
+  EXPECT_LE(max_area_drift(c), 0.01);
+  EXPECT_LE(check_coupling(r, 1000), 5.5) << "IQN-ILS iterations per coupled step (measured 4.66)";
+}
+
+TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
+  // Dam break onto the elastic obstacle, fractional-step fluid, non-matching interface, IQN-ILS; 0.45 s
+  // covers the impact and the first swing. Against the PFEM of Idelsohn et al. 2008: peak 48.3 mm at
+  // 0.260 s (measured 47.9 mm at 0.237 s) within 10 % and 0.04 s; RMS difference over 0-0.45 s <= 8 mm
+  // (measured 6.2 mm; over the whole reference, 0-0.69 s, 14 mm).
+  const auto r = run_case_1thread("cases/elastic_obstacle_walhorn/case.json", "fsi_walhorn",
+                                  {"analysis.end_time=0.45", "output.every=50"});
+  const Csv c = probes_of(r);
+  const auto ref = reference("cases/elastic_obstacle_walhorn/reference/idelsohn_2008_pfem_tip_ux.csv", "time", "tip_ux");
+  double peak = 0, t_peak = 0;
+  for (size_t i = 0; i < c.rows(); ++i)
+    if (c["tip_ux"][i] > peak) {
+      peak = c["tip_ux"][i];
+      t_peak = c["time"][i];
+    }
+  EXPECT_NEAR(peak, 0.0483, 0.1 * 0.0483);
+  EXPECT_NEAR(t_peak, 0.260, 0.04);
+  EXPECT_LE(rms_against(c, "tip_ux", ref, 0.45), 0.008);
+  EXPECT_LE(check_coupling(r, 250), 7.5) << "IQN-ILS iterations per coupled step (measured 6.4 over 1 s)";
+}
+
+TEST(ElasticGateAntoci, OpensLikeTheExperimentUntilItsPeak) {
+  // Rubber gate released by the water, fractional-step fluid, non-matching interface, IQN-ILS, 0.2 s.
+  // Against the experiment of Antoci et al. 2007: the free end's horizontal displacement within 4 mm at
+  // 0.04 and 0.08 s (measured 2.2 and 2.4 mm); the gate closes again too early afterwards (README), so over
+  // the points of 0-0.2 s the RMS errors are only held at what this version reaches: x <= 9 mm (measured
+  // 7.1), y <= 7.5 mm (measured 5.6).
+  const auto r = run_case_1thread("cases/elastic_gate_antoci/case.json", "fsi_antoci",
+                                  {"analysis.end_time=0.2", "output.every=100"});
+  const Csv c = probes_of(r);
+  const std::string rel = "cases/elastic_gate_antoci/reference/antoci_2007_experiment_tip_displacement.csv";
+  const auto rx = reference(rel, "time", "displacement", "x");
+  const auto ry = reference(rel, "time", "displacement", "y");
+  for (const auto& [t, v] : rx) {
+    if (t < 0.1) {
+      EXPECT_NEAR(interp(c["time"], c["tip_ux"], t), v, 0.004) << "t = " << t;
+    }
+  }
+  EXPECT_LE(rms_against(c, "tip_ux", rx, 0.2), 0.009);
+  EXPECT_LE(rms_against(c, "tip_uy", ry, 0.2), 0.0075);
+  EXPECT_LE(check_coupling(r, 390), 7.0) << "IQN-ILS iterations per coupled step (measured 6.0 over 0.4 s)";
+}
+
+}  // namespace

@@ -191,9 +191,9 @@ IterationReport DirichletNeumann::solve_iteration() {
   int passes = 0;
   for (int attempt = 0;; ++attempt) {
     // A loop that fails after its first pass (a sub-solver throws on an accelerated iterate, or no
-    // convergence) is run once more from the predictor with the accelerator's memory cleared: a
+    // convergence) is run once more from the same first guess with the accelerator's memory cleared: a
     // quasi-Newton model built on earlier steps' meshes and contact states can send an iterate far off at an
-    // impact. A failure of the first pass (the predictor: nothing accelerated yet) or of the second loop
+    // impact. A failure of the first pass (the first guess: nothing accelerated yet) or of the second loop
     // goes to the driver, which retries the step with dt/2.
     Vec x = x0;
     fluid_passes_ = 0;

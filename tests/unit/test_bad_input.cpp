@@ -2,6 +2,8 @@
 // names the file, the JSON path and the reason; output written so far stays valid.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <nlohmann/json.hpp>
 
 #include "case_runner.hpp"
@@ -212,6 +214,55 @@ TEST(BadInput, FluidSchemeKeysAreSchemeSpecific) {
   o = run_json("fluid_viscous_step", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/scheme/viscous_step", "implicit");
+}
+
+/// The fluid case with a flexible right wall coupled to it (ghost particles at its nodes).
+json coupled_case() {
+  json j = fluid_case();
+  j["bodies"][0]["walls"][0]["points"] = {{0, 0.3}, {0, 0}, {0.4, 0}};
+  j["bodies"].push_back(json::parse(R"({
+    "name": "plate", "type": "solid",
+    "material": {"type": "svk", "young": 1e6, "poisson": 0.0, "density": 2500},
+    "geometry": {"type": "rectangle", "origin": [0.4, 0], "size": [0.02, 0.3]},
+    "mesh": {"type": "structured", "size": 0.05, "divisions": [1, 6], "order": 2},
+    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0.4, 0], "to": [0.42, 0]}}]
+  })"));
+  j["couplings"] = json::parse(R"([{"type": "dirichlet_neumann", "fluid": "water", "structure": "plate",
+    "interface": {"type": "segment", "from": [0.4, 0], "to": [0.4, 0.3]}}])");
+  return j;
+}
+
+TEST(BadInput, CouplingErrorsNameTheirKey) {
+  EXPECT_EQ(run_json("coupled_base", coupled_case()).code, 0);
+  struct Mutation {
+    std::string tag, path, reason;
+    std::function<void(json&)> apply;
+  };
+  const std::vector<Mutation> mutations = {
+      {"unknown_body", "/couplings/0/fluid", "no body named", [](json& j) { j["couplings"][0]["fluid"] = "air"; }},
+      {"swapped", "/couplings/0/fluid", "not a fluid",
+       [](json& j) {
+         j["couplings"][0]["fluid"] = "plate";
+         j["couplings"][0]["structure"] = "water";
+       }},
+      {"twice", "/couplings/1/fluid", "already coupled",
+       [](json& j) { j["couplings"].push_back(j["couplings"][0]); }},
+      {"no_edge", "/couplings/0/interface", "no boundary edge",
+       [](json& j) { j["couplings"][0]["interface"] = {{"type", "point"}, {"at", {0.4, 0.15}}}; }},
+      {"accelerator", "/couplings/0/acceleration/type", "iqn_ils",
+       [](json& j) { j["couplings"][0]["acceleration"] = {{"type", "broyden"}}; }},
+      {"augmented", "/couplings/0/augmented_mass", "at least 1",
+       [](json& j) { j["couplings"][0]["augmented_mass"] = 0.5; }},
+      {"unknown_key", "/couplings/0/relaxation", "unknown key", [](json& j) { j["couplings"][0]["relaxation"] = 0.5; }},
+      {"fixed_mesh", "/couplings/0/fluid", "remesh", [](json& j) { j["bodies"][0]["remesh"] = false; }},
+  };
+  for (const auto& m : mutations) {
+    json j = coupled_case();
+    m.apply(j);
+    const Outcome o = run_json("coupling_" + m.tag, j);
+    EXPECT_EQ(o.code, 2) << m.tag << ": " << o.message;
+    expect_one_line(o, m.path, m.reason);
+  }
 }
 
 TEST(BadInput, UsageErrors) {

@@ -14,7 +14,10 @@
 ///    structure went. With contact, the Dirichlet–Neumann loop of coupling.hpp runs on the interface node
 ///    positions: fluid with the ghosts prescribed (positions, and the velocities and accelerations the time
 ///    integrator gives them) -> ghost forces -> structure loaded by them -> its interface positions, until
-///    |x~ - x| <= tolerance * |x~ - x_n|, accelerated as chosen ("constant", "aitken", "iqn_ils");
+///    |x~ - x| <= tolerance * |x~ - x_n|, accelerated as chosen ("constant", "aitken", "iqn_ils"), from the
+///    first guess x_n + (dt/dt_prev)(x_n - x_{n-1}). Each pass re-solves both bodies from the step's start
+///    (the fluid keeps the step's mesh and factorizations). A loop that fails after its first pass is run
+///    once more with the accelerator's memory cleared; a second failure goes to the driver (dt/2);
 ///  - optional augmented mass of the structure (interface.hpp), a consistent under-relaxation.
 ///
 /// Case file: "couplings": [{"type": "dirichlet_neumann", "name": "fsi", "fluid": <body>, "structure": <body>,

@@ -38,6 +38,7 @@ const std::map<std::string, ModelBuilder>& model_registry() {
   static const std::map<std::string, ModelBuilder> r = {
       {"solid", make_solid_model},
       {"fluid", make_fluid_model},
+      {"mpm", make_mpm_model},
   };
   return r;
 }

@@ -2,6 +2,7 @@
 // names the file, the JSON path and the reason; output written so far stays valid.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <functional>
 
 #include <nlohmann/json.hpp>
@@ -263,6 +264,46 @@ TEST(BadInput, CouplingErrorsNameTheirKey) {
     EXPECT_EQ(o.code, 2) << m.tag << ": " << o.message;
     expect_one_line(o, m.path, m.reason);
   }
+}
+
+TEST(BadInput, MpmErrors) {
+  const json base = json::parse(R"({
+    "name": "bad_input_mpm",
+    "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 0.05},
+    "gravity": [0, -9.81],
+    "bodies": [{
+      "name": "block", "type": "mpm",
+      "material": {"type": "linear_elastic", "young": 1e6, "poisson": 0.3, "density": 1000},
+      "grid": {"origin": [0, 0], "size": [1.0, 1.0], "cell": 0.1},
+      "regions": [{"type": "rectangle", "origin": [0.2, 0.0], "size": [0.4, 0.4]}],
+      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [1, 0]}}]
+    }]
+  })");
+  EXPECT_EQ(run_json("mpm_base", base).code, 0);
+  json j = base;
+  j["bodies"][0]["regions"][0]["origin"] = {5.0, 5.0};
+  Outcome o = run_json("mpm_region_outside", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0", "no particle");
+  j = base;
+  j["bodies"][0]["grid"]["cell"] = 0.3;
+  o = run_json("mpm_cell", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/grid/cell", "whole number");
+  j = base;
+  j["bodies"][0]["shape_functions"] = "bspline";
+  o = run_json("mpm_shape", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/shape_functions", "gimp");
+  // A block thrown out of its grid: the run stops with a solver error, the output so far stays valid.
+  j = base;
+  j["bodies"][0]["initial_velocity"] = {50.0, 0.0};
+  o = run_json("mpm_leaves_grid", j);
+  EXPECT_EQ(o.code, 3);
+  expect_one_line(o, "", "left the grid");
+  EXPECT_TRUE(fs::exists(o.dir / "out" / "block.pvd"));
+  std::ifstream summary(o.dir / "out" / "summary.json");
+  EXPECT_EQ(json::parse(summary)["status"], "failed");
 }
 
 TEST(BadInput, UsageErrors) {

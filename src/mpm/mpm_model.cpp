@@ -1,0 +1,631 @@
+// Material Point Method (single phase, explicit) on a regular background grid, after Sulsky, Chen & Schreyer
+// (1994) and the "modified Lagrangian" (MUSL) algorithm of the seed (Ludeña 2016, ch. 3; Al-Kafaji 2013):
+//
+//   particles -> grid:  m_I = sum_p N_Ip m_p,  (m v)_I = sum_p N_Ip m_p v_p,
+//                       f_I = sum_p [ -V_p sigma_p . grad N_Ip + N_Ip m_p g ]
+//   grid update:        (m v)_I += dt f_I (fixed components zeroed; local damping f -= alpha |f| sign(v))
+//   grid -> particles:  v_p += dt sum_I N_Ip f_I / m_I (FLIP),  x_p += dt sum_I N_Ip v_I
+//   stress update:      L_p = sum_I v_I (x) grad N_Ip, F_p = (I + dt L_p) F_p, V_p = det F_p V_p0,
+//                       sigma_p += C : dt sym(L_p) (small strain rate, linear elastic)
+//
+// with the grid velocity of the stress update taken, as chosen by "update":
+//  - "musl": re-mapped from the updated particle velocities (the seed's algorithm; the most robust);
+//  - "usl":  the grid velocity of the grid update;
+//  - "usf":  the stress is updated first, from the grid velocity of the mapped momentum.
+// Shape functions: "linear" (tent functions of the cells) or "gimp" (uGIMP: particle domains of half-width
+// lp = h / (2 n), n particles per cell per direction, which removes most of the cell-crossing noise;
+// Bardenhagen & Kober 2004). Plane strain, unit thickness.
+//
+// Time: the driver's step is split into sub-steps dt_sub <= cfl h / c, c = sqrt((lambda + 2 mu)/rho) the
+// P-wave speed (explicit, conditionally stable). The grid is reset every sub-step.
+#include <lagfsi/case.hpp>
+#include <lagfsi/error.hpp>
+#include <lagfsi/vtk_output.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace lagfsi {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Particles of one body (structure of arrays).
+struct Particles {
+  std::vector<Vec2> x, X, v;
+  std::vector<double> mass, volume0, volume;
+  std::vector<Mat2> F;
+  std::vector<std::array<double, 4>> stress;  // xx, yy, xy, zz
+  std::vector<std::array<double, 3>> strain;  // small strain xx, yy, xy (engineering/2: tensor xy)
+  size_t size() const { return x.size(); }
+};
+
+/// Up to 3 x 3 nodes of one particle with their shape function values and gradients.
+struct Support {
+  int n = 0;
+  std::array<Index, 9> node;
+  std::array<double, 9> N;
+  std::array<Vec2, 9> dN;
+};
+
+class MpmModel;
+
+class MpmProbe final : public Probe {
+ public:
+  MpmProbe(const MpmModel& m, std::string name, std::string quantity, Index particle)
+      : m_(m), name_(std::move(name)), quantity_(std::move(quantity)), p_(particle) {}
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const MpmModel& m_;
+  std::string name_, quantity_;
+  Index p_;
+};
+
+class MpmModel final : public PhysicsModel {
+ public:
+  MpmModel(Params b, const CaseContext& ctx);
+  std::string name() const override { return name_; }
+  std::string type() const override { return "mpm"; }
+  Index num_nodes() const override { return static_cast<Index>(P_.size()); }
+  Index num_elements() const override { return static_cast<Index>(nx_ * ny_); }
+  void initialize() override;
+  void predict(double t_new, double dt) override {
+    t_new_ = t_new;
+    dt_ = dt;
+  }
+  IterationReport solve_iteration() override;
+  void finalize_step() override {}
+  void write_output(double t) override;
+  std::unique_ptr<Probe> make_probe(Params p) override;
+
+  const Particles& particles() const { return P_; }
+  double kinetic_energy() const {
+    double e = 0;
+    for (size_t p = 0; p < P_.size(); ++p) e += 0.5 * P_.mass[p] * P_.v[p].squaredNorm();
+    return e;
+  }
+  /// Elastic strain energy sum_p V_p sigma : eps / 2 (linear elastic, small strain).
+  double strain_energy() const {
+    double e = 0;
+    for (size_t p = 0; p < P_.size(); ++p) {
+      const auto& s = P_.stress[p];
+      const auto& d = P_.strain[p];
+      e += 0.5 * P_.volume[p] * (s[0] * d[0] + s[1] * d[1] + 2.0 * s[2] * d[2]);
+    }
+    return e;
+  }
+  /// Work of gravity since the start.
+  double gravity_work() const { return gravity_work_; }
+
+ private:
+  void support(const Vec2& x, Support& s) const;
+  void substep(double dt);
+  /// Particles to grid: mass and momentum, and/or forces (internal and gravity).
+  void scatter(bool momentum, bool force);
+  void stress_update(double dt, const std::vector<Vec2>& vgrid);
+  void apply_fixed(std::vector<Vec2>& vec) const {
+    for (const auto& [node, comp] : fixed_) vec[node][comp] = 0.0;
+  }
+
+  std::string name_;
+  CaseContext ctx_;
+  double rho_ = 0, E_ = 0, nu_ = 0, lambda_ = 0, mu_ = 0;
+  Vec2 origin_ = Vec2::Zero();
+  double h_ = 1;
+  int nx_ = 0, ny_ = 0, ppc_ = 2;
+  bool gimp_ = false;
+  std::string update_ = "musl";
+  double cfl_ = 0.5, local_damping_ = 0;
+  bool gravity_ = true;
+  bool particles_csv_ = false;  // also write <out>/<name>_particles.csv (the particles at the last output)
+  std::vector<std::pair<Index, int>> fixed_;  // grid node, component
+  Particles P_;
+  std::vector<double> gm_;
+  std::vector<Vec2> gp_, gf_, gv_;
+  std::vector<Support> sup_;
+  std::vector<std::vector<double>> tm_;          // per-thread grid copies of the scatter
+  std::vector<std::vector<Vec2>> tp_, tf_;
+  double t_new_ = 0, dt_ = 0, t_ = 0;
+  double gravity_work_ = 0;
+  long substeps_ = 0;
+  std::unique_ptr<PvdSeries> series_;
+};
+
+// ------------------------------------------------------------------------------------------ building
+
+bool inside_polygon(const std::vector<Vec2>& poly, const Vec2& q) {
+  bool in = false;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 &a = poly[i], &b = poly[j];
+    if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
+  b.validate({{"name", nullptr},
+              {"type", "mpm"},
+              {"material", nullptr},
+              {"grid", nullptr},
+              {"regions", nullptr},
+              {"particles_per_cell", 2},
+              {"shape_functions", "linear"},
+              {"update", "musl"},
+              {"cfl", 0.5},
+              {"boundary_conditions", Json::array()},
+              {"damping", Json::object()},
+              {"initial_velocity", Json::array({0.0, 0.0})},
+              {"initial_state", Json{{"type", "given"}}},
+              {"initial_stress", Json{{"type", "zero"}}},
+              {"particles_csv", false},
+              {"gravity", true}});
+  name_ = b.string("name");
+  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
+    b.fail("name", "must be a non-empty name without spaces or slashes");
+  if (ctx.analysis.type != "dynamic") b.fail("type", "an MPM body needs a dynamic analysis");
+  Params mat = b.at("material");
+  mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});
+  mat.choice("type", {"linear_elastic"});
+  E_ = mat.positive("young");
+  nu_ = mat.number("poisson");
+  rho_ = mat.positive("density");
+  if (!(nu_ > -1.0 && nu_ < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
+  mu_ = E_ / (2 * (1 + nu_));
+  lambda_ = E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_));
+
+  Params g = b.at("grid");
+  g.validate({{"origin", Json::array({0.0, 0.0})}, {"size", nullptr}, {"cell", nullptr}});
+  origin_ = g.vec2("origin");
+  const Vec2 size = g.vec2("size");
+  h_ = g.positive("cell");
+  if (!(size.x() > 0 && size.y() > 0)) g.fail("size", "must be positive");
+  nx_ = static_cast<int>(std::lround(size.x() / h_));
+  ny_ = static_cast<int>(std::lround(size.y() / h_));
+  if (nx_ < 1 || ny_ < 1 || std::abs(nx_ * h_ - size.x()) > 1e-9 * size.x() || std::abs(ny_ * h_ - size.y()) > 1e-9 * size.y())
+    g.fail("cell", "the grid size must be a whole number of cells in each direction");
+  if (double(nx_) * ny_ > 5e7) g.fail("cell", "more than 5e7 cells");
+  ppc_ = b.integer("particles_per_cell", 1);
+  if (ppc_ > 8) b.fail("particles_per_cell", "at most 8 per direction");
+  gimp_ = b.choice("shape_functions", {"linear", "gimp"}) == "gimp";
+  update_ = b.choice("update", {"musl", "usl", "usf"});
+  cfl_ = b.positive("cfl");
+  if (cfl_ > 1) b.fail("cfl", "must lie in (0, 1]");
+  gravity_ = b.boolean("gravity");
+  particles_csv_ = b.boolean("particles_csv");
+  Params d = b.at("damping");
+  d.validate({{"local", 0.0}});
+  local_damping_ = d.non_negative("local");
+  if (local_damping_ >= 1) d.fail("local", "must lie in [0, 1)");
+
+  // Particles: n x n per cell, at the centres of the sub-cells that lie in a region.
+  Params regions = b.at("regions");
+  if (regions.size() == 0) regions.fail("at least one region is needed");
+  const double hp = h_ / ppc_;
+  std::vector<char> taken(static_cast<size_t>(nx_) * ny_ * ppc_ * ppc_, 0);
+  for (size_t r = 0; r < regions.size(); ++r) {
+    Params reg = regions.at(r);
+    if (!reg.has("type")) reg.fail("type", "required key is missing");
+    std::vector<Vec2> poly;
+    if (reg.choice("type", {"rectangle", "polygon"}) == "rectangle") {
+      reg.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      const Vec2 o = reg.vec2("origin"), s = reg.vec2("size");
+      if (!(s.x() > 0 && s.y() > 0)) reg.fail("size", "must be positive");
+      poly = {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
+    } else {
+      reg.validate({{"type", "polygon"}, {"points", nullptr}});
+      poly = reg.points("points");
+      if (poly.size() < 3) reg.fail("points", "a polygon needs at least 3 points");
+    }
+    const size_t before = P_.size();
+    for (int j = 0; j < ny_ * ppc_; ++j)
+      for (int i = 0; i < nx_ * ppc_; ++i) {
+        const size_t k = static_cast<size_t>(j) * nx_ * ppc_ + i;
+        const Vec2 q = origin_ + Vec2((i + 0.5) * hp, (j + 0.5) * hp);
+        if (taken[k] || !inside_polygon(poly, q)) continue;
+        taken[k] = 1;
+        P_.x.push_back(q);
+        P_.X.push_back(q);
+        P_.v.push_back(Vec2::Zero());
+        P_.mass.push_back(rho_ * hp * hp);
+        P_.volume0.push_back(hp * hp);
+        P_.volume.push_back(hp * hp);
+        P_.F.push_back(Mat2::Identity());
+        P_.stress.push_back({0, 0, 0, 0});
+        P_.strain.push_back({0, 0, 0});
+      }
+    if (P_.size() == before) reg.fail("the region holds no particle of the grid (is it inside the grid?)");
+  }
+
+  // Initial velocity: uniform, or an axial mode v = amplitude sin(k (x - x0)) along an axis (the vibrating bar).
+  const Vec2 v0 = b.vec2("initial_velocity");
+  for (auto& v : P_.v) v = v0;
+  Params is = b.at("initial_state");
+  if (!is.has("type")) is.fail("type", "required key is missing");
+  if (is.choice("type", {"given", "axial_mode"}) == "axial_mode") {
+    is.validate({{"type", "axial_mode"}, {"amplitude", nullptr}, {"wavenumber", nullptr}, {"start", 0.0},
+                 {"axis", "x"}});
+    const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
+    const double A = is.number("amplitude"), k = is.number("wavenumber"), x0 = is.number("start");
+    for (size_t p = 0; p < P_.size(); ++p) {
+      P_.v[p] = Vec2::Zero();
+      P_.v[p][ax] = A * std::sin(k * (P_.x[p][ax] - x0));
+    }
+  } else {
+    is.validate({{"type", "given"}});
+  }
+  // Initial stress: geostatic (vertical stress from the weight above, horizontal K0 times it).
+  Params st = b.at("initial_stress");
+  if (!st.has("type")) st.fail("type", "required key is missing");
+  if (st.choice("type", {"zero", "geostatic"}) == "geostatic") {
+    st.validate({{"type", "geostatic"}, {"surface", nullptr}, {"k0", nu_ / (1 - nu_)}});
+    const double top = st.number("surface"), k0 = st.non_negative("k0"), gy = ctx.gravity.y();
+    for (size_t p = 0; p < P_.size(); ++p) {
+      const double sv = rho_ * gy * (top - P_.x[p].y());  // negative (compression) below the surface
+      P_.stress[p] = {k0 * sv, sv, 0.0, k0 * sv};
+    }
+  } else {
+    st.validate({{"type", "zero"}});
+  }
+
+  // Grid boundary conditions: fixed components of the selected grid nodes.
+  std::vector<Vec2> nodes;
+  for (int j = 0; j <= ny_; ++j)
+    for (int i = 0; i <= nx_; ++i) nodes.push_back(origin_ + Vec2(i * h_, j * h_));
+  Params bcs = b.at("boundary_conditions");
+  for (size_t i = 0; i < bcs.size(); ++i) {
+    Params bc = bcs.at(i);
+    bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
+    bc.choice("type", {"fixed"});
+    const std::string comps = bc.choice("components", {"x", "y", "xy"});
+    for (Index n : select_nodes(bc.at("select"), nodes)) {
+      if (comps != "y") fixed_.push_back({n, 0});
+      if (comps != "x") fixed_.push_back({n, 1});
+    }
+  }
+  const size_t nn = nodes.size();
+  gm_.assign(nn, 0.0);
+  gp_.assign(nn, Vec2::Zero());
+  gf_.assign(nn, Vec2::Zero());
+  gv_.assign(nn, Vec2::Zero());
+}
+
+// ------------------------------------------------------------------------------------------ kernels
+
+void MpmModel::support(const Vec2& x, Support& s) const {
+  // Per direction: the nodes within reach and the 1D function and its derivative.
+  std::array<std::array<double, 3>, 2> w{}, dw{};
+  std::array<int, 2> first{}, count{};
+  for (int c = 0; c < 2; ++c) {
+    const double xi = (x[c] - origin_[c]) / h_;  // in cells
+    const int n_cells = c == 0 ? nx_ : ny_;
+    if (!gimp_) {
+      int i = static_cast<int>(std::floor(xi));
+      i = std::clamp(i, 0, n_cells - 1);
+      const double r = xi - i;
+      first[c] = i;
+      count[c] = 2;
+      w[c] = {1.0 - r, r, 0.0};
+      dw[c] = {-1.0 / h_, 1.0 / h_, 0.0};
+    } else {
+      const double lp = 0.5 / ppc_;  // particle half-width in cells
+      const int i0 = std::max(0, static_cast<int>(std::floor(xi - lp)));
+      const int i1 = std::min(n_cells, static_cast<int>(std::floor(xi + lp)) + 1);
+      first[c] = i0;
+      count[c] = std::min(3, i1 - i0 + 1);
+      for (int k = 0; k < count[c]; ++k) {
+        const double r = xi - (i0 + k), a = std::abs(r), sg = r < 0 ? -1.0 : 1.0;
+        double f = 0, df = 0;
+        if (a < lp) {
+          f = 1.0 - (r * r + lp * lp) / (2.0 * lp);
+          df = -r / lp;
+        } else if (a < 1.0 - lp) {
+          f = 1.0 - a;
+          df = -sg;
+        } else if (a < 1.0 + lp) {
+          f = (1.0 + lp - a) * (1.0 + lp - a) / (4.0 * lp);
+          df = -sg * (1.0 + lp - a) / (2.0 * lp);
+        }
+        w[c][k] = f;
+        dw[c][k] = df / h_;
+      }
+    }
+  }
+  s.n = 0;
+  for (int b = 0; b < count[1]; ++b)
+    for (int a = 0; a < count[0]; ++a) {
+      const double N = w[0][a] * w[1][b];
+      const Vec2 dN(dw[0][a] * w[1][b], w[0][a] * dw[1][b]);
+      if (N == 0.0 && dN.squaredNorm() == 0.0) continue;
+      s.node[s.n] = (first[1] + b) * (nx_ + 1) + first[0] + a;
+      s.N[s.n] = N;
+      s.dN[s.n] = dN;
+      ++s.n;
+    }
+}
+
+void MpmModel::stress_update(double dt, const std::vector<Vec2>& vgrid) {
+  const Index np = static_cast<Index>(P_.size());
+#pragma omp parallel for schedule(static) if (np >= 20000)
+  for (Index p = 0; p < np; ++p) {
+    const Support& s = sup_[p];
+    Mat2 L = Mat2::Zero();
+    for (int k = 0; k < s.n; ++k) L += vgrid[s.node[k]] * s.dN[k].transpose();
+    P_.F[p] = (Mat2::Identity() + dt * L) * P_.F[p];
+    const Mat2& F = P_.F[p];
+    P_.volume[p] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[p];
+    const double dxx = dt * L(0, 0), dyy = dt * L(1, 1), dxy = 0.5 * dt * (L(0, 1) + L(1, 0));
+    const double tr = dxx + dyy;
+    auto& sg = P_.stress[p];
+    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
+    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
+    sg[2] += 2 * mu_ * dxy;
+    sg[3] += lambda_ * tr;
+    auto& e = P_.strain[p];
+    e[0] += dxx;
+    e[1] += dyy;
+    e[2] += dxy;
+  }
+}
+
+void MpmModel::scatter(bool momentum, bool force) {
+  // Particles to grid, in parallel: each thread accumulates its share of the particles into its own copy of
+  // the grid arrays, then the copies are summed node by node (a particle's nodes are shared with its
+  // neighbours', so a direct parallel scatter would race).
+  const Index np = static_cast<Index>(P_.size());
+  const Index nn = static_cast<Index>(gm_.size());
+  const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
+  int nt = 1;
+#ifdef _OPENMP
+  nt = np >= 20000 ? omp_get_max_threads() : 1;
+#endif
+  if (static_cast<int>(tm_.size()) != nt) {
+    tm_.assign(nt, {});
+    tp_.assign(nt, {});
+    tf_.assign(nt, {});
+  }
+#pragma omp parallel num_threads(nt)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    auto& m = tm_[tid];
+    auto& mv = tp_[tid];
+    auto& f = tf_[tid];
+    if (momentum) {
+      m.assign(nn, 0.0);
+      mv.assign(nn, Vec2::Zero());
+    }
+    if (force) f.assign(nn, Vec2::Zero());
+#pragma omp for schedule(static)
+    for (Index p = 0; p < np; ++p) {
+      const Support& sp = sup_[p];
+      const double mp = P_.mass[p];
+      const Vec2 mvp = mp * P_.v[p];
+      const auto& sg = P_.stress[p];
+      const double V = P_.volume[p];
+      for (int k = 0; k < sp.n; ++k) {
+        const Index I = sp.node[k];
+        if (momentum) {
+          m[I] += sp.N[k] * mp;
+          mv[I] += sp.N[k] * mvp;
+        }
+        if (force) {
+          const Vec2& d = sp.dN[k];
+          f[I] += sp.N[k] * mp * g - V * Vec2(sg[0] * d.x() + sg[2] * d.y(), sg[2] * d.x() + sg[1] * d.y());
+        }
+      }
+    }
+#pragma omp for schedule(static)
+    for (Index I = 0; I < nn; ++I) {
+      if (momentum) {
+        double a = 0;
+        Vec2 b = Vec2::Zero();
+        for (int t = 0; t < nt; ++t) {
+          a += tm_[t][I];
+          b += tp_[t][I];
+        }
+        gm_[I] = a;
+        gp_[I] = b;
+      }
+      if (force) {
+        Vec2 c = Vec2::Zero();
+        for (int t = 0; t < nt; ++t) c += tf_[t][I];
+        gf_[I] = c;
+      }
+    }
+  }
+}
+
+void MpmModel::substep(double dt) {
+  const Index np = static_cast<Index>(P_.size());
+  const size_t nn = gm_.size();
+  sup_.resize(np);
+  Index outside = -1;
+#pragma omp parallel for schedule(static) if (np >= 20000)
+  for (Index p = 0; p < np; ++p) {
+    const Vec2& x = P_.x[p];
+    if (!(x.x() >= origin_.x() && x.y() >= origin_.y() && x.x() <= origin_.x() + nx_ * h_ &&
+          x.y() <= origin_.y() + ny_ * h_)) {
+#pragma omp critical(lagfsi_mpm_outside)
+      outside = p;
+      continue;
+    }
+    support(x, sup_[p]);
+  }
+  if (outside >= 0)
+    throw SolverError("body '" + name_ + "': particle " + std::to_string(outside) + " left the grid at t = " +
+                      std::to_string(t_));
+  const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
+  if (update_ == "usf") {
+    scatter(true, false);
+    apply_fixed(gp_);
+    for (size_t i = 0; i < nn; ++i) gv_[i] = gm_[i] > 0 ? Vec2(gp_[i] / gm_[i]) : Vec2::Zero();
+    stress_update(dt, gv_);
+    scatter(false, true);
+  } else {
+    scatter(true, true);
+    apply_fixed(gp_);
+  }
+  // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force.
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(gm_[i] > 0)) continue;
+    if (local_damping_ > 0) {
+      const Vec2 v = gp_[i] / gm_[i];
+      for (int c = 0; c < 2; ++c)
+        if (v[c] != 0.0) gf_[i][c] -= local_damping_ * std::abs(gf_[i][c]) * (v[c] > 0 ? 1.0 : -1.0);
+    }
+  }
+  apply_fixed(gf_);
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(gm_[i] > 0)) continue;
+    gp_[i] += dt * gf_[i];
+    gv_[i] = gp_[i] / gm_[i];
+  }
+  apply_fixed(gv_);
+  // Grid to particles: FLIP velocity, positions with the grid velocity.
+  double gw = 0;
+#pragma omp parallel for schedule(static) if (np >= 20000) reduction(+ : gw)
+  for (Index p = 0; p < np; ++p) {
+    const Support& s = sup_[p];
+    Vec2 a = Vec2::Zero(), v = Vec2::Zero();
+    for (int k = 0; k < s.n; ++k) {
+      const Index I = s.node[k];
+      if (!(gm_[I] > 0)) continue;
+      a += s.N[k] * gf_[I] / gm_[I];
+      v += s.N[k] * gv_[I];
+    }
+    P_.v[p] += dt * a;
+    const Vec2 dx = dt * v;
+    P_.x[p] += dx;
+    gw += P_.mass[p] * g.dot(dx);
+  }
+  gravity_work_ += gw;
+  if (update_ == "musl") {
+    scatter(true, false);
+    for (size_t i = 0; i < nn; ++i) gv_[i] = gm_[i] > 0 ? Vec2(gp_[i] / gm_[i]) : Vec2::Zero();
+    apply_fixed(gv_);
+  }
+  if (update_ != "usf") stress_update(dt, gv_);
+  for (Index p = 0; p < np; ++p)
+    if (!(P_.volume[p] > 0) || !std::isfinite(P_.stress[p][1]))
+      throw SolverError("body '" + name_ + "': particle " + std::to_string(p) + " inverted or non-finite at t = " +
+                        std::to_string(t_));
+}
+
+// ------------------------------------------------------------------------------------------ lifecycle
+
+void MpmModel::initialize() { t_ = 0; }
+
+IterationReport MpmModel::solve_iteration() {
+  const auto t0 = Clock::now();
+  const double c = std::sqrt((lambda_ + 2 * mu_) / rho_);
+  const double dt_max = cfl_ * h_ / c;
+  const int n = std::max(1, static_cast<int>(std::ceil(dt_ / dt_max * (1 - 1e-12))));
+  const double dt = dt_ / n;
+  for (int k = 0; k < n; ++k) {
+    substep(dt);
+    t_ += dt;
+  }
+  t_ = t_new_;
+  substeps_ += n;
+  times_.assembly += seconds_since(t0);
+  IterationReport r;
+  r.converged = true;
+  r.residual = 0;
+  r.residual_ref = 1;
+  r.inner_iterations = n;
+  return r;
+}
+
+void MpmModel::write_output(double t) {
+  const auto t0 = Clock::now();
+  if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
+  VtpData d;
+  d.points = P_.x;
+  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, s{"stress", 4, {}}, vol{"volume", 1, {}};
+  for (size_t p = 0; p < P_.size(); ++p) {
+    for (int c = 0; c < 2; ++c) {
+      u.values.push_back(P_.x[p][c] - P_.X[p][c]);
+      v.values.push_back(P_.v[p][c]);
+    }
+    for (double x : P_.stress[p]) s.values.push_back(x);
+    vol.values.push_back(P_.volume[p]);
+  }
+  d.point_fields = {u, v, s, vol};
+  series_->write(t, d);
+  if (particles_csv_) {
+    const auto path = ctx_.out_dir / (name_ + "_particles.csv");
+    const auto tmp = path.string() + ".tmp";
+    {
+      std::ofstream o(tmp);
+      if (!o) throw std::runtime_error("cannot write " + tmp);
+      o << "# " << name_ << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume\n" << std::setprecision(12);
+      for (size_t p = 0; p < P_.size(); ++p) {
+        const auto& sg = P_.stress[p];
+        o << P_.X[p].x() << "," << P_.X[p].y() << "," << P_.x[p].x() << "," << P_.x[p].y() << "," << P_.v[p].x() << ","
+          << P_.v[p].y() << "," << sg[0] << "," << sg[1] << "," << sg[2] << "," << sg[3] << "," << P_.volume[p] << "\n";
+      }
+    }
+    std::filesystem::rename(tmp, path);
+  }
+  times_.output += seconds_since(t0);
+}
+
+std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
+  const std::string t = p.choice("type", {"particle", "energy"});
+  if (t == "energy") {
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
+    return std::make_unique<MpmProbe>(*this, p.string("name"),
+                                      p.choice("kind", {"kinetic", "strain", "total", "gravity_work"}), -1);
+  }
+  // The particle nearest to a reference position.
+  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"quantity", "displacement_y"}});
+  const std::string q = p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y",
+                                              "stress_xx", "stress_yy", "stress_xy"});
+  const Vec2 at = p.vec2("at");
+  Index best = 0;
+  for (size_t k = 1; k < P_.size(); ++k)
+    if ((P_.X[k] - at).squaredNorm() < (P_.X[best] - at).squaredNorm()) best = static_cast<Index>(k);
+  if ((P_.X[best] - at).norm() > h_) p.fail("at", "no particle within a cell of the point");
+  return std::make_unique<MpmProbe>(*this, p.string("name"), q, best);
+}
+
+std::vector<double> MpmProbe::sample() const {
+  const Particles& P = m_.particles();
+  if (p_ < 0) {
+    if (quantity_ == "kinetic") return {m_.kinetic_energy()};
+    if (quantity_ == "strain") return {m_.strain_energy()};
+    if (quantity_ == "gravity_work") return {m_.gravity_work()};
+    return {m_.kinetic_energy() + m_.strain_energy()};
+  }
+  if (quantity_ == "displacement_x") return {P.x[p_].x() - P.X[p_].x()};
+  if (quantity_ == "displacement_y") return {P.x[p_].y() - P.X[p_].y()};
+  if (quantity_ == "velocity_x") return {P.v[p_].x()};
+  if (quantity_ == "velocity_y") return {P.v[p_].y()};
+  if (quantity_ == "stress_xx") return {P.stress[p_][0]};
+  if (quantity_ == "stress_yy") return {P.stress[p_][1]};
+  return {P.stress[p_][2]};
+}
+
+}  // namespace
+
+std::unique_ptr<PhysicsModel> make_mpm_model(Params body, const CaseContext& ctx) {
+  return std::make_unique<MpmModel>(std::move(body), ctx);
+}
+
+}  // namespace lagfsi

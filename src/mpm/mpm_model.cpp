@@ -39,6 +39,7 @@ namespace lagfsi {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using Vec3 = Eigen::Vector3d;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// Particles of one body (structure of arrays).
@@ -48,6 +49,7 @@ struct Particles {
   std::vector<Mat2> F;
   std::vector<std::array<double, 4>> stress;  // xx, yy, xy, zz
   std::vector<std::array<double, 3>> strain;  // small strain xx, yy, xy (engineering/2: tensor xy)
+  std::vector<double> plastic;                 // accumulated plastic multiplier (equivalent plastic shear)
   size_t size() const { return x.size(); }
 };
 
@@ -67,11 +69,16 @@ class MpmProbe final : public Probe {
       : m_(m), name_(std::move(name)), quantity_(std::move(quantity)), p_(particle) {}
   std::vector<std::string> columns() const override { return {name_}; }
   std::vector<double> sample() const override;
+  void set_line(double x, double band) {
+    x_ = x;
+    band_ = band;
+  }
 
  private:
   const MpmModel& m_;
   std::string name_, quantity_;
   Index p_;
+  double x_ = 0, band_ = 0;
 };
 
 class MpmModel final : public PhysicsModel {
@@ -123,6 +130,10 @@ class MpmModel final : public PhysicsModel {
   std::string name_;
   CaseContext ctx_;
   double rho_ = 0, E_ = 0, nu_ = 0, lambda_ = 0, mu_ = 0;
+  bool plastic_ = false;                      // Mohr-Coulomb (else linear elastic)
+  double cohesion_ = 0, sin_phi_ = 0, cos_phi_ = 1, sin_psi_ = 0;
+  /// Mohr-Coulomb return mapping of a trial stress (xx, yy, xy, zz); returns the plastic multiplier.
+  double return_mapping(std::array<double, 4>& s) const;
   Vec2 origin_ = Vec2::Zero();
   double h_ = 1;
   int nx_ = 0, ny_ = 0, ppc_ = 2;
@@ -178,8 +189,21 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     b.fail("name", "must be a non-empty name without spaces or slashes");
   if (ctx.analysis.type != "dynamic") b.fail("type", "an MPM body needs a dynamic analysis");
   Params mat = b.at("material");
-  mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});
-  mat.choice("type", {"linear_elastic"});
+  if (!mat.json().is_object() || !mat.has("type")) mat.fail("type", "required key is missing");
+  plastic_ = mat.choice("type", {"linear_elastic", "mohr_coulomb"}) == "mohr_coulomb";
+  if (plastic_) {
+    mat.validate({{"type", "mohr_coulomb"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
+                  {"cohesion", 0.0}, {"friction_angle", nullptr}, {"dilatancy_angle", 0.0}});
+    cohesion_ = mat.non_negative("cohesion");
+    const double phi = mat.number("friction_angle"), psi = mat.number("dilatancy_angle");
+    if (!(phi > 0 && phi < 90)) mat.fail("friction_angle", "must lie in (0, 90) degrees");
+    if (!(psi >= 0 && psi <= phi)) mat.fail("dilatancy_angle", "must lie in [0, friction_angle] degrees");
+    sin_phi_ = std::sin(phi * M_PI / 180);
+    cos_phi_ = std::cos(phi * M_PI / 180);
+    sin_psi_ = std::sin(psi * M_PI / 180);
+  } else {
+    mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});
+  }
   E_ = mat.positive("young");
   nu_ = mat.number("poisson");
   rho_ = mat.positive("density");
@@ -246,6 +270,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
         P_.F.push_back(Mat2::Identity());
         P_.stress.push_back({0, 0, 0, 0});
         P_.strain.push_back({0, 0, 0});
+        P_.plastic.push_back(0.0);
       }
     if (P_.size() == before) reg.fail("the region holds no particle of the grid (is it inside the grid?)");
   }
@@ -357,6 +382,64 @@ void MpmModel::support(const Vec2& x, Support& s) const {
     }
 }
 
+double MpmModel::return_mapping(std::array<double, 4>& s) const {
+  // Principal stresses (tension positive): the in-plane pair from the 2 x 2 block, and sigma_zz.
+  const double c = 0.5 * (s[0] + s[1]), r = std::hypot(0.5 * (s[0] - s[1]), s[2]);
+  const double theta = 0.5 * std::atan2(2 * s[2], s[0] - s[1]);  // direction of the larger in-plane value
+  std::array<double, 3> sp = {c + r, c - r, s[3]};               // in-plane max, in-plane min, zz
+  std::array<int, 3> order = {0, 1, 2};                          // indices of s1 >= s2 >= s3
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return sp[a] > sp[b]; });
+  Vec3 sig(sp[order[0]], sp[order[1]], sp[order[2]]);
+  const double k = 2 * cohesion_ * cos_phi_;
+  auto f_main = [&](const Vec3& x) { return (x[0] - x[2]) + (x[0] + x[2]) * sin_phi_ - k; };
+  const double f0 = f_main(sig);
+  if (f0 <= 1e-12 * (std::abs(sig[0]) + std::abs(sig[2]) + k)) return 0.0;
+  // Yield normal m and flow direction n of a plane through (i, j) (i the largest, j the smallest principal).
+  auto plane = [&](int i, int j, Vec3& m, Vec3& n) {
+    m.setZero();
+    n.setZero();
+    m[i] = 1 + sin_phi_;
+    m[j] = -(1 - sin_phi_);
+    n[i] = 1 + sin_psi_;
+    n[j] = -(1 - sin_psi_);
+  };
+  auto D = [&](const Vec3& n) -> Vec3 { return Vec3::Constant(lambda_ * n.sum()) + 2 * mu_ * n; };
+  const double apex = sin_phi_ > 0 ? cohesion_ * cos_phi_ / sin_phi_ : 0.0;  // mean stress at the apex
+  Vec3 m1, n1;
+  plane(0, 2, m1, n1);
+  const Vec3 Dn1 = D(n1);
+  double dgamma = f0 / m1.dot(Dn1);
+  Vec3 out = sig - dgamma * Dn1;
+  if (!(out[0] >= out[1] && out[1] >= out[2])) {
+    // The return left the sextant: two planes are active (an edge), s1 = s2 or s2 = s3 at the end.
+    Vec3 m2, n2;
+    if (out[1] > out[0]) plane(1, 2, m2, n2);  // edge s1 = s2: planes (1, 3) and (2, 3)
+    else plane(0, 1, m2, n2);                  // edge s2 = s3: planes (1, 3) and (1, 2)
+    const Vec3 Dn2 = D(n2);
+    const double f2 = m2.dot(sig) - k;
+    const double a11 = m1.dot(Dn1), a12 = m1.dot(Dn2), a21 = m2.dot(Dn1), a22 = m2.dot(Dn2);
+    const double det = a11 * a22 - a12 * a21;
+    const double g1 = (a22 * f0 - a12 * f2) / det, g2 = (a11 * f2 - a21 * f0) / det;
+    out = sig - g1 * Dn1 - g2 * Dn2;
+    dgamma = g1 + g2;
+    if (!(g1 >= 0 && g2 >= 0)) dgamma = -1;  // no admissible edge return: the apex below
+  }
+  // Beyond the apex (tension past c cot(phi), or an edge return with a negative multiplier): the apex.
+  if (out.sum() / 3 > apex || out[0] > apex + 1e-9 * (std::abs(apex) + 1) || !(dgamma >= 0)) {
+    out = Vec3::Constant(apex);
+    dgamma = std::max(dgamma, 0.0) + (sig - out).norm() / (2 * mu_);
+  }
+  // Back to (xx, yy, xy, zz) with the trial's principal directions.
+  std::array<double, 3> back{};
+  for (int a = 0; a < 3; ++a) back[order[a]] = out[a];
+  const double cc = 0.5 * (back[0] + back[1]), rr = 0.5 * (back[0] - back[1]);
+  s[0] = cc + rr * std::cos(2 * theta);
+  s[1] = cc - rr * std::cos(2 * theta);
+  s[2] = rr * std::sin(2 * theta);
+  s[3] = back[2];
+  return dgamma;
+}
+
 void MpmModel::stress_update(double dt, const std::vector<Vec2>& vgrid) {
   const Index np = static_cast<Index>(P_.size());
 #pragma omp parallel for schedule(static) if (np >= 20000)
@@ -370,10 +453,14 @@ void MpmModel::stress_update(double dt, const std::vector<Vec2>& vgrid) {
     const double dxx = dt * L(0, 0), dyy = dt * L(1, 1), dxy = 0.5 * dt * (L(0, 1) + L(1, 0));
     const double tr = dxx + dyy;
     auto& sg = P_.stress[p];
-    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
-    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
-    sg[2] += 2 * mu_ * dxy;
+    // Jaumann rate: the stress turns with the spin W = (L - L^T)/2, w = W_xy dt (sigma += W sigma - sigma W).
+    const double w = 0.5 * dt * (L(0, 1) - L(1, 0));
+    const double rxx = 2 * w * sg[2], rxy = w * (sg[1] - sg[0]);
+    sg[0] += lambda_ * tr + 2 * mu_ * dxx + rxx;
+    sg[1] += lambda_ * tr + 2 * mu_ * dyy - rxx;
+    sg[2] += 2 * mu_ * dxy + rxy;
     sg[3] += lambda_ * tr;
+    if (plastic_) P_.plastic[p] += return_mapping(sg);
     auto& e = P_.strain[p];
     e[0] += dxx;
     e[1] += dyy;
@@ -557,7 +644,8 @@ void MpmModel::write_output(double t) {
   if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
   VtpData d;
   d.points = P_.x;
-  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, s{"stress", 4, {}}, vol{"volume", 1, {}};
+  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, s{"stress", 4, {}}, vol{"volume", 1, {}},
+      pl{"plastic_multiplier", 1, {}};
   for (size_t p = 0; p < P_.size(); ++p) {
     for (int c = 0; c < 2; ++c) {
       u.values.push_back(P_.x[p][c] - P_.X[p][c]);
@@ -565,8 +653,9 @@ void MpmModel::write_output(double t) {
     }
     for (double x : P_.stress[p]) s.values.push_back(x);
     vol.values.push_back(P_.volume[p]);
+    pl.values.push_back(P_.plastic[p]);
   }
-  d.point_fields = {u, v, s, vol};
+  d.point_fields = {u, v, s, vol, pl};
   series_->write(t, d);
   if (particles_csv_) {
     const auto path = ctx_.out_dir / (name_ + "_particles.csv");
@@ -587,7 +676,17 @@ void MpmModel::write_output(double t) {
 }
 
 std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
-  const std::string t = p.choice("type", {"particle", "energy"});
+  const std::string t = p.choice("type", {"particle", "energy", "front", "height"});
+  if (t == "front") {  // the largest x of any particle (a run-out)
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    return std::make_unique<MpmProbe>(*this, p.string("name"), "front", -1);
+  }
+  if (t == "height") {  // the largest y of the particles within `band` of the vertical line x
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h_ / ppc_}});
+    auto probe = std::make_unique<MpmProbe>(*this, p.string("name"), "height", -1);
+    probe->set_line(p.number("x"), p.positive("band"));
+    return probe;
+  }
   if (t == "energy") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
     return std::make_unique<MpmProbe>(*this, p.string("name"),
@@ -607,6 +706,14 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
 
 std::vector<double> MpmProbe::sample() const {
   const Particles& P = m_.particles();
+  if (quantity_ == "front" || quantity_ == "height") {
+    double best = -std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < P.size(); ++k) {
+      if (quantity_ == "front") best = std::max(best, P.x[k].x());
+      else if (std::abs(P.x[k].x() - x_) <= band_) best = std::max(best, P.x[k].y());
+    }
+    return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+  }
   if (p_ < 0) {
     if (quantity_ == "kinetic") return {m_.kinetic_energy()};
     if (quantity_ == "strain") return {m_.strain_energy()};

@@ -50,6 +50,7 @@ struct Particles {
   std::vector<std::array<double, 4>> stress;  // xx, yy, xy, zz
   std::vector<std::array<double, 3>> strain;  // small strain xx, yy, xy (engineering/2: tensor xy)
   std::vector<double> plastic;                 // accumulated plastic multiplier (equivalent plastic shear)
+  std::vector<std::array<double, 3>> rate;     // last strain rate xx, yy, xy
   size_t size() const { return x.size(); }
 };
 
@@ -140,6 +141,7 @@ class MpmModel final : public PhysicsModel {
   bool gimp_ = false;
   std::string update_ = "musl";
   double cfl_ = 0.5, local_damping_ = 0;
+  double damp_mass_ = 0, damp_stiff_ = 0;  // Rayleigh: alpha M v on the grid, beta C : (strain rate) on the particles
   bool gravity_ = true;
   bool particles_csv_ = false;  // also write <out>/<name>_particles.csv (the particles at the last output)
   std::vector<std::pair<Index, int>> fixed_;  // grid node, component
@@ -231,9 +233,11 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   gravity_ = b.boolean("gravity");
   particles_csv_ = b.boolean("particles_csv");
   Params d = b.at("damping");
-  d.validate({{"local", 0.0}});
+  d.validate({{"local", 0.0}, {"mass", 0.0}, {"stiffness", 0.0}});
   local_damping_ = d.non_negative("local");
   if (local_damping_ >= 1) d.fail("local", "must lie in [0, 1)");
+  damp_mass_ = d.non_negative("mass");
+  damp_stiff_ = d.non_negative("stiffness");
 
   // Particles: n x n per cell, at the centres of the sub-cells that lie in a region.
   Params regions = b.at("regions");
@@ -271,6 +275,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
         P_.stress.push_back({0, 0, 0, 0});
         P_.strain.push_back({0, 0, 0});
         P_.plastic.push_back(0.0);
+        P_.rate.push_back({0, 0, 0});
       }
     if (P_.size() == before) reg.fail("the region holds no particle of the grid (is it inside the grid?)");
   }
@@ -451,6 +456,7 @@ void MpmModel::stress_update(double dt, const std::vector<Vec2>& vgrid) {
     const Mat2& F = P_.F[p];
     P_.volume[p] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[p];
     const double dxx = dt * L(0, 0), dyy = dt * L(1, 1), dxy = 0.5 * dt * (L(0, 1) + L(1, 0));
+    P_.rate[p] = {L(0, 0), L(1, 1), 0.5 * (L(0, 1) + L(1, 0))};  // for the stiffness-proportional damping
     const double tr = dxx + dyy;
     auto& sg = P_.stress[p];
     // Jaumann rate: the stress turns with the spin W = (L - L^T)/2, w = W_xy dt (sigma += W sigma - sigma W).
@@ -503,7 +509,14 @@ void MpmModel::scatter(bool momentum, bool force) {
       const Support& sp = sup_[p];
       const double mp = P_.mass[p];
       const Vec2 mvp = mp * P_.v[p];
-      const auto& sg = P_.stress[p];
+      std::array<double, 4> sg = P_.stress[p];
+      if (damp_stiff_ > 0) {  // Rayleigh stiffness-proportional damping: the viscous stress beta C : D
+        const auto& r = P_.rate[p];
+        const double tr = r[0] + r[1];
+        sg[0] += damp_stiff_ * (lambda_ * tr + 2 * mu_ * r[0]);
+        sg[1] += damp_stiff_ * (lambda_ * tr + 2 * mu_ * r[1]);
+        sg[2] += damp_stiff_ * 2 * mu_ * r[2];
+      }
       const double V = P_.volume[p];
       for (int k = 0; k < sp.n; ++k) {
         const Index I = sp.node[k];
@@ -568,9 +581,11 @@ void MpmModel::substep(double dt) {
     scatter(true, true);
     apply_fixed(gp_);
   }
-  // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force.
+  // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force;
+  // Rayleigh mass-proportional damping is the force -alpha m_I v_I.
   for (size_t i = 0; i < nn; ++i) {
     if (!(gm_[i] > 0)) continue;
+    if (damp_mass_ > 0) gf_[i] -= damp_mass_ * gp_[i];
     if (local_damping_ > 0) {
       const Vec2 v = gp_[i] / gm_[i];
       for (int c = 0; c < 2; ++c)

@@ -20,6 +20,7 @@
 // P-wave speed (explicit, conditionally stable). The grid is reset every sub-step.
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/time_function.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include <algorithm>
@@ -51,6 +52,10 @@ struct Particles {
   std::vector<std::array<double, 3>> strain;  // small strain xx, yy, xy (engineering/2: tensor xy)
   std::vector<double> plastic;                 // accumulated plastic multiplier (equivalent plastic shear)
   std::vector<std::array<double, 3>> rate;     // last strain rate xx, yy, xy
+  // Two-phase (saturated) bodies: porosity, water velocity, pore pressure (tension positive, as in the
+  // formulation; output as compression-positive "pore_pressure").
+  std::vector<double> n, p;
+  std::vector<Vec2> w;
   size_t size() const { return x.size(); }
 };
 
@@ -121,6 +126,18 @@ class MpmModel final : public PhysicsModel {
  private:
   void support(const Vec2& x, Support& s) const;
   void substep(double dt);
+  /// One explicit step of the saturated (v-w) formulation (seed 000 sec. 3.5-3.6; digest 2.8).
+  void substep_two_phase(double dt);
+  /// Adds the particle loads at the current time to grid forces f.
+  void add_loads(std::vector<Vec2>& f) const {
+    for (const auto& l : loads_) {
+      const Vec2 F = l.fn->value(t_) * l.force;
+      for (Index q : l.particles) {
+        const Support& sp = sup_[q];
+        for (int k = 0; k < sp.n; ++k) f[sp.node[k]] += sp.N[k] * F;
+      }
+    }
+  }
   /// Particles to grid: mass and momentum, and/or forces (internal and gravity).
   void scatter(bool momentum, bool force);
   void stress_update(double dt, const std::vector<Vec2>& vgrid);
@@ -146,6 +163,18 @@ class MpmModel final : public PhysicsModel {
   bool particles_csv_ = false;  // also write <out>/<name>_particles.csv (the particles at the last output)
   std::vector<std::pair<Index, int>> fixed_;  // grid node, component
   Particles P_;
+  // Two-phase: water density, bulk modulus, hydraulic conductivity (m/s); grains incompressible.
+  bool two_phase_ = false;
+  double rho_w_ = 1000, K_w_ = 2.2e9, k_hyd_ = 1e-3;
+  std::vector<double> gms_, gmw_, gmwn_, gq_;      // grid: solid mass, water mass, n * water mass, drag
+  std::vector<Vec2> gps_, gpw_, gfs_, gfw_, gvs_, gvw_, gas_, gaw_;
+  /// Particle forces (total force split over the selected particles) scaled by a function of time.
+  struct ParticleLoad {
+    std::vector<Index> particles;
+    Vec2 force;
+    std::shared_ptr<TimeFunction> fn;
+  };
+  std::vector<ParticleLoad> loads_;
   std::vector<double> gm_;
   std::vector<Vec2> gp_, gf_, gv_;
   std::vector<Support> sup_;
@@ -185,6 +214,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_state", Json{{"type", "given"}}},
               {"initial_stress", Json{{"type", "zero"}}},
               {"particles_csv", false},
+              {"two_phase", nullptr},
+              {"loads", Json::array()},
               {"gravity", true}});
   name_ = b.string("name");
   if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
@@ -276,6 +307,9 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
         P_.strain.push_back({0, 0, 0});
         P_.plastic.push_back(0.0);
         P_.rate.push_back({0, 0, 0});
+        P_.n.push_back(0.0);
+        P_.p.push_back(0.0);
+        P_.w.push_back(Vec2::Zero());
       }
     if (P_.size() == before) reg.fail("the region holds no particle of the grid (is it inside the grid?)");
   }
@@ -309,6 +343,50 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     }
   } else {
     st.validate({{"type", "zero"}});
+  }
+
+  // Saturated soil: the material's density is the grains'; the particle carries water (porosity n).
+  if (!b.at("two_phase").is_null()) {
+    Params tp = b.at("two_phase");
+    tp.validate({{"porosity", nullptr}, {"water_density", 1000.0}, {"water_bulk_modulus", 2.2e9},
+                 {"hydraulic_conductivity", nullptr}, {"initial_pore_pressure", Json{{"type", "zero"}}}});
+    two_phase_ = true;
+    const double n0 = tp.number("porosity");
+    if (!(n0 > 0 && n0 < 1)) tp.fail("porosity", "must lie in (0, 1)");
+    rho_w_ = tp.positive("water_density");
+    K_w_ = tp.positive("water_bulk_modulus");
+    k_hyd_ = tp.positive("hydraulic_conductivity");
+    if (plastic_ || update_ != "musl") tp.fail("two-phase bodies are linear elastic with the MUSL update in this version");
+    Params ip = tp.at("initial_pore_pressure");
+    if (!ip.has("type")) ip.fail("type", "required key is missing");
+    double level = 0;
+    const bool hydro = ip.choice("type", {"zero", "hydrostatic"}) == "hydrostatic";
+    if (hydro) {
+      ip.validate({{"type", "hydrostatic"}, {"level", nullptr}});
+      level = ip.number("level");
+    } else {
+      ip.validate({{"type", "zero"}});
+    }
+    for (size_t q = 0; q < P_.size(); ++q) {
+      P_.n[q] = n0;
+      P_.mass[q] = ((1 - n0) * rho_ + n0 * rho_w_) * P_.volume0[q];  // saturated mass (probes, energy)
+      // Tension positive: a hydrostatic pressure is negative below the level.
+      if (hydro) P_.p[q] = std::min(0.0, rho_w_ * ctx.gravity.y() * (level - P_.x[q].y()));
+    }
+  }
+
+  // Loads on particles: the total force split equally over the particles whose reference position the
+  // selection picks, times a function of time.
+  Params loads = b.at("loads");
+  for (size_t i = 0; i < loads.size(); ++i) {
+    Params l = loads.at(i);
+    l.validate({{"type", "particle_force"}, {"select", nullptr}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}});
+    l.choice("type", {"particle_force"});
+    ParticleLoad pl;
+    pl.particles = select_nodes(l.at("select"), P_.X);
+    pl.force = l.vec2("value") / static_cast<double>(pl.particles.size());
+    pl.fn = make_time_function(l.at("function"), ctx.base_dir);
+    loads_.push_back(std::move(pl));
   }
 
   // Grid boundary conditions: fixed components of the selected grid nodes.
@@ -581,6 +659,7 @@ void MpmModel::substep(double dt) {
     scatter(true, true);
     apply_fixed(gp_);
   }
+  add_loads(gf_);
   // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force;
   // Rayleigh mass-proportional damping is the force -alpha m_I v_I.
   for (size_t i = 0; i < nn; ++i) {
@@ -633,14 +712,149 @@ void MpmModel::substep(double dt) {
 
 void MpmModel::initialize() { t_ = 0; }
 
+void MpmModel::substep_two_phase(double dt) {
+  // Seed 000 eqs. 3.52-3.84 with the digest's sign fixes: p is tension positive, sigma = sigma' + p I.
+  //   water:  m_w a_w = F_w,grav - F_w,int - Q (w - v),   F_w,int = sum V_p p_p grad N,  q = sum n m_w g / k N
+  //   solid:  m_s a_s = -mbar_w a_w + F_grav + F_trac - F_int,   F_int = sum V_p sigma_p grad N (total stress)
+  //   then particle velocities (FLIP), MUSL re-map of both velocities, positions with the solid's, and
+  //   p += dt (K_w / n) [(1 - n) div v + n div w], n from the volume change (incompressible grains).
+  const Index np = static_cast<Index>(P_.size());
+  const size_t nn = gm_.size();
+  sup_.resize(np);
+  for (Index q = 0; q < np; ++q) {
+    const Vec2& x = P_.x[q];
+    if (!(x.x() >= origin_.x() && x.y() >= origin_.y() && x.x() <= origin_.x() + nx_ * h_ && x.y() <= origin_.y() + ny_ * h_))
+      throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " left the grid at t = " + std::to_string(t_));
+    support(x, sup_[q]);
+  }
+  auto zero = [nn](std::vector<Vec2>& a) { a.assign(nn, Vec2::Zero()); };
+  gms_.assign(nn, 0.0);
+  gmw_.assign(nn, 0.0);
+  gmwn_.assign(nn, 0.0);
+  gq_.assign(nn, 0.0);
+  zero(gps_), zero(gpw_), zero(gfs_), zero(gfw_);
+  const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    const double n = P_.n[q], V = P_.volume[q], V0 = P_.volume0[q];
+    const double ms = rho_ * V0, mw = rho_w_ * V0;  // the particle's grain and water mass scales
+    const auto& sg = P_.stress[q];
+    const double pw = P_.p[q];
+    for (int k = 0; k < sp.n; ++k) {
+      const Index I = sp.node[k];
+      const double N = sp.N[k];
+      const Vec2& d = sp.dN[k];
+      gms_[I] += N * (1 - n) * ms;
+      gmw_[I] += N * mw;
+      gmwn_[I] += N * n * mw;
+      gq_[I] += N * n * mw * std::abs(g.norm() > 0 ? g.norm() : 9.81) / k_hyd_;
+      gps_[I] += N * (1 - n) * ms * P_.v[q];
+      gpw_[I] += N * n * mw * P_.w[q];
+      const double sxx = sg[0] + pw, syy = sg[1] + pw;  // total stress
+      gfs_[I] += N * ((1 - n) * ms + n * mw) * g - V * Vec2(sxx * d.x() + sg[2] * d.y(), sg[2] * d.x() + syy * d.y());
+      gfw_[I] += N * mw * g - V * pw * d;
+    }
+  }
+  // Particle loads act on the mixture.
+  add_loads(gfs_);
+  gvs_.assign(nn, Vec2::Zero());
+  gvw_.assign(nn, Vec2::Zero());
+  gas_.assign(nn, Vec2::Zero());
+  gaw_.assign(nn, Vec2::Zero());
+  for (size_t I = 0; I < nn; ++I) {
+    if (!(gms_[I] > 0)) continue;
+    gvs_[I] = gps_[I] / gms_[I];
+    gvw_[I] = gpw_[I] / gmwn_[I];
+  }
+  apply_fixed(gvs_);
+  apply_fixed(gvw_);
+  for (size_t I = 0; I < nn; ++I) {
+    if (!(gms_[I] > 0)) continue;
+    // The drag is stiff for low conductivity: treated implicitly in w (semi-implicit: the w of the drag at the
+    // end of the step), m_w a_w = F - Q (w + dt a_w - v).
+    const Vec2 F = gfw_[I] - gq_[I] * (gvw_[I] - gvs_[I]);
+    gaw_[I] = F / (gmw_[I] + dt * gq_[I]);
+    gas_[I] = (gfs_[I] - gmwn_[I] * gaw_[I]) / gms_[I];
+  }
+  apply_fixed(gas_);
+  apply_fixed(gaw_);
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    Vec2 as = Vec2::Zero(), aw = Vec2::Zero();
+    for (int k = 0; k < sp.n; ++k) {
+      as += sp.N[k] * gas_[sp.node[k]];
+      aw += sp.N[k] * gaw_[sp.node[k]];
+    }
+    P_.v[q] += dt * as;
+    P_.w[q] += dt * aw;
+  }
+  // MUSL re-map of both velocities from the updated particles.
+  zero(gps_), zero(gpw_);
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    const double n = P_.n[q], ms = rho_ * P_.volume0[q], mw = rho_w_ * P_.volume0[q];
+    for (int k = 0; k < sp.n; ++k) {
+      gps_[sp.node[k]] += sp.N[k] * (1 - n) * ms * P_.v[q];
+      gpw_[sp.node[k]] += sp.N[k] * n * mw * P_.w[q];
+    }
+  }
+  for (size_t I = 0; I < nn; ++I) {
+    gvs_[I] = gms_[I] > 0 ? Vec2(gps_[I] / gms_[I]) : Vec2::Zero();
+    gvw_[I] = gmwn_[I] > 0 ? Vec2(gpw_[I] / gmwn_[I]) : Vec2::Zero();
+  }
+  apply_fixed(gvs_);
+  apply_fixed(gvw_);
+  double gw = 0;
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    Vec2 v = Vec2::Zero();
+    Mat2 Ls = Mat2::Zero();
+    double divw = 0;
+    for (int k = 0; k < sp.n; ++k) {
+      v += sp.N[k] * gvs_[sp.node[k]];
+      Ls += gvs_[sp.node[k]] * sp.dN[k].transpose();
+      divw += gvw_[sp.node[k]].dot(sp.dN[k]);
+    }
+    const Vec2 dx = dt * v;
+    P_.x[q] += dx;
+    gw += P_.mass[q] * g.dot(dx);
+    // Effective stress (linear elastic), pore pressure, porosity, volume.
+    const double dxx = dt * Ls(0, 0), dyy = dt * Ls(1, 1), dxy = 0.5 * dt * (Ls(0, 1) + Ls(1, 0));
+    const double tr = dxx + dyy;
+    auto& sg = P_.stress[q];
+    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
+    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
+    sg[2] += 2 * mu_ * dxy;
+    sg[3] += lambda_ * tr;
+    auto& e = P_.strain[q];
+    e[0] += dxx;
+    e[1] += dyy;
+    e[2] += dxy;
+    const double n = P_.n[q];
+    P_.p[q] += dt * (K_w_ / n) * ((1 - n) * (Ls(0, 0) + Ls(1, 1)) + n * divw);
+    P_.F[q] = (Mat2::Identity() + dt * Ls) * P_.F[q];
+    const Mat2& F = P_.F[q];
+    const double J = F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0);
+    const double V_old = P_.volume[q];
+    P_.volume[q] = J * P_.volume0[q];
+    P_.n[q] = 1 - (1 - n) * V_old / P_.volume[q];
+    if (!(P_.volume[q] > 0) || !std::isfinite(P_.p[q]) || !(P_.n[q] > 0 && P_.n[q] < 1))
+      throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " inverted or non-finite at t = " +
+                        std::to_string(t_));
+  }
+  gravity_work_ += gw;
+}
+
 IterationReport MpmModel::solve_iteration() {
   const auto t0 = Clock::now();
-  const double c = std::sqrt((lambda_ + 2 * mu_) / rho_);
+  const double rho_sat = two_phase_ ? (1 - P_.n[0]) * rho_ + P_.n[0] * rho_w_ : rho_;
+  const double c = std::sqrt((lambda_ + 2 * mu_ + (two_phase_ ? K_w_ / P_.n[0] : 0.0)) / rho_sat);
   const double dt_max = cfl_ * h_ / c;
   const int n = std::max(1, static_cast<int>(std::ceil(dt_ / dt_max * (1 - 1e-12))));
   const double dt = dt_ / n;
   for (int k = 0; k < n; ++k) {
-    substep(dt);
+    if (two_phase_) substep_two_phase(dt);
+    else substep(dt);
     t_ += dt;
   }
   t_ = t_new_;
@@ -660,7 +874,7 @@ void MpmModel::write_output(double t) {
   VtpData d;
   d.points = P_.x;
   Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, s{"stress", 4, {}}, vol{"volume", 1, {}},
-      pl{"plastic_multiplier", 1, {}};
+      pl{"plastic_multiplier", 1, {}}, pw{"pore_pressure", 1, {}};
   for (size_t p = 0; p < P_.size(); ++p) {
     for (int c = 0; c < 2; ++c) {
       u.values.push_back(P_.x[p][c] - P_.X[p][c]);
@@ -669,8 +883,10 @@ void MpmModel::write_output(double t) {
     for (double x : P_.stress[p]) s.values.push_back(x);
     vol.values.push_back(P_.volume[p]);
     pl.values.push_back(P_.plastic[p]);
+    pw.values.push_back(-P_.p[p]);
   }
   d.point_fields = {u, v, s, vol, pl};
+  if (two_phase_) d.point_fields.push_back(pw);
   series_->write(t, d);
   if (particles_csv_) {
     const auto path = ctx_.out_dir / (name_ + "_particles.csv");
@@ -678,11 +894,11 @@ void MpmModel::write_output(double t) {
     {
       std::ofstream o(tmp);
       if (!o) throw std::runtime_error("cannot write " + tmp);
-      o << "# " << name_ << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume\n" << std::setprecision(12);
+      o << "# " << name_ << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume,pore_pressure\n" << std::setprecision(12);
       for (size_t p = 0; p < P_.size(); ++p) {
         const auto& sg = P_.stress[p];
         o << P_.X[p].x() << "," << P_.X[p].y() << "," << P_.x[p].x() << "," << P_.x[p].y() << "," << P_.v[p].x() << ","
-          << P_.v[p].y() << "," << sg[0] << "," << sg[1] << "," << sg[2] << "," << sg[3] << "," << P_.volume[p] << "\n";
+          << P_.v[p].y() << "," << sg[0] << "," << sg[1] << "," << sg[2] << "," << sg[3] << "," << P_.volume[p] << "," << -P_.p[p] << "\n";
       }
     }
     std::filesystem::rename(tmp, path);
@@ -691,7 +907,12 @@ void MpmModel::write_output(double t) {
 }
 
 std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
-  const std::string t = p.choice("type", {"particle", "energy", "front", "height"});
+  const std::string t = p.choice("type", {"particle", "energy", "front", "height", "mean_pore_pressure"});
+  if (t == "mean_pore_pressure") {  // sum p V / sum V over the body (compression positive)
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    if (!two_phase_) p.fail("type", "body '" + name_ + "' is not two-phase");
+    return std::make_unique<MpmProbe>(*this, p.string("name"), "mean_pore_pressure", -1);
+  }
   if (t == "front") {  // the largest x of any particle (a run-out)
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
     return std::make_unique<MpmProbe>(*this, p.string("name"), "front", -1);
@@ -710,7 +931,7 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   // The particle nearest to a reference position.
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"quantity", "displacement_y"}});
   const std::string q = p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y",
-                                              "stress_xx", "stress_yy", "stress_xy"});
+                                              "stress_xx", "stress_yy", "stress_xy", "pore_pressure"});
   const Vec2 at = p.vec2("at");
   Index best = 0;
   for (size_t k = 1; k < P_.size(); ++k)
@@ -721,6 +942,14 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
 
 std::vector<double> MpmProbe::sample() const {
   const Particles& P = m_.particles();
+  if (quantity_ == "mean_pore_pressure") {
+    double pv = 0, v = 0;
+    for (size_t k = 0; k < P.size(); ++k) {
+      pv -= P.p[k] * P.volume[k];
+      v += P.volume[k];
+    }
+    return {pv / v};
+  }
   if (quantity_ == "front" || quantity_ == "height") {
     double best = -std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < P.size(); ++k) {
@@ -741,6 +970,7 @@ std::vector<double> MpmProbe::sample() const {
   if (quantity_ == "velocity_y") return {P.v[p_].y()};
   if (quantity_ == "stress_xx") return {P.stress[p_][0]};
   if (quantity_ == "stress_yy") return {P.stress[p_][1]};
+  if (quantity_ == "pore_pressure") return {-P.p[p_]};  // compression positive
   return {P.stress[p_][2]};
 }
 

@@ -148,3 +148,61 @@ TEST(MpmColumn, SettlementAndStressConvergeToTheAnalyticSolution) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace lagfsi::testing;
+
+TEST(MpmTwoPhase, TerzaghiConsolidation) {
+  // Average degree of consolidation U = 1 - mean pore pressure / p0 within 3 % of Terzaghi's series at
+  // Tv = 0.05, 0.197, 0.5, 0.848 (measured -0.97, -0.22, -0.07, -0.03 %; c_v = 1.019 m2/s, H = 1 m).
+  const auto r = run_case_1thread("cases/mpm_consolidation/case.json", "mpm_terzaghi", {"output.every=500"});
+  const Csv c = probes_of(r);
+  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/mpm_consolidation/reference/mpm_terzaghi_average_consolidation.csv");
+  const double cv = 1e-3 * 1e7 / (1000 * 9.81);
+  for (double tv : {0.05, 0.197, 0.5, 0.848}) {
+    const double U = 1 - interp(c["time"], c["p_mean"], tv / cv) / 1e4;
+    const double Ua = interp(ref["Tv"], ref["U_avg"], tv);
+    EXPECT_NEAR(U, Ua, 0.03 * Ua) << "Tv = " << tv;
+  }
+  // Isochrone at t = 0.2 s (Tv = 0.204): every particle's pore pressure within 3 % of p0 of the series
+  // (measured 1.7 %).
+  const auto r2 = run_case_1thread("cases/mpm_consolidation/case.json", "mpm_terzaghi_isochrone", {"analysis.end_time=0.2"});
+  ASSERT_EQ(r2.exit_code, 0) << r2.stderr_text;
+  const Csv pc = read_csv(r2.out_dir / "soil_particles.csv");
+  const double tv = cv * 0.2;
+  double worst = 0;
+  for (size_t i = 0; i < pc.rows(); ++i) {
+    const double Z = 1.0 - pc["Y"][i];
+    double s = 0;
+    for (int m = 0; m < 400; ++m) {
+      const double M = M_PI * (2 * m + 1) / 2;
+      s += 2 / M * std::sin(M * Z) * std::exp(-M * M * tv);
+    }
+    worst = std::max(worst, std::abs(pc["pore_pressure"][i] / 1e4 - s));
+  }
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST(MpmTwoPhase, SaturatedSquareReachesHydrostatic) {
+  // Seed 000 example 2: after 1 s the pore pressure is hydrostatic at the cell centres (measured within 0.02 %
+  // of gamma_w H) and extrapolates to 10 kPa at the base within 2 % (measured 10 001 Pa).
+  const auto r = run_case_1thread("cases/mpm_saturated_square/case.json", "mpm_saturated_square", {"output.every=1000"});
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv c = read_csv(r.out_dir / "square_particles.csv");
+  const double gw = 1019.37 * 9.81, h = 0.1;
+  std::vector<double> sum(10, 0.0), count(10, 0.0);
+  for (size_t i = 0; i < c.rows(); ++i) {
+    const int row = std::min(9, static_cast<int>(c["Y"][i] / h));
+    sum[row] += c["pore_pressure"][i];
+    count[row] += 1;
+  }
+  for (int row = 0; row < 10; ++row) {
+    ASSERT_GT(count[row], 0);
+    EXPECT_NEAR(sum[row] / count[row], gw * (1.0 - (row + 0.5) * h), 0.01 * gw) << "cell row " << row;
+  }
+  const double p0 = sum[0] / count[0], p1 = sum[1] / count[1];
+  EXPECT_NEAR(p0 + (p0 - p1) / 2, 10000.0, 200.0);
+}
+
+}  // namespace

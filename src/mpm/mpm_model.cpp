@@ -56,6 +56,7 @@ struct Particles {
   // formulation; output as compression-positive "pore_pressure").
   std::vector<double> n, p;
   std::vector<Vec2> w;
+  std::vector<Vec2> a;  // last acceleration (grid to particle)
   size_t size() const { return x.size(); }
 };
 
@@ -162,6 +163,18 @@ class MpmModel final : public PhysicsModel {
   bool gravity_ = true;
   bool particles_csv_ = false;  // also write <out>/<name>_particles.csv (the particles at the last output)
   std::vector<std::pair<Index, int>> fixed_;  // grid node, component
+  /// Grid node components that move with a prescribed velocity: value * f(t), or value * int_0^t f for a
+  /// prescribed acceleration f (a base accelerogram).
+  struct PrescribedMotion {
+    Index node;
+    int comp;
+    double value;
+    std::shared_ptr<TimeFunction> fn;
+    bool acceleration;
+    double velocity(double t) const { return value * (acceleration ? fn->integral(t) : fn->value(t)); }
+  };
+  std::vector<PrescribedMotion> moving_;
+  double local_until_ = std::numeric_limits<double>::infinity();  // local damping only before this time
   Particles P_;
   // Two-phase: water density, bulk modulus, hydraulic conductivity (m/s); grains incompressible.
   bool two_phase_ = false;
@@ -214,7 +227,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_state", Json{{"type", "given"}}},
               {"initial_stress", Json{{"type", "zero"}}},
               {"particles_csv", false},
-              {"two_phase", nullptr},
+              {"two_phase", Json::object()},
               {"loads", Json::array()},
               {"gravity", true}});
   name_ = b.string("name");
@@ -264,7 +277,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   gravity_ = b.boolean("gravity");
   particles_csv_ = b.boolean("particles_csv");
   Params d = b.at("damping");
-  d.validate({{"local", 0.0}, {"mass", 0.0}, {"stiffness", 0.0}});
+  d.validate({{"local", 0.0}, {"local_until", 1e30}, {"mass", 0.0}, {"stiffness", 0.0}});
+  local_until_ = d.number("local_until");
   local_damping_ = d.non_negative("local");
   if (local_damping_ >= 1) d.fail("local", "must lie in [0, 1)");
   damp_mass_ = d.non_negative("mass");
@@ -310,6 +324,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
         P_.n.push_back(0.0);
         P_.p.push_back(0.0);
         P_.w.push_back(Vec2::Zero());
+        P_.a.push_back(Vec2::Zero());
       }
     if (P_.size() == before) reg.fail("the region holds no particle of the grid (is it inside the grid?)");
   }
@@ -346,7 +361,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   }
 
   // Saturated soil: the material's density is the grains'; the particle carries water (porosity n).
-  if (!b.at("two_phase").is_null()) {
+  if (!b.at("two_phase").json().empty()) {
     Params tp = b.at("two_phase");
     tp.validate({{"porosity", nullptr}, {"water_density", 1000.0}, {"water_bulk_modulus", 2.2e9},
                  {"hydraulic_conductivity", nullptr}, {"initial_pore_pressure", Json{{"type", "zero"}}}});
@@ -396,13 +411,26 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   Params bcs = b.at("boundary_conditions");
   for (size_t i = 0; i < bcs.size(); ++i) {
     Params bc = bcs.at(i);
-    bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
-    bc.choice("type", {"fixed"});
-    const std::string comps = bc.choice("components", {"x", "y", "xy"});
-    for (Index n : select_nodes(bc.at("select"), nodes)) {
-      if (comps != "y") fixed_.push_back({n, 0});
-      if (comps != "x") fixed_.push_back({n, 1});
+    if (!bc.json().is_object() || !bc.has("type")) bc.fail("type", "required key is missing");
+    const std::string type = bc.choice("type", {"fixed", "prescribed_velocity", "prescribed_acceleration"});
+    if (type == "fixed") {
+      bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
+      const std::string comps = bc.choice("components", {"x", "y", "xy"});
+      for (Index n : select_nodes(bc.at("select"), nodes)) {
+        if (comps != "y") fixed_.push_back({n, 0});
+        if (comps != "x") fixed_.push_back({n, 1});
+      }
+      continue;
     }
+    // The selected nodes move with value * f(t) (velocity) or value * int f (acceleration); both components
+    // whose value is non-zero are prescribed, and "fixed" other components stay fixed.
+    bc.validate({{"type", type}, {"select", nullptr}, {"value", nullptr}, {"function", nullptr}});
+    if (two_phase_) bc.fail("type", "prescribed motion of two-phase bodies is not available in this version");
+    const Vec2 value = bc.vec2("value");
+    std::shared_ptr<TimeFunction> fn = make_time_function(bc.at("function"), ctx.base_dir);
+    for (Index n : select_nodes(bc.at("select"), nodes))
+      for (int c = 0; c < 2; ++c)
+        if (value[c] != 0.0) moving_.push_back({n, c, value[c], fn, type == "prescribed_acceleration"});
   }
   const size_t nn = nodes.size();
   gm_.assign(nn, 0.0);
@@ -665,7 +693,7 @@ void MpmModel::substep(double dt) {
   for (size_t i = 0; i < nn; ++i) {
     if (!(gm_[i] > 0)) continue;
     if (damp_mass_ > 0) gf_[i] -= damp_mass_ * gp_[i];
-    if (local_damping_ > 0) {
+    if (local_damping_ > 0 && t_ < local_until_) {
       const Vec2 v = gp_[i] / gm_[i];
       for (int c = 0; c < 2; ++c)
         if (v[c] != 0.0) gf_[i][c] -= local_damping_ * std::abs(gf_[i][c]) * (v[c] > 0 ? 1.0 : -1.0);
@@ -678,6 +706,14 @@ void MpmModel::substep(double dt) {
     gv_[i] = gp_[i] / gm_[i];
   }
   apply_fixed(gv_);
+  // Prescribed motion: the node's velocity at the end of the sub-step; its force is what that takes.
+  for (const auto& m : moving_) {
+    if (!(gm_[m.node] > 0)) continue;
+    const double v1 = m.velocity(t_ + dt);
+    gf_[m.node][m.comp] += gm_[m.node] * (v1 - gv_[m.node][m.comp]) / dt;
+    gv_[m.node][m.comp] = v1;
+    gp_[m.node][m.comp] = gm_[m.node] * v1;
+  }
   // Grid to particles: FLIP velocity, positions with the grid velocity.
   double gw = 0;
 #pragma omp parallel for schedule(static) if (np >= 20000) reduction(+ : gw)
@@ -691,6 +727,7 @@ void MpmModel::substep(double dt) {
       v += s.N[k] * gv_[I];
     }
     P_.v[p] += dt * a;
+    P_.a[p] = a;
     const Vec2 dx = dt * v;
     P_.x[p] += dx;
     gw += P_.mass[p] * g.dot(dx);
@@ -700,6 +737,7 @@ void MpmModel::substep(double dt) {
     scatter(true, false);
     for (size_t i = 0; i < nn; ++i) gv_[i] = gm_[i] > 0 ? Vec2(gp_[i] / gm_[i]) : Vec2::Zero();
     apply_fixed(gv_);
+    for (const auto& m : moving_) gv_[m.node][m.comp] = m.velocity(t_ + dt);
   }
   if (update_ != "usf") stress_update(dt, gv_);
   for (Index p = 0; p < np; ++p)
@@ -931,7 +969,8 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   // The particle nearest to a reference position.
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"quantity", "displacement_y"}});
   const std::string q = p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y",
-                                              "stress_xx", "stress_yy", "stress_xy", "pore_pressure"});
+                                              "stress_xx", "stress_yy", "stress_xy", "pore_pressure",
+                                              "acceleration_x", "acceleration_y"});
   const Vec2 at = p.vec2("at");
   Index best = 0;
   for (size_t k = 1; k < P_.size(); ++k)
@@ -968,6 +1007,8 @@ std::vector<double> MpmProbe::sample() const {
   if (quantity_ == "displacement_y") return {P.x[p_].y() - P.X[p_].y()};
   if (quantity_ == "velocity_x") return {P.v[p_].x()};
   if (quantity_ == "velocity_y") return {P.v[p_].y()};
+  if (quantity_ == "acceleration_x") return {P.a[p_].x()};
+  if (quantity_ == "acceleration_y") return {P.a[p_].y()};
   if (quantity_ == "stress_xx") return {P.stress[p_][0]};
   if (quantity_ == "stress_yy") return {P.stress[p_][1]};
   if (quantity_ == "pore_pressure") return {-P.p[p_]};  // compression positive

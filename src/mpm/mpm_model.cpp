@@ -17,7 +17,13 @@
 // Bardenhagen & Kober 2004). Plane strain, unit thickness.
 //
 // Time: the driver's step is split into sub-steps dt_sub <= cfl h / c, c = sqrt((lambda + 2 mu)/rho) the
-// P-wave speed (explicit, conditionally stable). The grid is reset every sub-step.
+// P-wave speed (explicit, conditionally stable; with water, c includes K_w / n). The grid is reset every
+// sub-step.
+//
+// Also here: Mohr-Coulomb plasticity (return_mapping: principal stresses, main plane, edges, apex; Jaumann
+// stress rate), the saturated two-phase v-w formulation of the seed (substep_two_phase), Cundall local and
+// Rayleigh damping, fixed and prescribed-motion grid nodes (an accelerogram is integrated to the nodes'
+// velocity), particle loads, and the probes.
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/time_function.hpp>
@@ -772,6 +778,9 @@ void MpmModel::substep_two_phase(double dt) {
   gq_.assign(nn, 0.0);
   zero(gps_), zero(gpw_), zero(gfs_), zero(gfw_);
   const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
+  // The drag converts the hydraulic conductivity k (m/s) with the unit weight of water rho_w |g|; without
+  // gravity (a weightless layer) |g| = 9.81 m/s^2 is used.
+  const double g_drag = ctx_.gravity.norm() > 0 ? ctx_.gravity.norm() : 9.81;
   for (Index q = 0; q < np; ++q) {
     const Support& sp = sup_[q];
     const double n = P_.n[q], V = P_.volume[q], V0 = P_.volume0[q];
@@ -785,7 +794,7 @@ void MpmModel::substep_two_phase(double dt) {
       gms_[I] += N * (1 - n) * ms;
       gmw_[I] += N * mw;
       gmwn_[I] += N * n * mw;
-      gq_[I] += N * n * mw * std::abs(g.norm() > 0 ? g.norm() : 9.81) / k_hyd_;
+      gq_[I] += N * n * mw * g_drag / k_hyd_;
       gps_[I] += N * (1 - n) * ms * P_.v[q];
       gpw_[I] += N * n * mw * P_.w[q];
       const double sxx = sg[0] + pw, syy = sg[1] + pw;  // total stress

@@ -36,6 +36,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <set>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -180,6 +181,14 @@ class MpmModel final : public PhysicsModel {
     double velocity(double t) const { return value * (acceleration ? fn->integral(t) : fn->value(t)); }
   };
   std::vector<PrescribedMotion> moving_;
+  /// Viscous absorbing boundary (Lysmer & Kuhlemeyer 1969): dashpots rho c_p on the normal and rho c_s on the
+  /// tangential velocity of the selected grid nodes, each over a boundary length of one cell.
+  struct Dashpot {
+    Index node;
+    Vec2 normal;
+    double length;  // tributary boundary length: h/2 per neighbouring selected node along the boundary
+  };
+  std::vector<Dashpot> dashpots_;
   double local_until_ = std::numeric_limits<double>::infinity();  // local damping only before this time
   Particles P_;
   // Two-phase: water density, bulk modulus, hydraulic conductivity (m/s); grains incompressible.
@@ -234,6 +243,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_stress", Json{{"type", "zero"}}},
               {"particles_csv", false},
               {"two_phase", Json::object()},
+              {"absorbing_boundaries", Json::array()},
               {"loads", Json::array()},
               {"gravity", true}});
   name_ = b.string("name");
@@ -340,7 +350,18 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   for (auto& v : P_.v) v = v0;
   Params is = b.at("initial_state");
   if (!is.has("type")) is.fail("type", "required key is missing");
-  if (is.choice("type", {"given", "axial_mode"}) == "axial_mode") {
+  const std::string ist = is.choice("type", {"given", "axial_mode", "pulse"});
+  if (ist == "pulse") {
+    // v = amplitude exp(-((x - centre) / width)^2) along an axis (a wave packet for boundary tests).
+    is.validate({{"type", "pulse"}, {"amplitude", nullptr}, {"centre", nullptr}, {"width", nullptr}, {"axis", "x"}});
+    const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
+    const double A = is.number("amplitude"), x0 = is.number("centre"), w = is.positive("width");
+    for (size_t q = 0; q < P_.size(); ++q) {
+      const double r = (P_.x[q][ax] - x0) / w;
+      P_.v[q] = Vec2::Zero();
+      P_.v[q][ax] = A * std::exp(-r * r);
+    }
+  } else if (ist == "axial_mode") {
     is.validate({{"type", "axial_mode"}, {"amplitude", nullptr}, {"wavenumber", nullptr}, {"start", 0.0},
                  {"axis", "x"}});
     const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
@@ -437,6 +458,30 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     for (Index n : select_nodes(bc.at("select"), nodes))
       for (int c = 0; c < 2; ++c)
         if (value[c] != 0.0) moving_.push_back({n, c, value[c], fn, type == "prescribed_acceleration"});
+  }
+  Params ab = b.at("absorbing_boundaries");
+  for (size_t i = 0; i < ab.size(); ++i) {
+    Params a = ab.at(i);
+    a.validate({{"select", nullptr}, {"normal", nullptr}});
+    if (two_phase_) a.fail("select", "absorbing boundaries of two-phase bodies are not available in this version");
+    Vec2 nrm = a.vec2("normal");
+    if (!(nrm.norm() > 0)) a.fail("normal", "must be a non-zero vector");
+    nrm.normalize();
+    const auto sel = select_nodes(a.at("select"), nodes);
+    const std::set<Index> in(sel.begin(), sel.end());
+    const Vec2 tangent(-nrm.y(), nrm.x());
+    for (Index n : sel) {
+      double length = 0;
+      for (double s : {-1.0, 1.0}) {
+        const Vec2 q = nodes[n] + s * h_ * tangent;  // the neighbour along the boundary, if on the grid
+        const long i = std::lround((q.x() - origin_.x()) / h_), j = std::lround((q.y() - origin_.y()) / h_);
+        if (i < 0 || j < 0 || i > nx_ || j > ny_) continue;
+        if ((nodes[j * (nx_ + 1) + i] - q).norm() < 1e-6 * h_ && in.count(static_cast<Index>(j * (nx_ + 1) + i)))
+          length += 0.5 * h_;
+      }
+      if (length == 0) length = h_;  // a single node: one cell's length
+      dashpots_.push_back({n, nrm, length});
+    }
   }
   const size_t nn = nodes.size();
   gm_.assign(nn, 0.0);
@@ -699,6 +744,18 @@ void MpmModel::substep(double dt) {
   for (size_t i = 0; i < nn; ++i) {
     if (!(gm_[i] > 0)) continue;
     if (damp_mass_ > 0) gf_[i] -= damp_mass_ * gp_[i];
+  }
+  {
+    const double cp = std::sqrt((lambda_ + 2 * mu_) / rho_), cs = std::sqrt(mu_ / rho_);
+    for (const auto& d : dashpots_) {
+      if (!(gm_[d.node] > 0)) continue;
+      const Vec2 v = gp_[d.node] / gm_[d.node];
+      const Vec2 vn = v.dot(d.normal) * d.normal;
+      gf_[d.node] -= rho_ * d.length * (cp * vn + cs * (v - vn));
+    }
+  }
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(gm_[i] > 0)) continue;
     if (local_damping_ > 0 && t_ < local_until_) {
       const Vec2 v = gp_[i] / gm_[i];
       for (int c = 0; c < 2; ++c)

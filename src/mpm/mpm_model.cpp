@@ -158,6 +158,7 @@ class MpmModel final : public PhysicsModel {
   double rho_ = 0, E_ = 0, nu_ = 0, lambda_ = 0, mu_ = 0;
   bool plastic_ = false;                      // Mohr-Coulomb (else linear elastic)
   double cohesion_ = 0, sin_phi_ = 0, cos_phi_ = 1, sin_psi_ = 0;
+  double tension_cutoff_ = std::numeric_limits<double>::infinity();  // at most c cot(phi), the apex
   /// Mohr-Coulomb return mapping of a trial stress (xx, yy, xy, zz); returns the plastic multiplier.
   double return_mapping(std::array<double, 4>& s) const;
   Vec2 origin_ = Vec2::Zero();
@@ -255,7 +256,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   plastic_ = mat.choice("type", {"linear_elastic", "mohr_coulomb"}) == "mohr_coulomb";
   if (plastic_) {
     mat.validate({{"type", "mohr_coulomb"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
-                  {"cohesion", 0.0}, {"friction_angle", nullptr}, {"dilatancy_angle", 0.0}});
+                  {"cohesion", 0.0}, {"friction_angle", nullptr}, {"dilatancy_angle", 0.0},
+                  {"tension_cutoff", -1.0}});
     cohesion_ = mat.non_negative("cohesion");
     const double phi = mat.number("friction_angle"), psi = mat.number("dilatancy_angle");
     if (!(phi > 0 && phi < 90)) mat.fail("friction_angle", "must lie in (0, 90) degrees");
@@ -263,6 +265,12 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     sin_phi_ = std::sin(phi * M_PI / 180);
     cos_phi_ = std::cos(phi * M_PI / 180);
     sin_psi_ = std::sin(psi * M_PI / 180);
+    const double apex = cohesion_ * cos_phi_ / sin_phi_;
+    tension_cutoff_ = apex;
+    if (mat.number("tension_cutoff") >= 0) {  // -1: at the apex
+      tension_cutoff_ = mat.number("tension_cutoff");
+      if (tension_cutoff_ > apex) mat.fail("tension_cutoff", "must not exceed c cot(phi) = " + std::to_string(apex) + " Pa");
+    }
   } else {
     mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});
   }
@@ -555,7 +563,8 @@ double MpmModel::return_mapping(std::array<double, 4>& s) const {
   const double k = 2 * cohesion_ * cos_phi_;
   auto f_main = [&](const Vec3& x) { return (x[0] - x[2]) + (x[0] + x[2]) * sin_phi_ - k; };
   const double f0 = f_main(sig);
-  if (f0 <= 1e-12 * (std::abs(sig[0]) + std::abs(sig[2]) + k)) return 0.0;
+  const bool yields = f0 > 1e-12 * (std::abs(sig[0]) + std::abs(sig[2]) + k);
+  if (!yields && sig[0] <= tension_cutoff_) return 0.0;
   // Yield normal m and flow direction n of a plane through (i, j) (i the largest, j the smallest principal).
   auto plane = [&](int i, int j, Vec3& m, Vec3& n) {
     m.setZero();
@@ -570,9 +579,9 @@ double MpmModel::return_mapping(std::array<double, 4>& s) const {
   Vec3 m1, n1;
   plane(0, 2, m1, n1);
   const Vec3 Dn1 = D(n1);
-  double dgamma = f0 / m1.dot(Dn1);
+  double dgamma = yields ? f0 / m1.dot(Dn1) : 0.0;
   Vec3 out = sig - dgamma * Dn1;
-  if (!(out[0] >= out[1] && out[1] >= out[2])) {
+  if (yields && !(out[0] >= out[1] && out[1] >= out[2])) {
     // The return left the sextant: two planes are active (an edge), s1 = s2 or s2 = s3 at the end.
     Vec3 m2, n2;
     if (out[1] > out[0]) plane(1, 2, m2, n2);  // edge s1 = s2: planes (1, 3) and (2, 3)
@@ -587,10 +596,16 @@ double MpmModel::return_mapping(std::array<double, 4>& s) const {
     if (!(g1 >= 0 && g2 >= 0)) dgamma = -1;  // no admissible edge return: the apex below
   }
   // Beyond the apex (tension past c cot(phi), or an edge return with a negative multiplier): the apex.
-  if (out.sum() / 3 > apex || out[0] > apex + 1e-9 * (std::abs(apex) + 1) || !(dgamma >= 0)) {
+  if (yields && (out.sum() / 3 > apex || out[0] > apex + 1e-9 * (std::abs(apex) + 1) || !(dgamma >= 0))) {
     out = Vec3::Constant(apex);
     dgamma = std::max(dgamma, 0.0) + (sig - out).norm() / (2 * mu_);
   }
+  // Tension cut-off (a Rankine cap below the apex): no principal stress above it.
+  for (int a = 0; a < 3; ++a)
+    if (out[a] > tension_cutoff_) {
+      dgamma += (out[a] - tension_cutoff_) / (2 * mu_);
+      out[a] = tension_cutoff_;
+    }
   // Back to (xx, yy, xy, zz) with the trial's principal directions.
   std::array<double, 3> back{};
   for (int a = 0; a < 3; ++a) back[order[a]] = out[a];

@@ -295,6 +295,12 @@ TEST(BadInput, MpmErrors) {
   o = run_json("mpm_shape", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/shape_functions", "gimp");
+  j = base;
+  j["bodies"][0]["material"] = {{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1000}, {"cohesion", 0.0},
+                                {"friction_angle", 30.0}, {"tension_cutoff", 10.0}};
+  o = run_json("mpm_tension_cutoff", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/material/tension_cutoff", "c cot(phi)");
   // A block thrown out of its grid: the run stops with a solver error, the output so far stays valid.
   j = base;
   j["bodies"][0]["initial_velocity"] = {50.0, 0.0};

@@ -26,7 +26,9 @@
 // velocity), particle loads, and the probes.
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/linear_solver.hpp>
 #include <lagfsi/time_function.hpp>
+#include <lagfsi/time_integrator.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include <algorithm>
@@ -136,6 +138,19 @@ class MpmModel final : public PhysicsModel {
   void substep(double dt);
   /// One explicit step of the saturated (v-w) formulation (seed 000 sec. 3.5-3.6; digest 2.8).
   void substep_two_phase(double dt);
+  /// One implicit step (the analysis' Newmark or generalized-alpha, the solid's integrator objects) on the
+  /// grid: linear elastic, small strain, one linear solve (the problem is linear within the step).
+  void step_implicit(double dt);
+  /// The particle loads at the end of the step into a dof vector (implicit step).
+  void add_loads_vec(Vec& f) const {
+    for (const auto& l : loads_) {
+      const Vec2 F = l.fn->value(t_new_) * l.force;
+      for (Index q : l.particles) {
+        const Support& sp = sup_[q];
+        for (int k = 0; k < sp.n; ++k) f.segment<2>(2 * sp.node[k]) += sp.N[k] * F;
+      }
+    }
+  }
   /// Adds the particle loads at the current time to grid forces f.
   void add_loads(std::vector<Vec2>& f) const {
     for (const auto& l : loads_) {
@@ -190,6 +205,9 @@ class MpmModel final : public PhysicsModel {
     double length;  // tributary boundary length: h/2 per neighbouring selected node along the boundary
   };
   std::vector<Dashpot> dashpots_;
+  bool implicit_ = false;
+  std::unique_ptr<TimeIntegrator> integrator_;
+  std::unique_ptr<LinearSolver> solver_;
   double local_until_ = std::numeric_limits<double>::infinity();  // local damping only before this time
   Particles P_;
   // Two-phase: water density, bulk modulus, hydraulic conductivity (m/s); grains incompressible.
@@ -245,6 +263,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"particles_csv", false},
               {"two_phase", Json::object()},
               {"absorbing_boundaries", Json::array()},
+              {"time_integration", "explicit"},
               {"loads", Json::array()},
               {"gravity", true}});
   name_ = b.string("name");
@@ -466,6 +485,17 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     for (Index n : select_nodes(bc.at("select"), nodes))
       for (int c = 0; c < 2; ++c)
         if (value[c] != 0.0) moving_.push_back({n, c, value[c], fn, type == "prescribed_acceleration"});
+  }
+  implicit_ = b.choice("time_integration", {"explicit", "implicit"}) == "implicit";
+  if (implicit_) {
+    if (plastic_ || two_phase_ || local_damping_ > 0 || damp_stiff_ > 0 || damp_mass_ > 0)
+      b.fail("time_integration", "implicit MPM bodies are linear elastic, single phase and undamped in this version");
+    Params ip(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
+    const std::string it = ip.string("type");
+    if (it == "central_difference") b.fail("time_integration", "an implicit MPM body needs newmark or generalized_alpha");
+    integrator_ = it == "generalized_alpha" ? make_generalized_alpha(ip.number("rho_inf"))
+                                            : make_newmark(ip.number("beta"), ip.number("gamma"));
+    solver_ = make_linear_solver("cholmod");
   }
   Params ab = b.at("absorbing_boundaries");
   for (size_t i = 0; i < ab.size(); ++i) {
@@ -964,8 +994,147 @@ void MpmModel::substep_two_phase(double dt) {
   gravity_work_ += gw;
 }
 
+void MpmModel::step_implicit(double dt) {
+  // Grid state at t_n from the particles: positions of the nodes, velocities and accelerations mapped with the
+  // particles' masses. The step's unknowns are the new node positions x_{n+1} (2 per node, as for the solid);
+  // the time integrator gives a(x) and v(x), and the residual
+  //   r(x) = M a(x) + f_int(x) - f_ext,   f_int = sum_p V_p B_p^T (sigma_p + D : sym(grad (x - x_n))),
+  // is linear in x (small strain), so one solve with H = c_m M + c_k K is exact. Empty nodes are held.
+  const Index np = static_cast<Index>(P_.size());
+  const Index nn = static_cast<Index>(gm_.size());
+  sup_.resize(np);
+  for (Index q = 0; q < np; ++q) {
+    const Vec2& x = P_.x[q];
+    if (!(x.x() >= origin_.x() && x.y() >= origin_.y() && x.x() <= origin_.x() + nx_ * h_ && x.y() <= origin_.y() + ny_ * h_))
+      throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " left the grid at t = " + std::to_string(t_));
+    support(x, sup_[q]);
+  }
+  Vec mass = Vec::Zero(nn), mv = Vec::Zero(2 * nn), ma = Vec::Zero(2 * nn), fext = Vec::Zero(2 * nn), fint0 = Vec::Zero(2 * nn);
+  const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<size_t>(np) * 18 * 18);
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    const auto& sg = P_.stress[q];
+    const double V = P_.volume[q], mq = P_.mass[q];
+    for (int k = 0; k < sp.n; ++k) {
+      const Index I = sp.node[k];
+      const double N = sp.N[k];
+      const Vec2& d = sp.dN[k];
+      mass[I] += N * mq;
+      mv.segment<2>(2 * I) += N * mq * P_.v[q];
+      ma.segment<2>(2 * I) += N * mq * P_.a[q];
+      fext.segment<2>(2 * I) += N * mq * g;
+      fint0.segment<2>(2 * I) += V * Vec2(sg[0] * d.x() + sg[2] * d.y(), sg[2] * d.x() + sg[1] * d.y());
+      // K_IJ = V B_I^T D B_J (plane strain, small strain)
+      for (int l = 0; l < sp.n; ++l) {
+        const Vec2& e = sp.dN[l];
+        const Index J = sp.node[l];
+        const double kxx = V * ((lambda_ + 2 * mu_) * d.x() * e.x() + mu_ * d.y() * e.y());
+        const double kxy = V * (lambda_ * d.x() * e.y() + mu_ * d.y() * e.x());
+        const double kyx = V * (lambda_ * d.y() * e.x() + mu_ * d.x() * e.y());
+        const double kyy = V * ((lambda_ + 2 * mu_) * d.y() * e.y() + mu_ * d.x() * e.x());
+        trip.emplace_back(2 * I, 2 * J, kxx);
+        trip.emplace_back(2 * I, 2 * J + 1, kxy);
+        trip.emplace_back(2 * I + 1, 2 * J, kyx);
+        trip.emplace_back(2 * I + 1, 2 * J + 1, kyy);
+      }
+    }
+  }
+  add_loads_vec(fext);
+  // Held dofs: empty nodes and fixed components; prescribed motion is not available implicitly.
+  std::vector<char> held(2 * nn, 0);
+  for (Index I = 0; I < nn; ++I)
+    if (!(mass[I] > 0)) held[2 * I] = held[2 * I + 1] = 1;
+  for (const auto& [node, comp] : fixed_) held[2 * node + comp] = 1;
+  KinematicState s;
+  s.t = t_;
+  s.x = Vec::Zero(2 * nn);
+  s.v = Vec::Zero(2 * nn);
+  s.a = Vec::Zero(2 * nn);
+  for (Index I = 0; I < nn; ++I) {
+    s.x.segment<2>(2 * I) = origin_ + Vec2((I % (nx_ + 1)) * h_, (I / (nx_ + 1)) * h_);
+    if (mass[I] > 0) {
+      s.v.segment<2>(2 * I) = mv.segment<2>(2 * I) / mass[I];
+      s.a.segment<2>(2 * I) = ma.segment<2>(2 * I) / mass[I];
+    }
+  }
+  for (Index d = 0; d < 2 * nn; ++d)
+    if (held[d]) s.v[d] = s.a[d] = 0.0;
+  integrator_->begin_step(s, dt);
+  const TangentCoefficients cf = integrator_->coefficients();
+  SparseMatrix K(2 * nn, 2 * nn);
+  K.setFromTriplets(trip.begin(), trip.end());
+  // Linear: r(x) = M a(x) + fint0 + K (x_eval - x_n) - fext; one Newton step from the predictor.
+  Vec x = integrator_->predictor();
+  const EvalPoint ev = integrator_->kinematics(x);
+  Vec r = Vec::Zero(2 * nn);
+  for (Index I = 0; I < nn; ++I) r.segment<2>(2 * I) = mass[I] * ev.a.segment<2>(2 * I);
+  r += fint0 + K * (ev.x - s.x) - fext;
+  SparseMatrix H = cf.c_k * K;
+  for (Index I = 0; I < nn; ++I)
+    for (int c = 0; c < 2; ++c) H.coeffRef(2 * I + c, 2 * I + c) += cf.c_m * mass[I];
+  for (int k = 0; k < H.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(H, k); it; ++it)
+      if (held[it.row()] || held[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  for (Index d = 0; d < 2 * nn; ++d)
+    if (held[d]) {
+      r[d] = 0.0;
+      if (H.coeff(d, d) == 0.0) H.coeffRef(d, d) = 1.0;
+    }
+  H.makeCompressed();
+  solver_->factorize(H);
+  Vec dx;
+  solver_->solve(-r, dx);
+  x += dx;
+  KinematicState e;
+  integrator_->end_step(x, e);
+  // Grid to particles: FLIP velocity and acceleration, positions and stresses from the grid displacement.
+  const Vec du = x - s.x;
+#pragma omp parallel for schedule(static) if (np >= 20000)
+  for (Index q = 0; q < np; ++q) {
+    const Support& sp = sup_[q];
+    Vec2 dv = Vec2::Zero(), a = Vec2::Zero(), u = Vec2::Zero();
+    Mat2 G = Mat2::Zero();  // grad of the displacement increment
+    for (int k = 0; k < sp.n; ++k) {
+      const Index I = sp.node[k];
+      dv += sp.N[k] * (e.v.segment<2>(2 * I) - s.v.segment<2>(2 * I));
+      a += sp.N[k] * e.a.segment<2>(2 * I);
+      u += sp.N[k] * du.segment<2>(2 * I);
+      G += du.segment<2>(2 * I) * sp.dN[k].transpose();
+    }
+    P_.v[q] += dv;
+    P_.a[q] = a;
+    P_.x[q] += u;
+    const double dxx = G(0, 0), dyy = G(1, 1), dxy = 0.5 * (G(0, 1) + G(1, 0)), tr = dxx + dyy;
+    auto& sg = P_.stress[q];
+    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
+    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
+    sg[2] += 2 * mu_ * dxy;
+    sg[3] += lambda_ * tr;
+    auto& ep = P_.strain[q];
+    ep[0] += dxx;
+    ep[1] += dyy;
+    ep[2] += dxy;
+    P_.F[q] = (Mat2::Identity() + G) * P_.F[q];
+    const Mat2& F = P_.F[q];
+    P_.volume[q] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[q];
+  }
+}
+
 IterationReport MpmModel::solve_iteration() {
   const auto t0 = Clock::now();
+  if (implicit_) {
+    step_implicit(dt_);
+    t_ = t_new_;
+    ++substeps_;
+    times_.assembly += seconds_since(t0);
+    IterationReport r;
+    r.converged = true;
+    r.residual_ref = 1;
+    r.inner_iterations = 1;
+    return r;
+  }
   const double rho_sat = two_phase_ ? (1 - P_.n[0]) * rho_ + P_.n[0] * rho_w_ : rho_;
   const double c = std::sqrt((lambda_ + 2 * mu_ + (two_phase_ ? K_w_ / P_.n[0] : 0.0)) / rho_sat);
   const double dt_max = cfl_ * h_ / c;

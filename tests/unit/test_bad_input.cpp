@@ -301,6 +301,11 @@ TEST(BadInput, MpmErrors) {
   o = run_json("mpm_tension_cutoff", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/material/tension_cutoff", "c cot(phi)");
+  j["bodies"][0]["material"].erase("tension_cutoff");
+  j["bodies"][0]["time_integration"] = "implicit";  // with Mohr-Coulomb: not available
+  o = run_json("mpm_implicit_plastic", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/time_integration", "linear elastic");
   // A block thrown out of its grid: the run stops with a solver error, the output so far stays valid.
   j = base;
   j["bodies"][0]["initial_velocity"] = {50.0, 0.0};

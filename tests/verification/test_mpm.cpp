@@ -124,6 +124,38 @@ TEST(MpmBar, AbsorbingBoundaryLetsThePulseOut) {
             0.95);
 }
 
+TEST(MpmImplicit, BarWithTheSharedNewmarkAtTenTimesTheExplicitStep) {
+  // The analysis' Newmark (beta 1/4, gamma 1/2) on the grid: Delta t = 0.25 s, ten times the explicit
+  // sub-step of the case (CFL 0.2) and five times the explicit stability limit. Period elongation of the
+  // trapezoidal rule (omega dt)^2/12 = 0.21 %: measured +0.26 %; energy within 1 % (measured 0.33 %).
+  const BarResult b = bar("mpm_bar_implicit", {"output.vtk=false", "bodies.0.time_integration=implicit", "analysis.dt=0.25"});
+  EXPECT_NEAR(b.period, 10.0, 0.05);
+  EXPECT_LT(b.energy_dev, 0.01);
+}
+
+TEST(MpmImplicit, ColumnQuasiStaticWithGeneralizedAlpha) {
+  // Generalized-alpha with rho_inf = 0 damps the column's vibration (period 17 ms) at Delta t = 10 ms: 50
+  // steps to the static state, settlement within 2 % (measured -0.05 %), stress within 2 % of rho g H (1.29 %).
+  const auto r = run_case_1thread("cases/mpm_column_selfweight/case.json", "mpm_column_implicit",
+                                  {"bodies.0.time_integration=implicit", "bodies.0.damping={}",
+                                   R"(analysis.integrator={"type": "generalized_alpha", "rho_inf": 0.0})",
+                                   "analysis.dt=0.01", "probes=[]"});
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv c = read_csv(r.out_dir / "column_particles.csv");
+  const double rho = 1800, g = 9.81, E = 1e6, H = 0.1;
+  double s_err = 0, z_top = -1, u_err = 0;
+  for (size_t i = 0; i < c.rows(); ++i) {
+    const double Z = c["Y"][i];
+    s_err = std::max(s_err, std::abs(c["syy"][i] + rho * g * (H - Z)) / (rho * g * H));
+    if (Z > z_top) {
+      z_top = Z;
+      u_err = std::abs((c["y"][i] - Z) / (-(rho * g / E) * (H * Z - Z * Z / 2)) - 1);
+    }
+  }
+  EXPECT_LT(u_err, 0.02);
+  EXPECT_LT(s_err, 0.02);
+}
+
 /// Largest errors of the column at rest: settlement of the top particle (relative) and vertical stress over all
 /// particles (relative to rho g H), against u = -(rho g / E_oed)(H z - z^2/2), sigma = -rho g (H - z).
 std::pair<double, double> column_errors(double h) {

@@ -521,6 +521,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
       dashpots_.push_back({n, nrm, length});
     }
   }
+  if (implicit_ && (!moving_.empty() || !dashpots_.empty()))
+    b.fail("time_integration", "implicit MPM bodies take fixed nodes only (no prescribed motion or absorbing boundaries) in this version");
   const size_t nn = nodes.size();
   gm_.assign(nn, 0.0);
   gp_.assign(nn, Vec2::Zero());

@@ -151,6 +151,25 @@ class MpmModel final : public PhysicsModel {
       }
     }
   }
+  /// Supports of every particle at its current position; throws SolverError when one has left the grid.
+  void locate_particles();
+  /// Linear elastic small-strain update of particle q from the gradient G of its displacement increment: stress,
+  /// strain, deformation gradient and volume.
+  void elastic_increment(Index q, const Mat2& G) {
+    const double dxx = G(0, 0), dyy = G(1, 1), dxy = 0.5 * (G(0, 1) + G(1, 0)), tr = dxx + dyy;
+    auto& sg = P_.stress[q];
+    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
+    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
+    sg[2] += 2 * mu_ * dxy;
+    sg[3] += lambda_ * tr;
+    auto& e = P_.strain[q];
+    e[0] += dxx;
+    e[1] += dyy;
+    e[2] += dxy;
+    P_.F[q] = (Mat2::Identity() + G) * P_.F[q];
+    const Mat2& F = P_.F[q];
+    P_.volume[q] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[q];
+  }
   /// Adds the particle loads at the current time to grid forces f.
   void add_loads(std::vector<Vec2>& f) const {
     for (const auto& l : loads_) {
@@ -755,9 +774,8 @@ void MpmModel::scatter(bool momentum, bool force) {
   }
 }
 
-void MpmModel::substep(double dt) {
+void MpmModel::locate_particles() {
   const Index np = static_cast<Index>(P_.size());
-  const size_t nn = gm_.size();
   sup_.resize(np);
   Index outside = -1;
 #pragma omp parallel for schedule(static) if (np >= 20000)
@@ -774,6 +792,12 @@ void MpmModel::substep(double dt) {
   if (outside >= 0)
     throw SolverError("body '" + name_ + "': particle " + std::to_string(outside) + " left the grid at t = " +
                       std::to_string(t_));
+}
+
+void MpmModel::substep(double dt) {
+  const Index np = static_cast<Index>(P_.size());
+  const size_t nn = gm_.size();
+  locate_particles();
   const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
   if (update_ == "usf") {
     scatter(true, false);
@@ -868,13 +892,7 @@ void MpmModel::substep_two_phase(double dt) {
   //   p += dt (K_w / n) [(1 - n) div v + n div w], n from the volume change (incompressible grains).
   const Index np = static_cast<Index>(P_.size());
   const size_t nn = gm_.size();
-  sup_.resize(np);
-  for (Index q = 0; q < np; ++q) {
-    const Vec2& x = P_.x[q];
-    if (!(x.x() >= origin_.x() && x.y() >= origin_.y() && x.x() <= origin_.x() + nx_ * h_ && x.y() <= origin_.y() + ny_ * h_))
-      throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " left the grid at t = " + std::to_string(t_));
-    support(x, sup_[q]);
-  }
+  locate_particles();
   auto zero = [nn](std::vector<Vec2>& a) { a.assign(nn, Vec2::Zero()); };
   gms_.assign(nn, 0.0);
   gmw_.assign(nn, 0.0);
@@ -970,24 +988,10 @@ void MpmModel::substep_two_phase(double dt) {
     P_.x[q] += dx;
     gw += P_.mass[q] * g.dot(dx);
     // Effective stress (linear elastic), pore pressure, porosity, volume.
-    const double dxx = dt * Ls(0, 0), dyy = dt * Ls(1, 1), dxy = 0.5 * dt * (Ls(0, 1) + Ls(1, 0));
-    const double tr = dxx + dyy;
-    auto& sg = P_.stress[q];
-    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
-    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
-    sg[2] += 2 * mu_ * dxy;
-    sg[3] += lambda_ * tr;
-    auto& e = P_.strain[q];
-    e[0] += dxx;
-    e[1] += dyy;
-    e[2] += dxy;
     const double n = P_.n[q];
     P_.p[q] += dt * (K_w_ / n) * ((1 - n) * (Ls(0, 0) + Ls(1, 1)) + n * divw);
-    P_.F[q] = (Mat2::Identity() + dt * Ls) * P_.F[q];
-    const Mat2& F = P_.F[q];
-    const double J = F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0);
     const double V_old = P_.volume[q];
-    P_.volume[q] = J * P_.volume0[q];
+    elastic_increment(q, dt * Ls);
     P_.n[q] = 1 - (1 - n) * V_old / P_.volume[q];
     if (!(P_.volume[q] > 0) || !std::isfinite(P_.p[q]) || !(P_.n[q] > 0 && P_.n[q] < 1))
       throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " inverted or non-finite at t = " +
@@ -1004,13 +1008,7 @@ void MpmModel::step_implicit(double dt) {
   // is linear in x (small strain), so one solve with H = c_m M + c_k K is exact. Empty nodes are held.
   const Index np = static_cast<Index>(P_.size());
   const Index nn = static_cast<Index>(gm_.size());
-  sup_.resize(np);
-  for (Index q = 0; q < np; ++q) {
-    const Vec2& x = P_.x[q];
-    if (!(x.x() >= origin_.x() && x.y() >= origin_.y() && x.x() <= origin_.x() + nx_ * h_ && x.y() <= origin_.y() + ny_ * h_))
-      throw SolverError("body '" + name_ + "': particle " + std::to_string(q) + " left the grid at t = " + std::to_string(t_));
-    support(x, sup_[q]);
-  }
+  locate_particles();
   Vec mass = Vec::Zero(nn), mv = Vec::Zero(2 * nn), ma = Vec::Zero(2 * nn), fext = Vec::Zero(2 * nn), fint0 = Vec::Zero(2 * nn);
   const Vec2 g = gravity_ ? ctx_.gravity : Vec2::Zero();
   std::vector<Eigen::Triplet<double>> trip;
@@ -1108,19 +1106,7 @@ void MpmModel::step_implicit(double dt) {
     P_.v[q] += dv;
     P_.a[q] = a;
     P_.x[q] += u;
-    const double dxx = G(0, 0), dyy = G(1, 1), dxy = 0.5 * (G(0, 1) + G(1, 0)), tr = dxx + dyy;
-    auto& sg = P_.stress[q];
-    sg[0] += lambda_ * tr + 2 * mu_ * dxx;
-    sg[1] += lambda_ * tr + 2 * mu_ * dyy;
-    sg[2] += 2 * mu_ * dxy;
-    sg[3] += lambda_ * tr;
-    auto& ep = P_.strain[q];
-    ep[0] += dxx;
-    ep[1] += dyy;
-    ep[2] += dxy;
-    P_.F[q] = (Mat2::Identity() + G) * P_.F[q];
-    const Mat2& F = P_.F[q];
-    P_.volume[q] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[q];
+    elastic_increment(q, G);
   }
 }
 

@@ -856,9 +856,9 @@ IterationReport FluidModel::newton_iteration() {
       Eigen::Matrix<double, 9, 9> K;
       double i2 = 0, g2 = 0;
       if (!pspg_element(in, r, K, i2, g2)) {
-        // Turned over by two prescribed particles sliding past each other (see fractional_step.cpp):
-        // left out of this step, removed by the next remesh.
-        if (prescribed_in(e) >= 2) continue;
+        // Turned over by a structure's boundary sliding past another prescribed particle (see
+        // moving_boundary_pair): left out of this step, removed by the next remesh.
+        if (moving_boundary_pair(e)) continue;
 #pragma omp critical(lagfsi_fluid_failure)
         failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
                   std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +

@@ -134,11 +134,18 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
       if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
     return false;
   }
-  /// Particles of element e whose motion is prescribed (walls, ghosts).
-  int prescribed_in(Index e) const {
-    int k = 0;
-    for (Index i : tri_[e]) k += kind_[i] != ParticleKind::Fluid;
-    return k;
+  /// Element e has two or three particles with prescribed motion, one of them a ghost: a structure's boundary
+  /// sliding past a wall or another part of it (a gate's tip over the floor). Such an element may turn over
+  /// within a step without the flow being wrong; an element between walls alone that turns over is a failed
+  /// step, as before (retried with dt/2).
+  bool moving_boundary_pair(Index e) const {
+    int prescribed = 0;
+    bool ghost = false;
+    for (Index i : tri_[e]) {
+      prescribed += kind_[i] != ParticleKind::Fluid;
+      ghost = ghost || is_ghost(i);
+    }
+    return prescribed >= 2 && ghost;
   }
   /// One Newton iteration of the monolithic PSPG scheme (fluid_model.cpp).
   IterationReport newton_iteration();

@@ -277,11 +277,11 @@ IterationReport FluidModel::fractional_step() {
 
   // An element turned inside out within the step: a particle crossed the opposite side of its element
   // (a wall, or a neighbour at an impact). Remeshing would hide it, but the flow there was not resolved:
-  // the step is rejected and the driver retries it with half the time step. An element with one fluid
-  // particle and two prescribed ones (walls, ghosts) that turns over is a moving boundary sliding past
-  // another (a gate's tip over the floor): no time step resolves that, and remeshing removes it.
+  // the step is rejected and the driver retries it with half the time step. An element in which a structure's
+  // boundary slides past another prescribed particle (a gate's tip over the floor) is not: no time step
+  // resolves that, and remeshing removes it.
   for (Index e = 0; e < ne; ++e)
-    if (!(element_area(x_, e) > 0) && prescribed_in(e) < 2) {
+    if (!(element_area(x_, e) > 0) && !moving_boundary_pair(e)) {
       if (std::getenv("LAGFSI_DEBUG_NEWTON"))
         for (Index i : tri_[e])
           std::fprintf(stderr, "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n", int(i),

@@ -1,3 +1,4 @@
+#include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fsi/acceleration.hpp>
 #include <lagfsi/fsi/coupling.hpp>
@@ -12,15 +13,6 @@
 namespace lagfsi::fsi {
 
 namespace {
-
-/// 1D Lagrange shape functions of order p (nodes at s_j = j/p, j = 0..p) at s in [0, 1].
-std::vector<double> lagrange_1d(int p, double s) {
-  std::vector<double> N(p + 1, 1.0);
-  for (int j = 0; j <= p; ++j)
-    for (int m = 0; m <= p; ++m)
-      if (m != j) N[j] *= (s - double(m) / p) / (double(j - m) / p);
-  return N;
-}
 
 class DirichletNeumann;
 
@@ -282,7 +274,8 @@ InterfaceMap::InterfaceMap(const InterfaceBoundary& boundary, double spacing)
       if (g < 0) {
         std::vector<std::pair<Index, double>> w;
         Vec2 X = Vec2::Zero();
-        const auto N = lagrange_1d(order, double(k) / n);
+        Eigen::VectorXd N, dN;  // the edge's own shape functions, nodes from its first vertex to its second
+        line_shape(order, double(k) / n, N, dN);
         for (int j = 0; j <= order; ++j) {
           if (std::abs(N[j]) < 1e-14) continue;
           w.push_back({index_of(e[j]), N[j]});

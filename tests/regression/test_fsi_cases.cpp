@@ -14,11 +14,6 @@ namespace {
 
 using namespace lagfsi::testing;
 
-nlohmann::json summary_of(const RunResult& r) {
-  std::ifstream in(r.out_dir / "summary.json");
-  return nlohmann::json::parse(in);
-}
-
 /// Every coupled step converged to the interface tolerance; returns the mean FSI iterations per coupled step.
 double check_coupling(const RunResult& r, int min_coupled_steps) {
   const auto s = summary_of(r);
@@ -28,31 +23,13 @@ double check_coupling(const RunResult& r, int min_coupled_steps) {
   return s["coupling"]["iterations_mean"].get<double>();
 }
 
-/// Reference series (time, value) from a CSV with '#' comments; `component` filters a component column.
+/// Reference series (time, value) from a CSV; `component` keeps the rows of that component (a label column).
 std::vector<std::pair<double, double>> reference(const std::string& rel, const std::string& tcol, const std::string& vcol,
                                                  const std::string& component = "") {
-  std::ifstream in(fs::path(LAGFSI_SOURCE_DIR) / rel);
-  std::string line;
-  std::vector<std::string> header;
+  const Csv c = read_csv(fs::path(LAGFSI_SOURCE_DIR) / rel);
   std::vector<std::pair<double, double>> out;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    auto col = [&](const std::string& name) {
-      for (size_t k = 0; k < header.size(); ++k)
-        if (header[k] == name) return cells.at(k);
-      throw std::runtime_error("no column " + name + " in " + rel);
-    };
-    if (!component.empty() && col("component") != component) continue;
-    out.push_back({std::stod(col(tcol)), std::stod(col(vcol))});
-  }
+  for (size_t i = 0; i < c.rows(); ++i)
+    if (component.empty() || c.text.at("component")[i] == component) out.push_back({c[tcol][i], c[vcol][i]});
   EXPECT_FALSE(out.empty()) << rel;
   return out;
 }

@@ -45,17 +45,6 @@ namespace {
 
 using namespace lagfsi::testing;
 
-double mean_between(const Csv& c, const std::string& col, double a, double b, const std::string& minus = "") {
-  double s = 0;
-  int n = 0;
-  for (size_t i = 0; i < c.rows(); ++i)
-    if (c["time"][i] >= a && c["time"][i] <= b) {
-      s += c[col][i] - (minus.empty() ? 0.0 : c[minus][i]);
-      ++n;
-    }
-  return s / n;
-}
-
 TEST(MpmDamEarthquake, StaysStableAndBelowMakdisiSeed) {
   // The Palo Redondo dam at 5 m cells: 90 s of gravity, shaking and free vibration. No digitized
   // result exists (README); the checks are physical: the static crest settlement within [0.8, 1.5] x the

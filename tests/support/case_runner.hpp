@@ -1,5 +1,6 @@
 #pragma once
 // Helpers for tests that run whole cases: run the lagfsi executable, read CSV output.
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace lagfsi::testing {
 
@@ -56,10 +59,12 @@ inline RunResult run_case_file(const std::string& case_rel, const std::string& t
   return r;
 }
 
-/// A CSV file with a header row, numeric columns ('#' lines skipped).
+/// A CSV file with a header row ('#' lines skipped): every column as numbers (NaN where a cell is not one) and
+/// as text (for label columns such as a series or component name).
 struct Csv {
   std::vector<std::string> header;
   std::map<std::string, std::vector<double>> col;
+  std::map<std::string, std::vector<std::string>> text;
   const std::vector<double>& operator[](const std::string& name) const {
     auto it = col.find(name);
     if (it == col.end()) throw std::runtime_error("no column " + name);
@@ -84,10 +89,37 @@ inline Csv read_csv(const fs::path& file) {
       for (const auto& h : cells) csv.col[h];
       continue;
     }
-    for (size_t i = 0; i < cells.size() && i < csv.header.size(); ++i)
-      csv.col[csv.header[i]].push_back(std::stod(cells[i]));
+    for (size_t i = 0; i < cells.size() && i < csv.header.size(); ++i) {
+      double v = std::nan("");
+      try {
+        size_t used = 0;
+        v = std::stod(cells[i], &used);
+        if (cells[i].find_first_not_of(" \t\r", used) != std::string::npos) v = std::nan("");
+      } catch (const std::exception&) {
+      }
+      csv.col[csv.header[i]].push_back(v);
+      csv.text[csv.header[i]].push_back(cells[i]);
+    }
   }
   return csv;
+}
+
+/// The run's summary.json.
+inline nlohmann::json summary_of(const RunResult& r) {
+  std::ifstream in(r.out_dir / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+/// Mean of column `col` (minus column `minus`, if given) over the rows with time in [a, b].
+inline double mean_between(const Csv& c, const std::string& col, double a, double b, const std::string& minus = "") {
+  double s = 0;
+  int n = 0;
+  for (size_t i = 0; i < c.rows(); ++i)
+    if (c["time"][i] >= a && c["time"][i] <= b) {
+      s += c[col][i] - (minus.empty() ? 0.0 : c[minus][i]);
+      ++n;
+    }
+  return n ? s / n : std::nan("");
 }
 
 /// Writes a text file (for case files made by a test).

@@ -55,26 +55,13 @@ inline MartinMoyceErrors martin_moyce_errors(const Csv& c) {
     Z.push_back(c["front_x"][i] / a);
     H.push_back(c["column_height"][i] / (2 * a));
   }
-  // The reference has a text column (series: surge | height), which read_csv does not take: read it here.
-  const fs::path file = fs::path(LAGFSI_SOURCE_DIR) / "cases/dam_break_floor/reference/martin_moyce_1952_tables_2_6.csv";
-  std::ifstream in(file);
-  EXPECT_TRUE(in.good()) << file;
+  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/dam_break_floor/reference/martin_moyce_1952_tables_2_6.csv");
+  EXPECT_GT(ref.rows(), 0u);
   MartinMoyceErrors e;
   double sf = 0, sh = 0;
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      header = true;
-      continue;
-    }
-    std::stringstream ss(line);
-    std::string series, t_s, v_s;
-    std::getline(ss, series, ',');
-    std::getline(ss, t_s, ',');
-    std::getline(ss, v_s, ',');
-    const double tn = std::stod(t_s), v = std::stod(v_s);
+  for (size_t k = 0; k < ref.rows(); ++k) {
+    const std::string& series = ref.text.at("series")[k];
+    const double tn = ref["time_nondim"][k], v = ref["value"][k];
     if (series == "surge" && tn <= 3.0) {
       const double z = interp(T, Z, tn);
       EXPECT_FALSE(std::isnan(z)) << "the run does not cover T = " << tn;

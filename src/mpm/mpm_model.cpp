@@ -141,16 +141,6 @@ class MpmModel final : public PhysicsModel {
   /// One implicit step (the analysis' Newmark or generalized-alpha, the solid's integrator objects) on the
   /// grid: linear elastic, small strain, one linear solve (the problem is linear within the step).
   void step_implicit(double dt);
-  /// The particle loads at the end of the step into a dof vector (implicit step).
-  void add_loads_vec(Vec& f) const {
-    for (const auto& l : loads_) {
-      const Vec2 F = l.fn->value(t_new_) * l.force;
-      for (Index q : l.particles) {
-        const Support& sp = sup_[q];
-        for (int k = 0; k < sp.n; ++k) f.segment<2>(2 * sp.node[k]) += sp.N[k] * F;
-      }
-    }
-  }
   /// Supports of every particle at its current position; throws SolverError when one has left the grid.
   void locate_particles();
   /// Linear elastic small-strain update of particle q from the gradient G of its displacement increment: stress,
@@ -170,10 +160,10 @@ class MpmModel final : public PhysicsModel {
     const Mat2& F = P_.F[q];
     P_.volume[q] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P_.volume0[q];
   }
-  /// Adds the particle loads at the current time to grid forces f.
-  void add_loads(std::vector<Vec2>& f) const {
+  /// Adds the particle loads at time t to grid forces f.
+  void add_loads(std::vector<Vec2>& f, double t) const {
     for (const auto& l : loads_) {
-      const Vec2 F = l.fn->value(t_) * l.force;
+      const Vec2 F = l.fn->value(t) * l.force;
       for (Index q : l.particles) {
         const Support& sp = sup_[q];
         for (int k = 0; k < sp.n; ++k) f[sp.node[k]] += sp.N[k] * F;
@@ -809,7 +799,7 @@ void MpmModel::substep(double dt) {
     scatter(true, true);
     apply_fixed(gp_);
   }
-  add_loads(gf_);
+  add_loads(gf_, t_);
   // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force;
   // Rayleigh mass-proportional damping is the force -alpha m_I v_I.
   for (size_t i = 0; i < nn; ++i) {
@@ -925,7 +915,7 @@ void MpmModel::substep_two_phase(double dt) {
     }
   }
   // Particle loads act on the mixture.
-  add_loads(gfs_);
+  add_loads(gfs_, t_);
   gvs_.assign(nn, Vec2::Zero());
   gvw_.assign(nn, Vec2::Zero());
   gas_.assign(nn, Vec2::Zero());
@@ -1041,7 +1031,11 @@ void MpmModel::step_implicit(double dt) {
       }
     }
   }
-  add_loads_vec(fext);
+  {  // the loads at the end of the step
+    std::vector<Vec2> fl(nn, Vec2::Zero());
+    add_loads(fl, t_new_);
+    for (Index I = 0; I < nn; ++I) fext.segment<2>(2 * I) += fl[I];
+  }
   // Held dofs: empty nodes and fixed components; prescribed motion is not available implicitly.
   std::vector<char> held(2 * nn, 0);
   for (Index I = 0; I < nn; ++I)

@@ -91,7 +91,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double spacing() const { return h_; }
   const std::vector<std::array<Index, 3>>& triangles() const { return tri_; }
   double kinetic_energy() const;
-  /// Work of gravity on the fluid and viscous dissipation since the start (account_energy()).
+  /// Work of gravity on the fluid and viscous dissipation since the start (account_energy(); summed only
+  /// when a gravity_work or viscous_dissipation probe exists).
   double gravity_work() const { return gravity_work_; }
   double viscous_dissipation() const { return dissipation_; }
   double area_end() const { return area_end_; }
@@ -224,6 +225,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   Vec ghost_x_, ghost_v_, ghost_a_, ghost_force_;
   bool contact_ = false;
   double gravity_work_ = 0, dissipation_ = 0;
+  bool energy_probes_ = false;  // account_energy() only for runs that probe it
 };
 
 }  // namespace lagfsi::fluid_detail

@@ -141,3 +141,42 @@ def interp(x, xs, ys):
             s = (x - xs[i - 1]) / (xs[i] - xs[i - 1]) if xs[i] > xs[i - 1] else 0.0
             return ys[i - 1] + s * (ys[i] - ys[i - 1])
     return ys[-1]
+
+
+def shell_vs_continuum(out_shell, out_t10, columns, title, scale=1e3, unit="mm", t_max=None):
+    """Comparison of a shell run with the same case meshed by continuum (T10) elements: for each probe column,
+    the largest |shell - T10| (T10 interpolated at the shell's times, up to t_max) relative to the T10 peak,
+    the RMS difference, and the share of the wall time spent in each body (summary.json). Draws one panel per
+    column; returns (figure, lines). out_t10 may be None (shell only)."""
+    import matplotlib.pyplot as plt
+    s = read_csv(os.path.join(out_shell, "probes.csv"))
+    c = read_csv(os.path.join(out_t10, "probes.csv")) if out_t10 and os.path.exists(os.path.join(out_t10, "probes.csv")) else None
+    lines = []
+    for label, out in (("shell", out_shell), ("T10", out_t10 if c else None)):
+        if not out:
+            continue
+        with open(os.path.join(out, "summary.json")) as f:
+            summ = json.load(f)
+        total = sum(b.get("timing", {}).get("total", 0.0) for b in summ["bodies"])
+        shares = ", ".join("%s %.2f s (%.0f %%)" % (b["name"], b["timing"]["total"], 100 * b["timing"]["total"] / total)
+                           for b in summ["bodies"] if "timing" in b and total > 0)
+        lines.append("%s run: wall time %.2f s; time per body: %s" % (label, summ["wall_time"], shares))
+    fig, axes = plt.subplots(len(columns), 1, figsize=(10, 3 * len(columns)), sharex=True, squeeze=False)
+    for ax, col in zip(axes[:, 0], columns):
+        ax.plot(s["time"], [scale * u for u in s[col]], label="shell")
+        if c:
+            ax.plot(c["time"], [scale * u for u in c[col]], "--", label="T10 continuum")
+            pairs = [(t, u, interp(t, c["time"], c[col])) for t, u in zip(s["time"], s[col])
+                     if (t_max is None or t <= t_max) and t <= c["time"][-1]]
+            pk = max(abs(v) for _, _, v in pairs)
+            worst = max(pairs, key=lambda x: abs(x[1] - x[2]))
+            rms = math.sqrt(sum((u - v) ** 2 for _, u, v in pairs) / len(pairs))
+            lines.append("%s: T10 peak %.4g %s; max |shell - T10| = %.2f %% of the peak (at t = %.4g s), RMS %.2f %%%s" %
+                         (col, scale * pk, unit, 100 * abs(worst[1] - worst[2]) / pk, worst[0], 100 * rms / pk,
+                          "" if t_max is None else " (t <= %g s)" % t_max))
+        ax.set_ylabel("%s [%s]" % (col, unit))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[-1, 0].set_xlabel("t [s]")
+    axes[0, 0].set_title(title, fontsize=9)
+    return fig, lines

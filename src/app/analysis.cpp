@@ -37,6 +37,7 @@ const Json& case_defaults() {
 const std::map<std::string, ModelBuilder>& model_registry() {
   static const std::map<std::string, ModelBuilder> r = {
       {"solid", make_solid_model},
+      {"shell", make_solid_model},
       {"fluid", make_fluid_model},
       {"mpm", make_mpm_model},
   };
@@ -222,6 +223,7 @@ void write_atomic(const fs::path& path, const std::string& text) {
 
 struct Totals {
   PhaseTimes phases;
+  std::vector<PhaseTimes> body_phases;  // per model, in c.models' order
   long iterations = 0;
   int retries = 0;
   int max_iterations = 0;
@@ -296,15 +298,19 @@ int run_case(const RunOptions& opt) {
                        {"iterations_mean", tot.coupled_steps ? double(tot.coupling_iterations) / tot.coupled_steps : 0.0},
                        {"iterations_max", tot.coupling_max},
                        {"residual_max", tot.coupling_residual_max}};
-    s["timing"] = {{"remesh", tot.phases.remesh},
-                   {"assembly", tot.phases.assembly},
-                   {"factorization", tot.phases.factorization},
-                   {"solve", tot.phases.solve},
-                   {"output", tot.phases.output}};
+    auto timing = [](const PhaseTimes& p) {
+      return Json{{"remesh", p.remesh}, {"assembly", p.assembly}, {"factorization", p.factorization},
+                  {"solve", p.solve}, {"output", p.output},
+                  {"total", p.remesh + p.assembly + p.factorization + p.solve + p.output}};
+    };
+    s["timing"] = timing(tot.phases);
     Json bodies = Json::array();
-    for (const auto& m : c.models)
+    for (size_t i = 0; i < c.models.size(); ++i) {
+      const auto& m = c.models[i];
       bodies.push_back({{"name", m->name()}, {"type", m->type()}, {"nodes", m->num_nodes()},
-                        {"elements", m->num_elements()}});
+                        {"elements", m->num_elements()},
+                        {"timing", timing(i < tot.body_phases.size() ? tot.body_phases[i] : PhaseTimes{})}});
+    }
     s["bodies"] = bodies;
 #ifdef LAGFSI_HAVE_OPENMP
     s["threads"] = omp_get_max_threads();
@@ -400,6 +406,8 @@ int run_case(const RunOptions& opt) {
       PhaseTimes ph;
       Index nn = 0, ne = 0;
       double area = 0, area_remeshed = 0;
+      tot.body_phases.resize(c.models.size());
+      for (size_t i = 0; i < c.models.size(); ++i) tot.body_phases[i] += c.models[i]->times();
       for (auto& m : c.models) {
         ph += m->times();
         nn += m->num_nodes();

@@ -1,6 +1,9 @@
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/solid.hpp>
+#include <lagfsi/vtk_output.hpp>
+
+#include "positional_kernel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -44,6 +47,9 @@ SolidBody::SolidBody(TriMesh reference, std::shared_ptr<const SolidMaterial> mat
   qw_ = rule.w;
   X_.resize(num_dofs());
   for (Index i = 0; i < num_nodes(); ++i) X_.segment<2>(2 * i) = mesh_.nodes[i];
+  surface_points_.resize(num_nodes());
+  for (Index i = 0; i < num_nodes(); ++i) surface_points_[i].node = i;
+  for (const auto& e : boundary_edges(mesh_)) surface_edges_.push_back(e.nodes);
   build_pattern();
   build_mass();
 }
@@ -89,7 +95,6 @@ template <int NPE>
 double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_force) const {
   constexpr int M = 2 * NPE;
   using MatN2 = Eigen::Matrix<double, NPE, 2>;
-  using MatB = Eigen::Matrix<double, 3, M>;
   using MatM = Eigen::Matrix<double, M, M>;
   const size_t nq = qw_.size();
 
@@ -127,27 +132,7 @@ double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_forc
           const Mat2 F = xe.transpose() * G;
           const MaterialResponse r = material_->evaluate(F);
           energy += r.psi * dV;
-          if (need_force) {
-            const Eigen::Matrix<double, 2, NPE> FSGt = F * r.S * G.transpose();
-            for (int a = 0; a < NPE; ++a) fe.template segment<2>(2 * a) += FSGt.col(a) * dV;
-          }
-          if (K) {
-            MatB B;
-            for (int a = 0; a < NPE; ++a)
-              for (int al = 0; al < 2; ++al) {
-                const int col = 2 * a + al;
-                B(0, col) = G(a, 0) * F(al, 0);
-                B(1, col) = G(a, 1) * F(al, 1);
-                B(2, col) = G(a, 0) * F(al, 1) + G(a, 1) * F(al, 0);
-              }
-            Ke.noalias() += B.transpose() * (r.D * dV) * B;
-            const Eigen::Matrix<double, NPE, NPE> Kg = G * (r.S * dV) * G.transpose();
-            for (int b = 0; b < NPE; ++b)
-              for (int a = 0; a < NPE; ++a) {
-                Ke(2 * a, 2 * b) += Kg(a, b);
-                Ke(2 * a + 1, 2 * b + 1) += Kg(a, b);
-              }
-          }
+          detail::add_positional_point<NPE>(G, F, r.S, r.D, dV, need_force ? &fe : nullptr, K ? &Ke : nullptr);
         }
       } catch (const std::exception& ex) {
 #pragma omp critical(lagfsi_solid_failure)
@@ -193,20 +178,7 @@ Vec SolidBody::body_force(const Vec2& b) const {
 }
 
 Vec SolidBody::edge_traction(const std::vector<std::vector<Index>>& edges, const Vec2& t) const {
-  Vec f = Vec::Zero(num_dofs());
-  const int p = mesh_.order;
-  Eigen::VectorXd N, dN;
-  for (const auto& edge : edges) {
-    if (static_cast<int>(edge.size()) != p + 1) throw std::invalid_argument("edge has the wrong number of nodes");
-    for (const auto& [s, w] : line_quadrature(p + 1)) {
-      line_shape(p, s, N, dN);
-      Vec2 dXds = Vec2::Zero();
-      for (int a = 0; a <= p; ++a) dXds += dN[a] * mesh_.nodes[edge[a]];
-      const double dS = w * dXds.norm() * thickness_;
-      for (int a = 0; a <= p; ++a) f.segment<2>(2 * edge[a]) += N[a] * dS * t;
-    }
-  }
-  return f;
+  return surface_traction(*this, edges, t);  // the surface points of a continuum are its nodes
 }
 
 bool SolidBody::locate(const Vec2& P, Index& element, double& xi1, double& xi2) const {
@@ -228,6 +200,39 @@ bool SolidBody::locate(const Vec2& P, Index& element, double& xi1, double& xi2) 
     }
   }
   return best > -1e-9;
+}
+
+bool SolidBody::locate(const Vec2& P, std::vector<std::pair<Index, double>>& weights) const {
+  Index e;
+  double xi1, xi2;
+  if (!locate(P, e, xi1, xi2)) return false;
+  Eigen::VectorXd N;
+  Eigen::MatrixX2d dN;
+  triangle_shape(mesh_.order, xi1, xi2, N, dN);
+  const Index* c = mesh_.element(e);
+  weights.clear();
+  for (int a = 0; a < mesh_.nodes_per_element(); ++a) weights.emplace_back(c[a], N[a]);
+  return true;
+}
+
+void SolidBody::write_output(PvdSeries& series, double t, const KinematicState& st) const {
+  const Index nn = num_nodes();
+  VtuData d;
+  d.mesh = &mesh_;
+  d.points.resize(nn);
+  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, a{"acceleration", 2, {}};
+  for (Index n = 0; n < nn; ++n) {
+    d.points[n] = st.x.segment<2>(2 * n);
+    for (int c = 0; c < 2; ++c) {
+      u.values.push_back(st.x[2 * n + c] - X_[2 * n + c]);
+      v.values.push_back(st.v[2 * n + c]);
+      a.values.push_back(st.a[2 * n + c]);
+    }
+  }
+  auto s = nodal_stress(st.x);
+  d.point_fields = {u, v, a, {"cauchy_stress", 4, s.cauchy}, {"von_mises", 1, s.von_mises},
+                    {"green_strain", 3, s.green}};
+  series.write(t, d);
 }
 
 SolidBody::NodalStress SolidBody::nodal_stress(const Vec& x) const {

@@ -5,6 +5,7 @@
 #include <lagfsi/error.hpp>
 #include <lagfsi/interface.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/shell.hpp>
 #include <lagfsi/solid.hpp>
 #include <lagfsi/time_function.hpp>
 #include <lagfsi/time_integrator.hpp>
@@ -23,10 +24,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-/// A load: a fixed nodal force vector scaled by a function of time (and by the load factor in statics).
+/// A load: a fixed nodal force vector scaled by a function of time (and by the load factor in statics), or
+/// a follower pressure whose nodal forces are fn(t) P x (P from follower_pressure_matrix).
 struct Load {
   Vec f;
   std::shared_ptr<TimeFunction> fn;
+  SparseMatrix follower;  // empty for dead loads
 };
 
 /// A prescribed dof: x = X + amplitude * g(t), g = f (displacement) or int f (velocity).
@@ -41,16 +44,16 @@ class SolidModel;
 
 class DisplacementProbe final : public Probe {
  public:
-  DisplacementProbe(const SolidModel& m, std::string name, Index e, double xi1, double xi2, std::string comp,
-                    bool position);
+  DisplacementProbe(const SolidModel& m, std::string name, std::vector<std::pair<Index, double>> weights,
+                    std::string comp, bool position)
+      : m_(m), name_(std::move(name)), weights_(std::move(weights)), comp_(std::move(comp)), position_(position) {}
   std::vector<std::string> columns() const override { return {name_}; }
   std::vector<double> sample() const override;
 
  private:
   const SolidModel& m_;
   std::string name_;
-  std::vector<Index> nodes_;
-  Eigen::VectorXd N_;
+  std::vector<std::pair<Index, double>> weights_;
   std::string comp_;
   bool position_;
 };
@@ -86,9 +89,9 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   SolidModel(Params body, const CaseContext& ctx);
 
   std::string name() const override { return name_; }
-  std::string type() const override { return "solid"; }
+  std::string type() const override { return type_; }
   Index num_nodes() const override { return body_->num_nodes(); }
-  Index num_elements() const override { return body_->mesh().num_elements(); }
+  Index num_elements() const override { return body_->num_elements(); }
 
   void initialize() override;
   void predict(double t_new, double dt) override;
@@ -103,11 +106,15 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   void restart_step() override;
   void set_augmented_mass(double factor) override { aug_factor_ = factor; }
   void interface_kinematics(const std::vector<Index>& nodes, const Vec& x, Vec& v, Vec& a) const override;
-  Vec interface_positions(const std::vector<Index>& nodes) const override { return gather(x_, nodes); }
-  Vec interface_positions_old(const std::vector<Index>& nodes) const override { return gather(state_.x, nodes); }
+  Vec interface_positions(const std::vector<Index>& points) const override {
+    return body_->surface_values(points, x_);
+  }
+  Vec interface_positions_old(const std::vector<Index>& points) const override {
+    return body_->surface_values(points, state_.x);
+  }
 
   // Read access for probes.
-  const SolidBody& body() const { return *body_; }
+  const StructuralBody& body() const { return *body_; }
   const KinematicState& state() const { return state_; }
   const Vec& reaction() const { return reaction_; }
   double kinetic_energy() const { return 0.5 * state_.v.dot(body_->mass() * state_.v); }
@@ -118,22 +125,19 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   double initial_energy() const { return energy0_; }
 
  private:
-  Vec external_force(double t) const;
+  /// External force at time t for positions x (follower loads depend on x).
+  Vec external_force(double t, const Vec& x) const;
+  /// Adds the tangent of the follower loads at time t, scaled by `scale`, to H (same pattern).
+  void add_follower_tangent(double t, double scale, SparseMatrix& H) const;
   double load_factor(double t) const { return is_static_ ? t : 1.0; }
   void impose_prescribed(double t, Vec& x) const;
   void apply_dirichlet(SparseMatrix& H, Vec& r) const;
   void factorize(const SparseMatrix& H);
   Vec damping_times(const Vec& v) const;
-  static Vec gather(const Vec& full, const std::vector<Index>& nodes) {
-    Vec out(2 * nodes.size());
-    for (size_t k = 0; k < nodes.size(); ++k) out.segment<2>(2 * k) = full.segment<2>(2 * nodes[k]);
-    return out;
-  }
-
-  std::string name_;
+  std::string name_, type_;
   CaseContext ctx_;
   bool is_static_;
-  std::unique_ptr<SolidBody> body_;
+  std::unique_ptr<StructuralBody> body_;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
   std::string solver_type_;
@@ -165,18 +169,63 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
 
 // ------------------------------------------------------------------------------------------ building
 
+namespace {
+
+/// The reference mid-line of a shell body: {"type": "line", "from", "to"} or {"type": "polyline",
+/// "points"}, cut into elements of the mesh's order by "elements" (a line) or "size" (each segment into
+/// ceil(length / size) elements).
+std::vector<Vec2> shell_midline(Params geo, Params mesh, int& order) {
+  if (!geo.json().is_object() || !geo.has("type")) geo.fail("type", "required key is missing");
+  const std::string gt = geo.choice("type", {"line", "polyline"});
+  std::vector<Vec2> corners;
+  if (gt == "line") {
+    geo.validate({{"type", "line"}, {"from", nullptr}, {"to", nullptr}});
+    corners = {geo.vec2("from"), geo.vec2("to")};
+  } else {
+    geo.validate({{"type", "polyline"}, {"points", nullptr}});
+    corners = geo.points("points");
+    if (corners.size() < 2) geo.fail("points", "a polyline needs at least two points");
+  }
+  mesh.validate({{"order", 3}, {"elements", 0}, {"size", 0.0}});
+  order = mesh.integer("order", 1);
+  if (order > 3) mesh.fail("order", "must be 1, 2 or 3");
+  const int nel = mesh.integer("elements", 0);
+  const double size = mesh.non_negative("size");
+  if ((nel > 0) == (size > 0)) mesh.fail("give either \"elements\" or \"size\"");
+  if (nel > 0 && corners.size() != 2) mesh.fail("elements", "is for a line; give \"size\" for a polyline");
+  std::vector<Vec2> nodes{corners[0]};
+  for (size_t k = 0; k + 1 < corners.size(); ++k) {
+    const Vec2 a = corners[k], b = corners[k + 1];
+    const double len = (b - a).norm();
+    if (!(len > 0.0)) geo.fail("segment " + std::to_string(k) + " has zero length");
+    const int ne = nel > 0 ? nel : std::max(1, static_cast<int>(std::ceil(len / size - 1e-9)));
+    for (int i = 1; i <= ne * order; ++i) nodes.push_back(a + (b - a) * (static_cast<double>(i) / (ne * order)));
+  }
+  return nodes;
+}
+
+}  // namespace
+
 SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_(ctx.analysis.type == "static") {
-  b.validate({{"name", nullptr},
-              {"type", "solid"},
-              {"material", nullptr},
-              {"thickness", 1.0},
-              {"damping", Json::object()},
-              {"geometry", nullptr},
-              {"mesh", nullptr},
-              {"initial_velocity", Json::array({0.0, 0.0})},
-              {"boundary_conditions", Json::array()},
-              {"loads", Json::array()},
-              {"gravity", true}});
+  type_ = b.string("type");
+  const bool shell = type_ == "shell";
+  Json defaults{{"name", nullptr},
+                {"type", type_},
+                {"material", nullptr},
+                {"thickness", shell ? Json(nullptr) : Json(1.0)},
+                {"damping", Json::object()},
+                {"geometry", nullptr},
+                {"mesh", nullptr},
+                {"initial_velocity", Json::array({0.0, 0.0})},
+                {"boundary_conditions", Json::array()},
+                {"loads", Json::array()},
+                {"gravity", true}};
+  if (shell) {
+    defaults["width"] = 1.0;
+    defaults["shear_correction"] = 5.0 / 6.0;
+    defaults["shear_integration"] = "reduced";
+  }
+  b.validate(defaults);
   name_ = b.string("name");
   if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
     b.fail("name", "must be a non-empty name without spaces or slashes");
@@ -186,103 +235,159 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
                 {"hypothesis", "plane_strain"}});
   const double E = mat.positive("young"), nu = mat.number("poisson"), rho = mat.positive("density");
   if (!(nu > -1.0 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
-  const auto hyp = mat.choice("hypothesis", {"plane_strain", "plane_stress"}) == "plane_strain"
-                       ? PlaneHypothesis::PlaneStrain
-                       : PlaneHypothesis::PlaneStress;
-  std::shared_ptr<SolidMaterial> material;
-  try {
-    material = make_solid_material(mat.choice("type", {"svk", "neo_hookean"}), E, nu, rho, hyp);
-  } catch (const std::invalid_argument& e) {
-    mat.fail("type", e.what());
-  }
+  const std::string hyp_name = mat.choice("hypothesis", {"plane_strain", "plane_stress"});
   const double thickness = b.positive("thickness");
+  if (shell) {
+    if (mat.choice("type", {"svk"}) != "svk") mat.fail("type", "shells use the svk law in their own frame");
+    ShellSection sec;
+    sec.thickness = thickness;
+    sec.width = b.positive("width");
+    sec.young = E;
+    sec.poisson = nu;
+    sec.density = rho;
+    sec.plane_strain = hyp_name == "plane_strain";
+    sec.shear_correction = b.positive("shear_correction");
+    sec.reduced_shear = b.choice("shear_integration", {"reduced", "full"}) == "reduced";
+    int order = 3;
+    std::vector<Vec2> midline = shell_midline(b.at("geometry"), b.at("mesh"), order);
+    try {
+      body_ = std::make_unique<ShellBody>(order, std::move(midline), sec);
+    } catch (const std::invalid_argument& e) {
+      b.fail("geometry", e.what());
+    }
+  } else {
+    const auto hyp = hyp_name == "plane_strain" ? PlaneHypothesis::PlaneStrain : PlaneHypothesis::PlaneStress;
+    std::shared_ptr<SolidMaterial> material;
+    try {
+      material = make_solid_material(mat.choice("type", {"svk", "neo_hookean"}), E, nu, rho, hyp);
+    } catch (const std::invalid_argument& e) {
+      mat.fail("type", e.what());
+    }
+    TriMesh mesh = build_mesh(b.at("geometry"), b.at("mesh"));
+    try {
+      body_ = std::make_unique<SolidBody>(std::move(mesh), material, thickness);
+    } catch (const std::exception& e) {
+      b.fail("mesh", e.what());
+    }
+  }
 
   Params damp = b.at("damping");
   damp.validate({{"mass", 0.0}, {"stiffness", 0.0}});
   damp_mass_ = damp.non_negative("mass");
   damp_stiff_ = damp.non_negative("stiffness");
 
-  TriMesh mesh = build_mesh(b.at("geometry"), b.at("mesh"));
-  try {
-    body_ = std::make_unique<SolidBody>(std::move(mesh), material, thickness);
-  } catch (const std::exception& e) {
-    b.fail("mesh", e.what());
-  }
+  const auto& stations = body_->stations();
   {
-    Vec2 lo = body_->mesh().nodes[0], hi = lo;
-    for (const auto& p : body_->mesh().nodes) {
+    Vec2 lo = stations[0], hi = lo;
+    for (const auto& p : stations) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
     length_ = (hi - lo).norm();
   }
   const Index nd = body_->num_dofs();
-  const auto& nodes = body_->mesh().nodes;
 
-  // Boundary conditions: fixed / prescribed displacement / prescribed velocity.
+  // Boundary conditions: fixed / prescribed displacement / prescribed velocity of the stations'
+  // translations; a shell's rotation (its generalised vector) is held by them too unless "rotation" is
+  // "free" ("pinned" is "fixed" with a free rotation).
   Params bcs = b.at("boundary_conditions");
   fixed_mask_.assign(nd, 0);
   for (size_t i = 0; i < bcs.size(); ++i) {
     Params bc = bcs.at(i);
     if (!bc.json().is_object() || !bc.has("type")) bc.fail("type", "required key is missing");
-    const std::string t = bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
-    if (t == "fixed")
-      bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
-    else
-      bc.validate({{"type", t}, {"select", nullptr}, {"components", "xy"}, {"value", nullptr},
-                   {"function", Json{{"type", "constant"}}}});
+    const std::string t = shell ? bc.choice("type", {"fixed", "pinned", "prescribed_displacement", "prescribed_velocity"})
+                                : bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
+    Json bdef{{"type", t}, {"select", nullptr}, {"components", "xy"}};
+    if (t != "fixed" && t != "pinned") {
+      bdef["value"] = nullptr;
+      bdef["function"] = Json{{"type", "constant"}};
+    }
+    if (shell) bdef["rotation"] = t == "pinned" ? "free" : "fixed";
+    bc.validate(bdef);
     const std::string comps = bc.choice("components", {"x", "y", "xy"});
-    const auto sel = select_nodes(bc.at("select"), nodes);
+    const bool hold_rotation = shell && bc.choice("rotation", {"fixed", "free"}) == "fixed";
+    const auto sel = select_nodes(bc.at("select"), stations);
     Vec2 value = Vec2::Zero();
     std::shared_ptr<TimeFunction> fn;
-    if (t != "fixed") {
+    if (t == "prescribed_displacement" || t == "prescribed_velocity") {
       value = bc.vec2("value");
       fn = make_time_function(bc.at("function"), ctx.base_dir);
     }
-    for (Index n : sel)
+    auto hold = [&](Index dof, double amplitude, const std::shared_ptr<TimeFunction>& f) {
+      if (fixed_mask_[dof]) return;  // first condition wins
+      fixed_mask_[dof] = 1;
+      prescribed_.push_back({dof, amplitude, f, t == "prescribed_velocity"});
+    };
+    for (Index s : sel) {
       for (int c = 0; c < 2; ++c) {
         if ((c == 0 && comps == "y") || (c == 1 && comps == "x")) continue;
-        const Index dof = 2 * n + c;
-        if (fixed_mask_[dof]) continue;  // first condition wins
-        fixed_mask_[dof] = 1;
-        prescribed_.push_back({dof, value[c], fn, t == "prescribed_velocity"});
+        hold(2 * body_->station_node(s) + c, value[c], fn);
       }
+      const Index rn = body_->station_rotation_node(s);
+      if (hold_rotation && rn >= 0)
+        for (int c = 0; c < 2; ++c) hold(2 * rn + c, 0.0, nullptr);
+    }
   }
 
-  // Loads: point loads (value split equally over the selected nodes) and edge tractions.
+  // Loads: point loads (value split equally over the selected stations), tractions and pressures on
+  // boundary edges (all of whose points are selected), body forces.
   Params loads = b.at("loads");
-  const auto edges = boundary_edges(body_->mesh());
+  const auto& spoints = body_->surface_points();
+  std::vector<Vec2> surface_reference(spoints.size());
+  {
+    const Vec s = body_->surface_values([&] {
+      std::vector<Index> all(spoints.size());
+      for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
+      return all;
+    }(), body_->reference_positions());
+    for (size_t k = 0; k < spoints.size(); ++k) surface_reference[k] = s.segment<2>(2 * k);
+  }
+  auto selected_edges = [&](Params l) {
+    const auto sel = select_nodes(l.at("select"), surface_reference);
+    std::set<Index> in(sel.begin(), sel.end());
+    std::vector<std::vector<Index>> chosen;
+    for (const auto& e : body_->surface_edges()) {
+      bool all = true;
+      for (Index n : e) all = all && in.count(n);
+      if (all) chosen.push_back(e);
+    }
+    if (chosen.empty()) l.fail("select", "the selection contains no boundary edge");
+    return chosen;
+  };
   for (size_t i = 0; i < loads.size(); ++i) {
     Params l = loads.at(i);
     if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
-    const std::string t = l.choice("type", {"point_load", "traction", "body_force"});
-    Json defaults{{"type", t}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}};
-    if (t != "body_force") defaults["select"] = nullptr;
-    l.validate(defaults);
+    const std::string t = l.choice("type", {"point_load", "traction", "pressure", "body_force"});
+    Json ldef{{"type", t}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}};
+    if (t != "body_force") ldef["select"] = nullptr;
+    if (t == "pressure") ldef["follower"] = true;
+    l.validate(ldef);
+    Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx.base_dir)), {}};
+    if (t == "pressure") {
+      // Pressure p pushes on the boundary: the force is -p n ds (n outward).
+      const double p = l.number("value");
+      const auto edges = selected_edges(l);
+      const SparseMatrix P = follower_pressure_matrix(*body_, edges);
+      if (l.boolean("follower"))
+        load.follower = p * P;
+      else
+        load.f = p * (P * body_->reference_positions());
+      loads_.push_back(std::move(load));
+      continue;
+    }
     const Vec2 value = l.vec2("value");
-    Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx.base_dir))};
     if (t == "point_load") {
-      const auto sel = select_nodes(l.at("select"), nodes);
-      for (Index n : sel) load.f.segment<2>(2 * n) = value / static_cast<double>(sel.size());
+      const auto sel = select_nodes(l.at("select"), stations);
+      for (Index n : sel) load.f.segment<2>(2 * body_->station_node(n)) = value / static_cast<double>(sel.size());
     } else if (t == "traction") {
-      const auto sel = select_nodes(l.at("select"), nodes);
-      std::set<Index> in(sel.begin(), sel.end());
-      std::vector<std::vector<Index>> chosen;
-      for (const auto& e : edges) {
-        bool all = true;
-        for (Index n : e.nodes) all = all && in.count(n);
-        if (all) chosen.push_back(e.nodes);
-      }
-      if (chosen.empty()) l.fail("select", "the selection contains no boundary edge");
-      load.f = body_->edge_traction(chosen, value);
+      load.f = surface_traction(*body_, selected_edges(l), value);
     } else {
       load.f = body_->body_force(value);
     }
     loads_.push_back(std::move(load));
   }
   if (b.boolean("gravity") && ctx.gravity.squaredNorm() > 0)
-    loads_.push_back({body_->body_force(material->density() * ctx.gravity),
-                      constant_function(1.0)});
+    loads_.push_back({body_->body_force(body_->density() * ctx.gravity), constant_function(1.0), {}});
 
   // Integrator and solver.
   if (!is_static_) {
@@ -310,10 +415,21 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
 
 // ------------------------------------------------------------------------------------------ helpers
 
-Vec SolidModel::external_force(double t) const {
+Vec SolidModel::external_force(double t, const Vec& x) const {
   Vec f = Vec::Zero(body_->num_dofs());
-  for (const auto& l : loads_) f += l.fn->value(t) * l.f;
+  for (const auto& l : loads_) f += l.fn->value(t) * (l.follower.size() ? Vec(l.follower * x) : l.f);
   return load_factor(t) * f;
+}
+
+void SolidModel::add_follower_tangent(double t, double scale, SparseMatrix& H) const {
+  // r = ... - f_ext(x): d r / dx = -fn(t) lambda P on the body's pattern.
+  double* h = H.valuePtr();
+  for (const auto& l : loads_) {
+    if (!l.follower.size()) continue;
+    const double c = scale * l.fn->value(t) * load_factor(t);
+    const double* pv = l.follower.valuePtr();
+    for (Index i = 0; i < H.nonZeros(); ++i) h[i] -= c * pv[i];
+  }
 }
 
 void SolidModel::impose_prescribed(double t, Vec& x) const {
@@ -370,7 +486,7 @@ void SolidModel::initialize() {
   energy0_ = kinetic_energy() + strain_energy_;
   if (!is_static_) {
     // Consistent initial acceleration: M a0 = f_ext(0) - f_int(x0) - C v0 on the free dofs.
-    Vec r = external_force(0.0) - f - damping_times(state_.v);
+    Vec r = external_force(0.0, state_.x) - f - damping_times(state_.v);
     SparseMatrix M = body_->mass();
     apply_dirichlet(M, r);
     auto s = make_linear_solver("cholmod");
@@ -403,14 +519,15 @@ IterationReport SolidModel::solve_iteration() {
   const Index nd = body_->num_dofs();
   if (is_static_) {
     strain_energy_ = body_->internal_force(x_, f_int_, &H_);
-    const Vec fext = external_force(t_new_);
+    const Vec fext = external_force(t_new_, x_);
     r = f_int_ - fext;
+    add_follower_tangent(t_new_, 1.0, H_);
     rep.residual_ref = std::max(fext.norm(), f_int_.norm());
   } else {
     const EvalPoint ev = integrator_->kinematics(x_);
     const TangentCoefficients c = integrator_->coefficients();
     strain_energy_ = body_->internal_force(ev.x, f_int_, &H_);
-    Vec fext = external_force(ev.t);
+    Vec fext = external_force(ev.t, ev.x);
     if (f_iface_.size() == nd) fext += f_iface_;
     const Vec inertia = body_->mass() * ev.a;
     const Vec damping = damping_times(ev.v);
@@ -427,6 +544,7 @@ IterationReport SolidModel::solve_iteration() {
       h[i] = c.c_k * h[i] + cm * m[i];
       if (k0) h[i] += c.c_c * damp_stiff_ * k0[i];
     }
+    add_follower_tangent(ev.t, c.c_k, H_);
     Vec rf = fext, ri = inertia, ru = f_int_;
     for (Index i = 0; i < nd; ++i)
       if (fixed_mask_[i]) rf[i] = ri[i] = ru[i] = 0.0;
@@ -470,7 +588,7 @@ IterationReport SolidModel::solve_iteration() {
 void SolidModel::finalize_step() {
   auto t0 = Clock::now();
   const Vec x_old = state_.x;
-  const Vec fext_old = external_force(old_state_.t);
+  const Vec fext_old = external_force(old_state_.t, x_old);
   if (is_static_) {
     state_.x = x_;
     state_.t = t_new_;
@@ -478,7 +596,7 @@ void SolidModel::finalize_step() {
     integrator_->end_step(x_, state_);
   }
   // Energy bookkeeping (trapezoidal): external work and damping dissipation.
-  const Vec fext_new = external_force(state_.t);
+  const Vec fext_new = external_force(state_.t, state_.x);
   work_ext_ += 0.5 * (fext_old + fext_new).dot(state_.x - x_old);
   if (f_iface_.size() == body_->num_dofs()) {  // work of the interface forces (trapezoidal)
     if (f_iface_old_.size() != f_iface_.size()) f_iface_old_ = Vec::Zero(f_iface_.size());
@@ -508,52 +626,41 @@ void SolidModel::finalize_step() {
 void SolidModel::write_output(double t) {
   auto t0 = Clock::now();
   if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
-  const Index nn = body_->num_nodes();
-  VtuData d;
-  d.mesh = &body_->mesh();
-  d.points.resize(nn);
-  Field u{"displacement", 2, {}}, v{"velocity", 2, {}}, a{"acceleration", 2, {}};
-  const Vec& X = body_->reference_positions();
-  for (Index n = 0; n < nn; ++n) {
-    d.points[n] = state_.x.segment<2>(2 * n);
-    for (int c = 0; c < 2; ++c) {
-      u.values.push_back(state_.x[2 * n + c] - X[2 * n + c]);
-      v.values.push_back(state_.v[2 * n + c]);
-      a.values.push_back(state_.a[2 * n + c]);
-    }
-  }
-  auto s = body_->nodal_stress(state_.x);
-  d.point_fields = {u, v, a, {"cauchy_stress", 4, s.cauchy}, {"von_mises", 1, s.von_mises},
-                    {"green_strain", 3, s.green}};
-  series_->write(t, d);
+  body_->write_output(*series_, t, state_);
   times_.output += seconds_since(t0);
 }
 
 // ------------------------------------------------------------------------------------------ coupling
 
 InterfaceBoundary SolidModel::make_interface(Params select) const {
-  const auto& nodes = body_->mesh().nodes;
-  const auto sel = select_nodes(select, nodes);
+  // Interface "nodes" are surface points (a continuum's boundary nodes, a shell's face points).
+  const auto& sp = body_->surface_points();
+  std::vector<Index> all(sp.size());
+  for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
+  const Vec ref = body_->surface_values(all, body_->reference_positions());
+  std::vector<Vec2> points(sp.size());
+  for (size_t k = 0; k < sp.size(); ++k) points[k] = ref.segment<2>(2 * k);
+  const auto sel = select_nodes(select, points);
   std::set<Index> in(sel.begin(), sel.end());
   InterfaceBoundary ib;
   std::set<Index> used;
-  for (const auto& e : boundary_edges(body_->mesh())) {
-    bool all = true;
-    for (Index n : e.nodes) all = all && in.count(n);
-    if (!all) continue;
-    ib.edges.push_back(e.nodes);
-    used.insert(e.nodes.begin(), e.nodes.end());
+  for (const auto& e : body_->surface_edges()) {
+    bool all_in = true;
+    for (Index n : e) all_in = all_in && in.count(n);
+    if (!all_in) continue;
+    ib.edges.push_back(e);
+    used.insert(e.begin(), e.end());
   }
   if (ib.edges.empty()) select.fail("the selection contains no boundary edge of body '" + name_ + "'");
   ib.nodes.assign(used.begin(), used.end());
-  for (Index n : ib.nodes) ib.reference.push_back(nodes[n]);
+  for (Index n : ib.nodes) ib.reference.push_back(points[n]);
   return ib;
 }
 
-void SolidModel::set_interface_forces(const std::vector<Index>& nodes, const Vec& forces) {
+void SolidModel::set_interface_forces(const std::vector<Index>& points, const Vec& forces) {
   if (is_static_) throw SolverError("body '" + name_ + "': interface forces need a dynamic analysis");
   f_iface_ = Vec::Zero(body_->num_dofs());
-  for (size_t k = 0; k < nodes.size(); ++k) f_iface_.segment<2>(2 * nodes[k]) = forces.segment<2>(2 * k);
+  body_->add_surface_forces(points, forces, f_iface_);
 }
 
 void SolidModel::restart_step() {
@@ -564,13 +671,17 @@ void SolidModel::restart_step() {
   last_residual_ = std::numeric_limits<double>::infinity();
 }
 
-void SolidModel::interface_kinematics(const std::vector<Index>& nodes, const Vec& x, Vec& v, Vec& a) const {
-  Vec full = x_;
-  for (size_t k = 0; k < nodes.size(); ++k) full.segment<2>(2 * nodes[k]) = x.segment<2>(2 * k);
+void SolidModel::interface_kinematics(const std::vector<Index>& points, const Vec& x, Vec& v, Vec& a) const {
+  // The integrator's update is affine in x_{n+1} with the same coefficients for every dof (d v / dx = c_c,
+  // d a / dx = c_m), so the velocity of a surface point at position x differs from its value at the
+  // current iterate by c_c times the position difference (exact for surface points that are linear
+  // combinations of dofs).
   KinematicState s;
-  integrator_->end_step(full, s);
-  v = gather(s.v, nodes);
-  a = gather(s.a, nodes);
+  integrator_->end_step(x_, s);
+  const TangentCoefficients c = integrator_->coefficients();
+  const Vec dx = x - body_->surface_values(points, x_);
+  v = body_->surface_values(points, s.v) + c.c_c * dx;
+  a = body_->surface_values(points, s.a) + c.c_m * dx;
 }
 
 // ------------------------------------------------------------------------------------------ probes
@@ -580,17 +691,17 @@ std::unique_ptr<Probe> SolidModel::make_probe(Params p) {
   if (t == "displacement" || t == "position") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"component", "y"}});
     const std::string comp = p.choice("component", {"x", "y", "magnitude"});
-    Index e;
-    double xi1, xi2;
-    if (!body_->locate(p.vec2("at"), e, xi1, xi2)) p.fail("at", "the point is outside body '" + name_ + "'");
-    return std::make_unique<DisplacementProbe>(*this, p.string("name"), e, xi1, xi2, comp, t == "position");
+    std::vector<std::pair<Index, double>> w;
+    if (!body_->locate(p.vec2("at"), w)) p.fail("at", "the point is outside body '" + name_ + "'");
+    return std::make_unique<DisplacementProbe>(*this, p.string("name"), std::move(w), comp, t == "position");
   }
   if (t == "reaction") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"select", nullptr}, {"component", "y"}});
     const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
     need_reaction_ = true;
-    return std::make_unique<ReactionProbe>(*this, p.string("name"), select_nodes(p.at("select"), body_->mesh().nodes),
-                                           comp);
+    std::vector<Index> nodes;
+    for (Index s : select_nodes(p.at("select"), body_->stations())) nodes.push_back(body_->station_node(s));
+    return std::make_unique<ReactionProbe>(*this, p.string("name"), std::move(nodes), comp);
   }
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
   return std::make_unique<EnergyProbe>(
@@ -598,23 +709,13 @@ std::unique_ptr<Probe> SolidModel::make_probe(Params p) {
       p.choice("kind", {"kinetic", "strain", "external_work", "interface_work", "dissipated", "total", "balance"}));
 }
 
-DisplacementProbe::DisplacementProbe(const SolidModel& m, std::string name, Index e, double xi1, double xi2,
-                                     std::string comp, bool position)
-    : m_(m), name_(std::move(name)), comp_(std::move(comp)), position_(position) {
-  const TriMesh& mesh = m.body().mesh();
-  const Index* c = mesh.element(e);
-  nodes_.assign(c, c + mesh.nodes_per_element());
-  Eigen::MatrixX2d dN;
-  triangle_shape(mesh.order, xi1, xi2, N_, dN);
-}
-
 std::vector<double> DisplacementProbe::sample() const {
   const Vec& x = m_.state().x;
   const Vec& X = m_.body().reference_positions();
   Vec2 u = Vec2::Zero();
-  for (size_t a = 0; a < nodes_.size(); ++a) {
-    const Vec2 d = x.segment<2>(2 * nodes_[a]) - (position_ ? Vec2::Zero() : Vec2(X.segment<2>(2 * nodes_[a])));
-    u += N_[a] * d;
+  for (const auto& [node, w] : weights_) {
+    const Vec2 d = x.segment<2>(2 * node) - (position_ ? Vec2::Zero() : Vec2(X.segment<2>(2 * node)));
+    u += w * d;
   }
   if (comp_ == "x") return {u.x()};
   if (comp_ == "y") return {u.y()};

@@ -15,21 +15,6 @@ using namespace lagfsi::testing;
 
 double rel_err(double value, double ref) { return std::abs(value / ref - 1.0); }
 
-Csv probes_of(const RunResult& r) {
-  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
-  return read_csv(r.out_dir / "probes.csv");
-}
-
-/// Value of a column at the row whose time is closest to t.
-double at_time(const Csv& c, const std::string& col, double t) {
-  const auto& tt = c["time"];
-  size_t best = 0;
-  for (size_t i = 0; i < tt.size(); ++i)
-    if (std::abs(tt[i] - t) < std::abs(tt[best] - t)) best = i;
-  EXPECT_NEAR(tt[best], t, 1e-9);
-  return c[col][best];
-}
-
 // ---------------------------------------------------------------- cantilever_step_load (seed 5.5.1)
 // Timoshenko: delta = P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6, G = E/2 (nu = 0), b = 1 m.
 double cantilever_timoshenko() {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 namespace lagfsi::testing {
@@ -120,6 +121,22 @@ inline double mean_between(const Csv& c, const std::string& col, double a, doubl
       ++n;
     }
   return n ? s / n : std::nan("");
+}
+
+/// probes.csv of a run that must have ended with exit code 0.
+inline Csv probes_of(const RunResult& r) {
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  return read_csv(r.out_dir / "probes.csv");
+}
+
+/// Value of a column at the row whose time is closest to t (which must be within 1e-9 of a row's time).
+inline double at_time(const Csv& c, const std::string& col, double t) {
+  const auto& tt = c["time"];
+  size_t best = 0;
+  for (size_t i = 0; i < tt.size(); ++i)
+    if (std::abs(tt[i] - t) < std::abs(tt[best] - t)) best = i;
+  EXPECT_NEAR(tt[best], t, 1e-9);
+  return c[col][best];
 }
 
 /// Writes a text file (for case files made by a test).

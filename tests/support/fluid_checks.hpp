@@ -17,11 +17,6 @@
 
 namespace lagfsi::testing {
 
-inline Csv probes_of(const RunResult& r) {
-  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
-  return read_csv(r.out_dir / "probes.csv");
-}
-
 /// One OpenMP thread (as ctest sets, also when a test binary runs by hand): a fixed summation order keeps the
 /// remeshed runs, which are sensitive to round-off, reproducible.
 inline RunResult run_case_1thread(const std::string& case_rel, const std::string& tag,

@@ -326,3 +326,56 @@ TEST(BadInput, UsageErrors) {
 }
 
 }  // namespace
+
+TEST(BadInput, ShellErrorsNameTheirKey) {
+  const json base = json::parse(R"({
+    "name": "bad_input_shell",
+    "analysis": {"type": "static", "load_steps": 2},
+    "bodies": [{
+      "name": "strip", "type": "shell",
+      "material": {"type": "svk", "young": 1e8, "density": 1000, "hypothesis": "plane_stress"},
+      "thickness": 0.01,
+      "geometry": {"type": "line", "from": [0, 0], "to": [1, 0]},
+      "mesh": {"elements": 4, "order": 3},
+      "boundary_conditions": [{"type": "fixed", "select": {"type": "point", "at": [0, 0]}}],
+      "loads": [{"type": "pressure", "select": {"type": "segment", "from": [0, 0.005], "to": [1, 0.005]}, "value": 10.0}]
+    }]
+  })");
+  EXPECT_EQ(run_json("shell_base", base).code, 0);
+  json j = base;
+  j["bodies"][0].erase("thickness");
+  Outcome o = run_json("shell_no_thickness", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/thickness", "missing");
+  j = base;
+  j["bodies"][0]["mesh"]["size"] = 0.1;  // both "elements" and "size"
+  o = run_json("shell_mesh_both", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/mesh", "either");
+  j = base;
+  j["bodies"][0]["geometry"] = {{"type", "line"}, {"from", {0, 0}}, {"to", {0, 0}}};
+  o = run_json("shell_zero_length", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/geometry", "zero length");
+  j = base;
+  j["bodies"][0]["material"]["type"] = "neo_hookean";
+  o = run_json("shell_law", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/material/type", "svk");
+  j = base;
+  j["bodies"][0]["loads"][0]["select"] = {{"type", "segment"}, {"from", {0, 0.5}}, {"to", {1, 0.5}}};
+  o = run_json("shell_pressure_nowhere", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/loads/0/select", "");
+  // "rotation" belongs to shells only; "pinned" too.
+  json s = base;
+  s["bodies"][0]["type"] = "solid";
+  s["bodies"][0]["geometry"] = {{"type", "rectangle"}, {"origin", {0, 0}}, {"size", {1, 0.1}}};
+  s["bodies"][0]["mesh"] = {{"size", 0.1}, {"order", 1}};
+  s["bodies"][0]["thickness"] = 1.0;
+  s["bodies"][0]["loads"] = json::array();
+  s["bodies"][0]["boundary_conditions"][0]["rotation"] = "free";
+  o = run_json("solid_rotation", s);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/boundary_conditions/0/rotation", "unknown");
+}

@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include "finite_difference.hpp"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
@@ -98,17 +100,8 @@ TEST_P(SolidTangent, HessianGradientSymmetryObjectivity) {
   //    leaves a wide margin while any missing or wrong term (geometric stiffness, plane-stress
   //    condensation, a wrong D) gives an O(1e-2..1) relative error.
   {
-    const double h = 1e-6;
-    Eigen::MatrixXd Kfd(nd, nd);
-    Vec fp, fm;
-    for (Index j = 0; j < nd; ++j) {
-      Vec xp = x, xm = x;
-      xp[j] += h;
-      xm[j] -= h;
-      body.internal_force(xp, fp, nullptr);
-      body.internal_force(xm, fm, nullptr);
-      Kfd.col(j) = (fp - fm) / (2.0 * h);
-    }
+    const Eigen::MatrixXd Kfd = lagfsi::testing::central_jacobian(
+        [&](const Vec& y, Vec& out) { body.internal_force(y, out, nullptr); }, x, 1e-6);
     const double rel = (Kd - Kfd).norm() / Kd.norm();
     std::printf("%-28s |K - K_fd|/|K| = %.2e", name_of(cfg).c_str(), rel);
     EXPECT_LT(rel, 1e-6) << name_of(cfg) << ": |K - K_fd| / |K| = " << rel;
@@ -120,14 +113,7 @@ TEST_P(SolidTangent, HessianGradientSymmetryObjectivity) {
   // 2. f_int against central differences of the energy (h = 1e-5: round-off eps W / h ~ 1e-11 of |f|,
   //    truncation h^2 ~ 1e-10).
   {
-    const double h = 1e-5;
-    Vec g(nd);
-    for (Index j = 0; j < nd; ++j) {
-      Vec xp = x, xm = x;
-      xp[j] += h;
-      xm[j] -= h;
-      g[j] = (body.strain_energy(xp) - body.strain_energy(xm)) / (2.0 * h);
-    }
+    const Vec g = lagfsi::testing::central_gradient([&](const Vec& y) { return body.strain_energy(y); }, x, 1e-5);
     const double rel = (f - g).norm() / f.norm();
     std::printf("  |f - dW/dx|/|f| = %.2e\n", rel);
     EXPECT_LT(rel, 1e-6) << name_of(cfg) << ": |f - dW/dx| / |f| = " << rel;

@@ -42,6 +42,58 @@ class Aitken final : public Acceleration {
   Vec r_prev_;
 };
 
+/// Filtered least squares on difference columns: QR of V by modified Gram-Schmidt, column by column; a
+/// column whose part orthogonal to the ones before it is below `filter` times its own norm is dropped.
+/// Solves min |V alpha + r| over the kept columns.
+struct FilteredLeastSquares {
+  std::vector<Vec> Q;                  // orthonormal columns
+  std::vector<std::vector<double>> R;  // R[j] = column j of R (entries 0..j)
+  std::vector<size_t> kept;            // indices of the kept columns of V
+  std::vector<double> alpha;           // coefficients of the kept columns
+
+  FilteredLeastSquares(const std::vector<const Vec*>& V, const Vec& r, double filter) {
+    for (size_t c = 0; c < V.size(); ++c) {
+      Vec q = *V[c];
+      const double norm0 = q.norm();
+      if (!(norm0 > 0)) continue;
+      std::vector<double> rc(Q.size() + 1, 0.0);
+      for (size_t j = 0; j < Q.size(); ++j) {
+        rc[j] = Q[j].dot(q);
+        q -= rc[j] * Q[j];
+      }
+      const double nq = q.norm();
+      if (nq < filter * norm0) continue;
+      rc[Q.size()] = nq;
+      Q.push_back(q / nq);
+      R.push_back(std::move(rc));
+      kept.push_back(c);
+    }
+    alpha = back_substitute([&](size_t j) { return -Q[j].dot(r); });
+  }
+  /// y = R^-1 b for b_j given by a function.
+  template <class B>
+  std::vector<double> back_substitute(B b) const {
+    const size_t m = kept.size();
+    std::vector<double> y(m, 0.0);
+    for (size_t j = m; j-- > 0;) {
+      double s = b(j);
+      for (size_t l = j + 1; l < m; ++l) s -= R[l][j] * y[l];
+      y[j] = s / R[j][j];
+    }
+    return y;
+  }
+};
+
+/// This step's difference columns, newest first: dr_i = r_i - r_{i-1}, dx_i = x~_i - x~_{i-1}.
+void step_differences(const std::vector<Vec>& r, const std::vector<Vec>& xt, std::vector<Vec>& dr, std::vector<Vec>& dx) {
+  dr.clear();
+  dx.clear();
+  for (size_t i = r.size(); i-- > 1;) {
+    dr.push_back(r[i] - r[i - 1]);
+    dx.push_back(xt[i] - xt[i - 1]);
+  }
+}
+
 class IqnIls final : public Acceleration {
  public:
   IqnIls(double w0, int reuse, double filter) : w0_(w0), reuse_(reuse), filter_(filter) {}
@@ -56,10 +108,7 @@ class IqnIls final : public Acceleration {
   void end_step() override {
     if (reuse_ <= 0 || r_.size() < 2) return;
     Step s;
-    for (size_t i = r_.size() - 1; i >= 1; --i) {  // newest difference first
-      s.dr.push_back(r_[i] - r_[i - 1]);
-      s.dx.push_back(xt_[i] - xt_[i - 1]);
-    }
+    step_differences(r_, xt_, s.dr, s.dx);
     old_.push_front(std::move(s));
     while (static_cast<int>(old_.size()) > reuse_) old_.pop_back();
   }
@@ -80,10 +129,7 @@ class IqnIls final : public Acceleration {
     // Columns, newest first: this step's differences, then the reused steps' ones.
     std::vector<const Vec*> V, W;
     std::vector<Vec> dr_now, dx_now;
-    for (size_t i = r_.size() - 1; i >= 1; --i) {
-      dr_now.push_back(r_[i] - r_[i - 1]);
-      dx_now.push_back(xt_[i] - xt_[i - 1]);
-    }
+    step_differences(r_, xt_, dr_now, dx_now);
     for (size_t i = 0; i < dr_now.size(); ++i) {
       V.push_back(&dr_now[i]);
       W.push_back(&dx_now[i]);
@@ -93,39 +139,11 @@ class IqnIls final : public Acceleration {
         V.push_back(&s.dr[i]);
         W.push_back(&s.dx[i]);
       }
-    // Modified Gram-Schmidt QR of the kept columns, with the filter.
-    std::vector<Vec> Q;
-    std::vector<std::vector<double>> R;  // R[j] = column j of R (entries 0..j)
-    std::vector<size_t> kept;
-    for (size_t c = 0; c < V.size(); ++c) {
-      Vec q = *V[c];
-      const double norm0 = q.norm();
-      if (!(norm0 > 0)) continue;
-      std::vector<double> rc(Q.size() + 1, 0.0);
-      for (size_t j = 0; j < Q.size(); ++j) {
-        rc[j] = Q[j].dot(q);
-        q -= rc[j] * Q[j];
-      }
-      const double nq = q.norm();
-      if (nq < filter_ * norm0) continue;
-      rc[Q.size()] = nq;
-      Q.push_back(q / nq);
-      R.push_back(std::move(rc));
-      kept.push_back(c);
-    }
-    columns_ = static_cast<int>(kept.size());
-    if (kept.empty()) return x + w0_ * r;
-    // R alpha = -Q^T r (back substitution), then x = x~ + W alpha.
-    const size_t m = kept.size();
-    std::vector<double> b(m), alpha(m, 0.0);
-    for (size_t j = 0; j < m; ++j) b[j] = -Q[j].dot(r);
-    for (size_t j = m; j-- > 0;) {
-      double s = b[j];
-      for (size_t l = j + 1; l < m; ++l) s -= R[l][j] * alpha[l];
-      alpha[j] = s / R[j][j];
-    }
+    const FilteredLeastSquares ls(V, r, filter_);
+    columns_ = static_cast<int>(ls.kept.size());
+    if (ls.kept.empty()) return x + w0_ * r;
     Vec next = x_tilde;
-    for (size_t j = 0; j < m; ++j) next += alpha[j] * *W[kept[j]];
+    for (size_t j = 0; j < ls.kept.size(); ++j) next += ls.alpha[j] * *W[ls.kept[j]];
     return next;
   }
 
@@ -141,11 +159,87 @@ class IqnIls final : public Acceleration {
   int columns_ = 0;
 };
 
+/// IQN-IMVJ (Lindner, Mehl, Scheufele & Uekermann 2015, SIAM J. Sci. Comput. 37:S145 — preCICE's
+/// "IQN-IMVJ"): the inverse Jacobian J of the step (d x~ = J d r) is the previous steps' J_prev corrected
+/// by this step's columns with the least change, J = J_prev + (W - J_prev V)(V^T V)^-1 V^T, and
+/// x_{k+1} = x~_k - J r_k = x~_k + W alpha + J_prev(-r_k - V alpha) with alpha the least-squares
+/// coefficients of ILS. At the end of a step J becomes J_prev (a dense n x n matrix, n the interface
+/// unknowns: a few hundred here). The first step, without J_prev, is ILS without reuse.
+class IqnImvj final : public Acceleration {
+ public:
+  IqnImvj(double w0, double filter) : w0_(w0), filter_(filter) {}
+  std::string type() const override { return "iqn_imvj"; }
+  int model_columns() const override { return columns_; }
+
+  void begin_step() override {
+    r_.clear();
+    xt_.clear();
+  }
+
+  void end_step() override {
+    if (r_.size() < 2) return;
+    std::vector<Vec> dr, dx;
+    step_differences(r_, xt_, dr, dx);
+    std::vector<const Vec*> V;
+    for (const Vec& v : dr) V.push_back(&v);
+    const FilteredLeastSquares ls(V, r_.back(), filter_);
+    const Eigen::Index n = r_.back().size();
+    if (J_.rows() != n) J_ = Eigen::MatrixXd::Zero(n, n);
+    // J += (W - J_prev V) R^-1 Q^T over the kept columns (row i of R^-1 Q^T's transpose: R^-1 applied to
+    // the i-th entries of the q's).
+    const size_t m = ls.kept.size();
+    Eigen::MatrixXd Z(m, n);  // R^-1 Q^T
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const std::vector<double> zi = ls.back_substitute([&](size_t j) { return ls.Q[j][i]; });
+      for (size_t j = 0; j < m; ++j) Z(static_cast<Eigen::Index>(j), i) = zi[j];
+    }
+    Eigen::MatrixXd D(n, m);  // W - J_prev V (kept columns)
+    for (size_t j = 0; j < m; ++j) D.col(static_cast<Eigen::Index>(j)) = dx[ls.kept[j]] - J_ * dr[ls.kept[j]];
+    J_ += D * Z;
+  }
+
+  void reset() override {
+    J_.resize(0, 0);
+    r_.clear();
+    xt_.clear();
+    columns_ = 0;
+  }
+
+  Vec update(const Vec& x, const Vec& x_tilde) override {
+    const Vec r = x_tilde - x;
+    if (!r_.empty() && r_.back().size() != r.size()) throw SolverError("iqn_imvj: the interface changed size within a step");
+    if (J_.size() && J_.rows() != r.size()) J_.resize(0, 0);  // new interface: old Jacobian void
+    r_.push_back(r);
+    xt_.push_back(x_tilde);
+    std::vector<Vec> dr, dx;
+    step_differences(r_, xt_, dr, dx);
+    std::vector<const Vec*> V;
+    for (const Vec& v : dr) V.push_back(&v);
+    const FilteredLeastSquares ls(V, r, filter_);
+    columns_ = static_cast<int>(ls.kept.size());
+    if (ls.kept.empty() && J_.size() == 0) return x + w0_ * r;
+    Vec next = x_tilde;
+    Vec rest = -r;  // -r - V alpha
+    for (size_t j = 0; j < ls.kept.size(); ++j) {
+      next += ls.alpha[j] * dx[ls.kept[j]];
+      rest -= ls.alpha[j] * dr[ls.kept[j]];
+    }
+    if (J_.size()) next += J_ * rest;
+    return next;
+  }
+
+ private:
+  double w0_, filter_;
+  std::vector<Vec> r_, xt_;
+  Eigen::MatrixXd J_;  // previous steps' inverse Jacobian (empty before the first converged step)
+  int columns_ = 0;
+};
+
 }  // namespace
 
 std::unique_ptr<Acceleration> make_acceleration(Params p) {
   if (!p.json().is_object() || !p.has("type")) p.fail("type", "required key is missing");
-  const std::string type = p.choice("type", {"constant", "aitken", "iqn_ils"});
+  const std::string type = p.choice("type", {"constant", "aitken", "iqn_ils", "iqn_imvj"});
   if (type == "constant") {
     p.validate({{"type", type}, {"relaxation", 0.5}});
     const double w = p.positive("relaxation");
@@ -158,11 +252,15 @@ std::unique_ptr<Acceleration> make_acceleration(Params p) {
     if (w > 1) p.fail("initial_relaxation", "must lie in (0, 1]");
     return std::make_unique<Aitken>(w);
   }
-  p.validate({{"type", type}, {"initial_relaxation", 0.1}, {"reuse_steps", 8}, {"filter", 1e-8}});
+  if (type == "iqn_ils")
+    p.validate({{"type", type}, {"initial_relaxation", 0.1}, {"reuse_steps", 8}, {"filter", 1e-8}});
+  else
+    p.validate({{"type", type}, {"initial_relaxation", 0.1}, {"filter", 1e-8}});
   const double w = p.positive("initial_relaxation");
   if (w > 1) p.fail("initial_relaxation", "must lie in (0, 1]");
   const double filter = p.positive("filter");
   if (filter >= 1) p.fail("filter", "must lie in (0, 1)");
+  if (type == "iqn_imvj") return std::make_unique<IqnImvj>(w, filter);
   return std::make_unique<IqnIls>(w, p.integer("reuse_steps", 0), filter);
 }
 

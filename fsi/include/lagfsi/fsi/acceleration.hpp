@@ -19,10 +19,16 @@
 ///    decomposition built column by column (modified Gram–Schmidt); a column whose part orthogonal to the
 ///    ones before it is below `filter` times its own norm is dropped (the QR filter of Haelterman et al. 2016,
 ///    which keeps the model well conditioned when reused columns become nearly dependent). Without columns
-///    (the first iteration) it relaxes with the initial relaxation.
+///    (the first iteration) it relaxes with the initial relaxation;
+///  - "iqn_imvj": interface quasi-Newton with a multi-vector inverse Jacobian (Lindner, Mehl, Scheufele &
+///    Uekermann 2015, SIAM J. Sci. Comput. 37:S145): the previous steps' inverse Jacobian J_prev (dense,
+///    n x n) corrected by this step's columns, J = J_prev + (W - J_prev V)(V^T V)^-1 V^T, and
+///    x_{k+1} = x~_k - J r_k; J is kept at the end of each step. No columns of old steps, so nothing to go
+///    stale when the interface's contact state changes; the first step is ILS without reuse.
 ///
 /// Contract: begin_step() before the first update() of a time step; update(x, x~) once per coupling
-/// iteration; end_step() after the step converged (iqn_ils then keeps the step's columns for reuse).
+/// iteration; end_step() after the step converged (iqn_ils then keeps the step's columns for reuse, iqn_imvj
+/// its Jacobian).
 #include <lagfsi/params.hpp>
 #include <lagfsi/types.hpp>
 
@@ -44,13 +50,14 @@ class Acceleration {
   /// Forgets everything kept from earlier iterations and steps (after a failed step: a model built on
   /// another mesh or contact state can send the next iterate far off).
   virtual void reset() {}
-  /// Columns of the least-squares model in use (iqn_ils; 0 for the others), for logs and tests.
+  /// Columns of the least-squares model in use (iqn_ils, iqn_imvj; 0 for the others), for logs and tests.
   virtual int model_columns() const { return 0; }
 };
 
 /// Builds an acceleration from its case-file object, validated against the type's defaults:
 /// {"type": "constant", "relaxation": 0.5} | {"type": "aitken", "initial_relaxation": 0.5} |
-/// {"type": "iqn_ils", "initial_relaxation": 0.1, "reuse_steps": 8, "filter": 1e-8}.
+/// {"type": "iqn_ils", "initial_relaxation": 0.1, "reuse_steps": 8, "filter": 1e-8} |
+/// {"type": "iqn_imvj", "initial_relaxation": 0.1, "filter": 1e-8}.
 std::unique_ptr<Acceleration> make_acceleration(Params p);
 
 }  // namespace lagfsi::fsi

@@ -31,6 +31,8 @@
 #include <lagfsi/time_integrator.hpp>
 #include <lagfsi/vtk_output.hpp>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -214,6 +216,41 @@ class MpmModel final : public PhysicsModel {
     double length;  // tributary boundary length: h/2 per neighbouring selected node along the boundary
   };
   std::vector<Dashpot> dashpots_;
+  /// Free-field boundary (Zienkiewicz, Bicanic & Shen 1989, "Earthquake input definition and the transmitting
+  /// boundary conditions"; as in FLAC and Plaxis): beside a lateral boundary a 1D soil column of the body's
+  /// elastic material (per unit width, nodes at the boundary's grid nodes) is shaken by the same base motion
+  /// and computed alongside; each boundary node gets the dashpots on its velocity relative to the column's
+  /// and the column's stress as a traction, t = sigma_ff n (n outward), sigma_ff = the static stress plus
+  /// the column's dynamic stress. The static part is the geostatic K0 sigma_v (start = 0) or, with a start
+  /// time, the reactions of rollers that hold the boundary until then (the procedure of FLAC: a static stage
+  /// on rollers, then the free field with the rollers' forces; needed when the structure's weight loads the
+  /// boundary beyond the far field's geostatic stress). A column of a uniform layer moves as the 1D site
+  /// response, so the boundary neither reflects the outgoing waves nor disturbs the incoming ones.
+  struct FreeField {
+    std::vector<Index> nodes;      // boundary grid nodes from the base up (the column's nodes)
+    std::vector<double> length;    // tributary boundary length of each node
+    std::vector<double> le;        // column element lengths (node k to k+1; the last may stop at the top)
+    std::vector<double> mass;      // column node masses per unit width
+    std::vector<double> sv;        // geostatic vertical stress at the nodes (negative below the top)
+    std::vector<Vec2> u, v;        // column displacements and velocities (dynamic part)
+    std::array<const PrescribedMotion*, 2> base{nullptr, nullptr};  // base motion per component
+    std::array<bool, 2> base_fixed{false, false};
+    Vec2 normal;                   // outward (+-1, 0)
+    double start = 0;              // rollers (fixed x) before this time, then the free field
+    std::vector<double> reaction;  // the rollers' last horizontal reactions (the static traction after start)
+    bool active(double t) const { return t >= start; }
+    /// Dynamic strains of element k: shear gamma_xy and axial eps_yy, and their rates.
+    Vec2 strain(size_t k) const { return (u[k + 1] - u[k]) / le[k]; }
+    Vec2 rate(size_t k) const { return (v[k + 1] - v[k]) / le[k]; }
+  };
+  std::vector<FreeField> free_fields_;
+  double k0_ = 0;  // the K0 of the geostatic initial stress (free-field columns)
+  /// Advances the free-field columns by dt (their base moves with the grid's base at t + dt).
+  void step_free_fields(double dt);
+  /// Adds the free-field columns' stresses as tractions on their boundary nodes' grid forces.
+  void add_free_field_tractions();
+  /// Adds the dashpot forces of the absorbing and free-field boundaries (implicit in the node's velocity).
+  void add_dashpot_forces(double dt);
   bool implicit_ = false;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
@@ -415,12 +452,14 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (st.choice("type", {"zero", "geostatic"}) == "geostatic") {
     st.validate({{"type", "geostatic"}, {"surface", nullptr}, {"k0", nu_ / (1 - nu_)}});
     const double top = st.number("surface"), k0 = st.non_negative("k0"), gy = ctx.gravity.y();
+    k0_ = k0;
     for (size_t p = 0; p < P_.size(); ++p) {
       const double sv = rho_ * gy * (top - P_.x[p].y());  // negative (compression) below the surface
       P_.stress[p] = {k0 * sv, sv, 0.0, k0 * sv};
     }
   } else {
     st.validate({{"type", "zero"}});
+    k0_ = nu_ / (1 - nu_);
   }
 
   // Saturated soil: the material's density is the grains'; the particle carries water (porosity n).
@@ -509,12 +548,68 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   Params ab = b.at("absorbing_boundaries");
   for (size_t i = 0; i < ab.size(); ++i) {
     Params a = ab.at(i);
-    a.validate({{"select", nullptr}, {"normal", nullptr}});
+    a.validate({{"select", nullptr}, {"normal", nullptr}, {"free_field", false}, {"start", 0.0}});
+    if (!a.boolean("free_field") && a.non_negative("start") > 0) a.fail("start", "is for free-field boundaries");
     if (two_phase_) a.fail("select", "absorbing boundaries of two-phase bodies are not available in this version");
     Vec2 nrm = a.vec2("normal");
     if (!(nrm.norm() > 0)) a.fail("normal", "must be a non-zero vector");
     nrm.normalize();
     const auto sel = select_nodes(a.at("select"), nodes);
+    if (a.boolean("free_field")) {
+      if (std::abs(nrm.y()) > 1e-12) a.fail("normal", "a free-field boundary is lateral: its outward normal is [1, 0] or [-1, 0]");
+      FreeField ff;
+      ff.normal = nrm;
+      ff.start = a.non_negative("start");
+      std::vector<Index> col(sel.begin(), sel.end());
+      std::sort(col.begin(), col.end(), [&](Index p, Index q) { return nodes[p].y() < nodes[q].y(); });
+      for (size_t k = 1; k < col.size(); ++k)
+        if (std::abs(nodes[col[k]].x() - nodes[col[0]].x()) > 1e-6 * h_ ||
+            std::abs(nodes[col[k]].y() - nodes[col[k - 1]].y() - h_) > 1e-6 * h_)
+          a.fail("select", "a free-field boundary is one vertical line of consecutive grid nodes");
+      // The column's soil: up to the top of the particles next to the boundary (their domains' top).
+      const double xb = nodes[col[0]].x();
+      double top = -std::numeric_limits<double>::infinity();
+      for (size_t q = 0; q < P_.size(); ++q)
+        if (std::abs(P_.x[q].x() - xb) < h_) top = std::max(top, P_.x[q].y() + 0.5 * h_ / ppc_);
+      if (!(top > nodes[col[0]].y() + 0.5 * h_)) a.fail("select", "no material next to the free-field boundary");
+      const double gy = gravity_ ? ctx.gravity.y() : 0.0;
+      for (size_t k = 0; k < col.size(); ++k) {
+        const double y = nodes[col[k]].y();
+        if (y > top + 1e-9 * h_) break;
+        ff.nodes.push_back(col[k]);
+        ff.sv.push_back(rho_ * gy * (top - y));
+        if (k + 1 < col.size() && nodes[col[k + 1]].y() <= top + 1e-9 * h_) ff.le.push_back(h_);
+        else if (top - y > 1e-9 * h_) {  // a partial last element up to the top
+          ff.le.push_back(top - y);
+          ff.nodes.push_back(col[k + 1 < col.size() ? k + 1 : k]);
+          ff.sv.push_back(0.0);
+          if (k + 1 >= col.size()) a.fail("select", "the free-field boundary must reach the top of the material");
+          break;
+        }
+      }
+      const size_t m = ff.nodes.size();
+      if (m < 2) a.fail("select", "a free-field column needs at least two nodes in the material");
+      ff.mass.assign(m, 0.0);
+      ff.length.assign(m, 0.0);
+      for (size_t k = 0; k + 1 < m; ++k) {
+        ff.mass[k] += 0.5 * rho_ * ff.le[k];
+        ff.mass[k + 1] += 0.5 * rho_ * ff.le[k];
+        ff.length[k] += 0.5 * ff.le[k];
+        ff.length[k + 1] += 0.5 * ff.le[k];
+      }
+      ff.u.assign(m, Vec2::Zero());
+      ff.v.assign(m, Vec2::Zero());
+      ff.reaction.assign(m, 0.0);
+      for (const auto& mv : moving_)
+        if (mv.node == ff.nodes[0]) ff.base[mv.comp] = &mv;
+      for (const auto& [node, comp] : fixed_)
+        if (node == ff.nodes[0]) ff.base_fixed[comp] = true;
+      for (const auto& mv : moving_)
+        for (size_t k = 1; k < m; ++k)
+          if (mv.node == ff.nodes[k]) a.fail("select", "a free-field node above the base must not have a prescribed motion");
+      free_fields_.push_back(std::move(ff));
+      continue;
+    }
     const std::set<Index> in(sel.begin(), sel.end());
     const Vec2 tangent(-nrm.y(), nrm.x());
     for (Index n : sel) {
@@ -806,15 +901,7 @@ void MpmModel::substep(double dt) {
     if (!(gm_[i] > 0)) continue;
     if (damp_mass_ > 0) gf_[i] -= damp_mass_ * gp_[i];
   }
-  {
-    const double cp = std::sqrt((lambda_ + 2 * mu_) / rho_), cs = std::sqrt(mu_ / rho_);
-    for (const auto& d : dashpots_) {
-      if (!(gm_[d.node] > 0)) continue;
-      const Vec2 v = gp_[d.node] / gm_[d.node];
-      const Vec2 vn = v.dot(d.normal) * d.normal;
-      gf_[d.node] -= rho_ * d.length * (cp * vn + cs * (v - vn));
-    }
-  }
+  add_free_field_tractions();
   for (size_t i = 0; i < nn; ++i) {
     if (!(gm_[i] > 0)) continue;
     if (local_damping_ > 0 && t_ < local_until_) {
@@ -823,6 +910,9 @@ void MpmModel::substep(double dt) {
         if (v[c] != 0.0) gf_[i][c] -= local_damping_ * std::abs(gf_[i][c]) * (v[c] > 0 ? 1.0 : -1.0);
     }
   }
+  apply_fixed(gf_);
+  add_dashpot_forces(dt);
+  step_free_fields(dt);
   apply_fixed(gf_);
   for (size_t i = 0; i < nn; ++i) {
     if (!(gm_[i] > 0)) continue;
@@ -871,6 +961,83 @@ void MpmModel::substep(double dt) {
 }
 
 // ------------------------------------------------------------------------------------------ lifecycle
+
+void MpmModel::add_free_field_tractions() {
+  for (auto& ff : free_fields_) {
+    const size_t m = ff.nodes.size();
+    if (!ff.active(t_)) continue;
+    for (size_t k = 0; k < m; ++k) {
+      const Index n = ff.nodes[k];
+      if (!(gm_[n] > 0)) continue;
+      // Column stress at the node: the average of its elements' (the static part at the node).
+      Vec2 e = Vec2::Zero(), er = Vec2::Zero();
+      int ne = 0;
+      for (size_t el : {k - 1, k})
+        if (el < m - 1) {
+          e += ff.strain(el);
+          er += ff.rate(el);
+          ++ne;
+        }
+      e /= ne;
+      er /= ne;
+      // e = (gamma_xy, eps_yy): sigma_xx = K0 sigma_v + lambda eps_yy, sigma_xy = mu gamma_xy (plus the
+      // stiffness-proportional damping stress of the body).
+      const double sxx = (ff.start > 0 ? 0.0 : k0_ * ff.sv[k]) + lambda_ * (e.y() + damp_stiff_ * er.y());
+      const double sxy = mu_ * (e.x() + damp_stiff_ * er.x());
+      gf_[n] += ff.length[k] * Vec2(sxx * ff.normal.x(), sxy * ff.normal.x()) + Vec2(ff.reaction[k], 0.0);
+    }
+  }
+}
+
+void MpmModel::add_dashpot_forces(double dt) {
+  // A dashpot force -C (v - v_ref), C = rho L (c_p n n^T + c_s (I - n n^T)), taken at the end-of-step
+  // velocity: (m I + dt C) v_new = p + dt f + dt C v_ref. Implicit in the node's own velocity, it is stable for
+  // any nodal mass (an explicit dashpot on a node with little mass, at the edge of the material, is not).
+  const double cp = std::sqrt((lambda_ + 2 * mu_) / rho_), cs = std::sqrt(mu_ / rho_);
+  auto apply = [&](Index n, const Vec2& normal, double length, const Vec2& v_ref) {
+    if (!(gm_[n] > 0)) return;
+    const Mat2 nn = normal * normal.transpose();
+    const Mat2 C = rho_ * length * (cp * nn + cs * (Mat2::Identity() - nn));
+    const Mat2 A = gm_[n] * Mat2::Identity() + dt * C;
+    const Vec2 v_new = A.inverse() * (gp_[n] + dt * gf_[n] + dt * C * v_ref);
+    gf_[n] -= C * (v_new - v_ref);
+  };
+  for (const auto& d : dashpots_) apply(d.node, d.normal, d.length, Vec2::Zero());
+  for (auto& ff : free_fields_)
+    for (size_t k = 0; k < ff.nodes.size(); ++k) {
+      const Index n = ff.nodes[k];
+      if (ff.active(t_)) {
+        apply(n, ff.normal, ff.length[k], ff.v[k]);
+      } else if (gm_[n] > 0) {  // a roller: its reaction holds the node's horizontal momentum
+        ff.reaction[k] = -(gp_[n].x() / dt + gf_[n].x());
+        gf_[n].x() += ff.reaction[k];
+      }
+    }
+}
+
+void MpmModel::step_free_fields(double dt) {
+  for (auto& ff : free_fields_) {
+    const size_t m = ff.nodes.size();
+    std::vector<Vec2> f(m, Vec2::Zero());
+    for (size_t k = 0; k + 1 < m; ++k) {
+      // Element stress: shear mu gamma, axial (lambda + 2 mu) eps (1D constrained), with the body's
+      // stiffness-proportional damping; per unit width.
+      const Vec2 e = ff.strain(k), er = ff.rate(k);
+      const Vec2 s(mu_ * (e.x() + damp_stiff_ * er.x()), (lambda_ + 2 * mu_) * (e.y() + damp_stiff_ * er.y()));
+      f[k] += s;
+      f[k + 1] -= s;
+    }
+    for (size_t k = 0; k < m; ++k) {
+      if (damp_mass_ > 0) f[k] -= damp_mass_ * ff.mass[k] * ff.v[k];
+      ff.v[k] += dt * f[k] / ff.mass[k];
+    }
+    for (int c = 0; c < 2; ++c) {  // the base moves with the grid's base
+      if (ff.base[c]) ff.v[0][c] = ff.base[c]->velocity(t_ + dt);
+      else if (ff.base_fixed[c]) ff.v[0][c] = 0.0;
+    }
+    for (size_t k = 0; k < m; ++k) ff.u[k] += dt * ff.v[k];
+  }
+}
 
 void MpmModel::initialize() { t_ = 0; }
 

@@ -291,6 +291,22 @@ TEST(BadInput, MpmErrors) {
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/grid/cell", "whole number");
   j = base;
+  j["bodies"][0]["absorbing_boundaries"] = json::array(
+      {{{"select", {{"type", "segment"}, {"from", {0, 0}}, {"to", {1, 0}}}}, {"normal", {0, -1}}, {"free_field", true}}});
+  o = run_json("mpm_free_field_base", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/absorbing_boundaries/0/normal", "lateral");
+  j["bodies"][0]["absorbing_boundaries"][0] = {{"select", {{"type", "segment"}, {"from", {1, 0}}, {"to", {1, 1}}}},
+                                               {"normal", {1, 0}}, {"start", 5.0}};
+  o = run_json("mpm_start_without_free_field", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/absorbing_boundaries/0/start", "free-field");
+  j["bodies"][0]["absorbing_boundaries"][0]["free_field"] = true;
+  j["bodies"][0]["absorbing_boundaries"][0]["start"] = 0.0;  // x = 1: no material next to it (the block ends at 0.6)
+  o = run_json("mpm_free_field_empty", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/absorbing_boundaries/0/select", "no material");
+  j = base;
   j["bodies"][0]["shape_functions"] = "bspline";
   o = run_json("mpm_shape", j);
   EXPECT_EQ(o.code, 2);

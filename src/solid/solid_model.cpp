@@ -522,7 +522,13 @@ IterationReport SolidModel::solve_iteration() {
     const Vec fext = external_force(t_new_, x_);
     r = f_int_ - fext;
     add_follower_tangent(t_new_, 1.0, H_);
-    rep.residual_ref = std::max(fext.norm(), f_int_.norm());
+    // Force scale: the loads and internal forces, but at least the force of a stiffness-scale deformation of
+    // 1e-6 of the body's size (a rigid prescribed motion has no force at all to compare with).
+    double kmax = 0;
+    for (int k = 0; k < H_.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(H_, k); it; ++it)
+        if (it.row() == it.col()) kmax = std::max(kmax, std::abs(it.value()));
+    rep.residual_ref = std::max({fext.norm(), f_int_.norm(), 1e-6 * kmax * length_});
   } else {
     const EvalPoint ev = integrator_->kinematics(x_);
     const TangentCoefficients c = integrator_->coefficients();

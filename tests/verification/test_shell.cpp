@@ -331,3 +331,62 @@ TEST(CantileverStepLoadShell, StepResponsePeakAndEnergyBalance) {
 }
 
 }  // namespace
+
+namespace {
+
+/// A shell case written by the test (static, unit width): a beam L = 1 m, t = 0.02 m, E = 1e7 Pa, nu = 0 with
+/// the given boundary conditions and loads; returns the probes.
+Csv run_beam(const std::string& tag, const nlohmann::json& bcs, const nlohmann::json& loads, const nlohmann::json& probes,
+             int load_steps = 1) {
+  const fs::path dir = fresh_dir(tag);
+  nlohmann::json j = {
+      {"name", tag},
+      {"analysis", {{"type", "static"}, {"load_steps", load_steps}, {"linear_solver", {{"type", "umfpack"}}}}},
+      {"bodies",
+       {{{"name", "beam"}, {"type", "shell"},
+         {"material", {{"type", "svk"}, {"young", 1e7}, {"poisson", 0.0}, {"density", 1000.0}, {"hypothesis", "plane_stress"}}},
+         {"thickness", 0.02}, {"geometry", {{"type", "line"}, {"from", {0, 0}}, {"to", {1, 0}}}},
+         {"mesh", {{"elements", 4}, {"order", 3}}}, {"boundary_conditions", bcs}, {"loads", loads}}}},
+      {"probes", probes},
+      {"output", {{"vtk", false}}}};
+  write_text(dir / "case.json", j.dump(2));
+  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" --quiet", dir);
+  r.out_dir = dir / "out";
+  return probes_of(r);
+}
+
+nlohmann::json point(double x, double y) { return {{"type", "point"}, {"at", {x, y}}}; }
+
+}  // namespace
+
+TEST(ShellCase, PinnedBeamUnderDeadAndFollowerPressure) {
+  // Through the case file: "pinned" ends (the right one free to slide: components y), a pressure of 1 Pa on
+  // the top face. Small load: midspan deflection 5 q L^4 / (384 EI) + q L^2 / (8 kappa G A) for both the dead
+  // and the follower pressure (they differ by O(w'^2)).
+  const double EI = 1e7 * 8e-6 / 12.0, w_ref = 5.0 / (384.0 * EI) + 1.0 / (8.0 * (5.0 / 6.0) * 0.5e7 * 0.02);
+  const nlohmann::json bcs = {{{"type", "pinned"}, {"select", point(0, 0)}},
+                              {{"type", "pinned"}, {"select", point(1, 0)}, {"components", "y"}}};
+  const nlohmann::json probes = {{{"name", "mid"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.5, 0.0}}, {"component", "y"}},
+                                 {{"name", "end_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {1.0, 0.0}}, {"component", "x"}}};
+  for (bool follower : {false, true}) {
+    const nlohmann::json loads = {{{"type", "pressure"}, {"select", {{"type", "segment"}, {"from", {0, 0.01}}, {"to", {1, 0.01}}}},
+                                   {"value", 1.0}, {"follower", follower}}};
+    const Csv c = run_beam(std::string("shell_pinned_") + (follower ? "follower" : "dead"), bcs, loads, probes);
+    std::printf("pinned beam, %s pressure: midspan %.6e m (Timoshenko %.6e)\n", follower ? "follower" : "dead",
+                -c["mid"].back(), w_ref);
+    EXPECT_NEAR(-c["mid"].back(), w_ref, 2e-3 * w_ref) << (follower ? "follower" : "dead");
+  }
+}
+
+TEST(ShellCase, PrescribedEndMotionStretchesTheShellUniformly) {
+  // The left end clamped, the right end prescribed to move by 0.05 m along the axis (rotation held): a uniform
+  // stretch, so the displacement grows linearly along the shell (exact for any order: the Green strain is
+  // uniform), and the shell stays straight.
+  const nlohmann::json bcs = {{{"type", "fixed"}, {"select", point(0, 0)}},
+                              {{"type", "prescribed_displacement"}, {"select", point(1, 0)}, {"value", {0.05, 0.0}}}};
+  const nlohmann::json probes = {{{"name", "q_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, 0.01}}, {"component", "x"}},
+                                 {{"name", "q_y"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, -0.01}}, {"component", "y"}}};
+  const Csv c = run_beam("shell_prescribed", bcs, nlohmann::json::array(), probes, 2);
+  EXPECT_NEAR(c["q_x"].back(), 0.3 * 0.05, 1e-9);
+  EXPECT_LT(std::abs(c["q_y"].back()), 2e-4);  // the faces move in by the thickness change only
+}

@@ -32,7 +32,9 @@ def surface(xr):
 sim = [surface(xr) for xr in ref["x_m"]]
 rms = math.sqrt(sum((s - z) ** 2 for s, z in zip(sim, ref["z_m"])) / len(sim))
 thick = [b * 0.005 for b in range(160) if surface(b * 0.005 + 0.0025) >= 0.005]
-exp_end = max(xr for xr, z in zip(ref["x_m"], ref["z_m"]) if z >= 0.005)
+# Where the measured surface drops below 5 mm (linear interpolation between the digitized points).
+exp_end = next(x0 + (x1 - x0) * (z0 - 0.005) / (z0 - z1)
+               for x0, z0, x1, z1 in zip(ref["x_m"], ref["z_m"], ref["x_m"][1:], ref["z_m"][1:]) if z0 >= 0.005 > z1)
 with open(os.path.join(out, "summary.json")) as f:
     s = json.load(f)
 lines = ["final free surface RMS error %.2f mm over %d experimental points; deposit >= 5 mm thick to x = %.3f m "

@@ -193,6 +193,7 @@ class MpmModel final : public PhysicsModel {
   bool gimp_ = false;
   std::string update_ = "musl";
   double cfl_ = 0.5, local_damping_ = 0;
+  double flip_ = 1.0;  // FLIP share of the particle velocity update (1: FLIP; 0: PIC, the grid velocity)
   double damp_mass_ = 0, damp_stiff_ = 0;  // Rayleigh: alpha M v on the grid, beta C : (strain rate) on the particles
   bool gravity_ = true;
   bool particles_csv_ = false;  // also write <out>/<name>_particles.csv (the particles at the last output)
@@ -301,6 +302,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"shape_functions", "linear"},
               {"update", "musl"},
               {"cfl", 0.5},
+              {"flip", 1.0},
               {"boundary_conditions", Json::array()},
               {"damping", Json::object()},
               {"initial_velocity", Json::array({0.0, 0.0})},
@@ -362,6 +364,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   gimp_ = b.choice("shape_functions", {"linear", "gimp"}) == "gimp";
   update_ = b.choice("update", {"musl", "usl", "usf"});
   cfl_ = b.positive("cfl");
+  flip_ = b.number("flip");
+  if (!(flip_ >= 0.0 && flip_ <= 1.0)) b.fail("flip", "must lie in [0, 1] (1: FLIP, 0: PIC)");
   if (cfl_ > 1) b.fail("cfl", "must lie in (0, 1]");
   gravity_ = b.boolean("gravity");
   particles_csv_ = b.boolean("particles_csv");
@@ -940,7 +944,7 @@ void MpmModel::substep(double dt) {
       a += s.N[k] * gf_[I] / gm_[I];
       v += s.N[k] * gv_[I];
     }
-    P_.v[p] += dt * a;
+    P_.v[p] = flip_ * (P_.v[p] + dt * a) + (1.0 - flip_) * v;
     P_.a[p] = a;
     const Vec2 dx = dt * v;
     P_.x[p] += dx;

@@ -307,6 +307,11 @@ TEST(BadInput, MpmErrors) {
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/absorbing_boundaries/0/select", "no material");
   j = base;
+  j["bodies"][0]["flip"] = 1.5;
+  o = run_json("mpm_flip", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/flip", "[0, 1]");
+  j = base;
   j["bodies"][0]["shape_functions"] = "bspline";
   o = run_json("mpm_shape", j);
   EXPECT_EQ(o.code, 2);

@@ -277,7 +277,8 @@ class MpmModel final : public PhysicsModel {
   double t_new_ = 0, dt_ = 0, t_ = 0;
   double gravity_work_ = 0;
   long substeps_ = 0;
-  std::unique_ptr<PvdSeries> series_;
+  std::unique_ptr<PvdSeries> series_, grid_series_;
+  bool grid_output_ = false;  // also write the grid nodes that carry mass as <name>_grid.pvd
 };
 
 // ------------------------------------------------------------------------------------------ building
@@ -309,6 +310,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_state", Json{{"type", "given"}}},
               {"initial_stress", Json{{"type", "zero"}}},
               {"particles_csv", false},
+              {"grid_output", false},
               {"two_phase", Json::object()},
               {"absorbing_boundaries", Json::array()},
               {"time_integration", "explicit"},
@@ -369,6 +371,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (cfl_ > 1) b.fail("cfl", "must lie in (0, 1]");
   gravity_ = b.boolean("gravity");
   particles_csv_ = b.boolean("particles_csv");
+  grid_output_ = b.boolean("grid_output");
   Params d = b.at("damping");
   d.validate({{"local", 0.0}, {"local_until", 1e30}, {"mass", 0.0}, {"stiffness", 0.0}});
   local_until_ = d.number("local_until");
@@ -1329,6 +1332,30 @@ void MpmModel::write_output(double t) {
   d.point_fields = {u, v, s, vol, pl};
   if (two_phase_) d.point_fields.push_back(pw);
   series_->write(t, d);
+  if (grid_output_) {
+    // The grid of the last sub-step: nodes with mass, their mass, velocity and the force of that sub-step
+    // (internal, gravity, loads, boundaries), and whether a component is fixed or prescribed.
+    if (!grid_series_) grid_series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_ + "_grid");
+    std::vector<int> held(gm_.size(), 0);
+    for (const auto& [node, comp] : fixed_) held[node] |= 1 << comp;
+    for (const auto& m : moving_) held[m.node] |= 4 << m.comp;
+    VtpData g;
+    Field mass{"mass", 1, {}}, vel{"velocity", 2, {}}, force{"force", 2, {}}, bc{"boundary", 1, {}};
+    for (int j = 0; j <= ny_; ++j)
+      for (int i = 0; i <= nx_; ++i) {
+        const size_t n = static_cast<size_t>(j) * (nx_ + 1) + i;
+        if (!(gm_[n] > 0)) continue;
+        g.points.push_back(origin_ + Vec2(i * h_, j * h_));
+        mass.values.push_back(gm_[n]);
+        for (int c = 0; c < 2; ++c) {
+          vel.values.push_back(gv_[n][c]);
+          force.values.push_back(gf_[n][c]);
+        }
+        bc.values.push_back(held[n]);  // bits: 1 x fixed, 2 y fixed, 4 x prescribed, 8 y prescribed
+      }
+    g.point_fields = {mass, vel, force, bc};
+    grid_series_->write(t, g);
+  }
   if (particles_csv_) {
     const auto path = ctx_.out_dir / (name_ + "_particles.csv");
     const auto tmp = path.string() + ".tmp";

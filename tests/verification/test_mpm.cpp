@@ -353,3 +353,30 @@ TEST(MpmFreeField, LayerMovesAsTheOneDimensionalSiteResponse) {
   EXPECT_GT(free_field::layer("box", 1.0).first, 0.3);
   EXPECT_GT(free_field::layer("dashpots", 1.0).first, 0.2);
 }
+
+TEST(MpmOutput, GridSeriesBesideTheParticles) {
+  // "grid_output": a <body>_grid.pvd series with one .vtp per output step (the grid nodes that carry mass at the
+  // last sub-step): as many steps as the particle series, and nodes in every file after the first.
+  const auto r = run_case_1thread("cases/mpm_column_selfweight/case.json", "mpm_grid_output", {"bodies.0.grid_output=true"});
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  auto entries = [](const fs::path& pvd) {
+    std::ifstream in(pvd);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string s = ss.str();
+    size_t n = 0;
+    for (size_t k = s.find("<DataSet"); k != std::string::npos; k = s.find("<DataSet", k + 1)) ++n;
+    return n;
+  };
+  const size_t n = entries(r.out_dir / "column.pvd");
+  ASSERT_GT(n, 2u);
+  EXPECT_EQ(entries(r.out_dir / "column_grid.pvd"), n);
+  std::ifstream last(r.out_dir / "column_grid" / ("column_grid_" + std::string(5 - std::to_string(n - 1).size(), '0') +
+                                                   std::to_string(n - 1) + ".vtp"));
+  ASSERT_TRUE(last.good());
+  std::string head(400, '\0');
+  last.read(head.data(), 400);
+  const size_t k = head.find("NumberOfPoints=\"");
+  ASSERT_NE(k, std::string::npos);
+  EXPECT_GT(std::stoi(head.substr(k + 16)), 0);
+}

@@ -678,16 +678,18 @@ void SolidModel::restart_step() {
 }
 
 void SolidModel::interface_kinematics(const std::vector<Index>& points, const Vec& x, Vec& v, Vec& a) const {
-  // The integrator's update is affine in x_{n+1} with the same coefficients for every dof (d v / dx = c_c,
-  // d a / dx = c_m), so the velocity of a surface point at position x differs from its value at the
-  // current iterate by c_c times the position difference (exact for surface points that are linear
-  // combinations of dofs).
-  KinematicState s;
+  // The integrator's update of v_{n+1} and a_{n+1} is affine in x_{n+1} with the same coefficients for every
+  // dof, so a surface point (a linear combination of dofs) at position x moves with the velocity at the current
+  // iterate plus dv/dx times the position difference. dv/dx and da/dx are those of the update itself (not the
+  // tangent coefficients, which are the evaluation point's: (1 - alpha) times them in generalized-alpha), read
+  // off two updates one unit apart.
+  KinematicState s, s1;
   integrator_->end_step(x_, s);
-  const TangentCoefficients c = integrator_->coefficients();
+  integrator_->end_step(x_ + Vec::Ones(x_.size()), s1);
+  const double dvdx = s1.v[0] - s.v[0], dadx = s1.a[0] - s.a[0];
   const Vec dx = x - body_->surface_values(points, x_);
-  v = body_->surface_values(points, s.v) + c.c_c * dx;
-  a = body_->surface_values(points, s.a) + c.c_m * dx;
+  v = body_->surface_values(points, s.v) + dvdx * dx;
+  a = body_->surface_values(points, s.a) + dadx * dx;
 }
 
 // ------------------------------------------------------------------------------------------ probes

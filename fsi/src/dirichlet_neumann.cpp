@@ -114,6 +114,12 @@ DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsMode
   if (!(aug >= 1.0)) p.fail("augmented_mass", "must be at least 1 (1: off)");
   structure_->set_augmented_mass(aug);
   acceleration_ = make_acceleration(p.at("acceleration"));
+  // The augmented term measures the structure's motion from its own last iterate, so with it a coupling pass
+  // is not a function of the interface position alone; Aitken's and the quasi-Newton models are built on
+  // such pairs and break (cases/studies/added_mass: too slow or divergent at every density ratio).
+  if (aug > 1.0 && acceleration_->type() != "constant")
+    p.fail("augmented_mass", "works with constant relaxation only (with " + acceleration_->type() +
+                                 " a coupling pass would depend on the structure's previous iterate)");
 
   boundary_ = structure_->make_interface(p.at("interface"));
   map_ = std::make_unique<InterfaceMap>(boundary_, p.non_negative("ghost_spacing"));

@@ -254,6 +254,11 @@ TEST(BadInput, CouplingErrorsNameTheirKey) {
        [](json& j) { j["couplings"][0]["acceleration"] = {{"type", "broyden"}}; }},
       {"augmented", "/couplings/0/augmented_mass", "at least 1",
        [](json& j) { j["couplings"][0]["augmented_mass"] = 0.5; }},
+      {"augmented_accelerated", "/couplings/0/augmented_mass", "constant relaxation only",
+       [](json& j) {
+         j["couplings"][0]["augmented_mass"] = 3.0;
+         j["couplings"][0]["acceleration"] = {{"type", "aitken"}};
+       }},
       {"unknown_key", "/couplings/0/relaxation", "unknown key", [](json& j) { j["couplings"][0]["relaxation"] = 0.5; }},
       {"fixed_mesh", "/couplings/0/fluid", "remesh", [](json& j) { j["bodies"][0]["remesh"] = false; }},
   };

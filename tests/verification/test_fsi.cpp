@@ -68,7 +68,7 @@ TEST(FsiCoupling, TheConvergedStepDoesNotDependOnTheAccelerator) {
   std::vector<Run> runs = {{R"({"type": "iqn_ils"})", 1.0},
                            {R"({"type": "aitken"})", 1.0},
                            {R"({"type": "constant", "relaxation": 0.5})", 1.0},
-                           {R"({"type": "aitken"})", 3.0},
+                           {R"({"type": "constant", "relaxation": 1.0})", 3.0},
                            {R"({"type": "iqn_imvj"})", 1.0}};
   for (size_t k = 0; k < runs.size(); ++k) {
     auto& run = runs[k];
@@ -95,7 +95,7 @@ TEST(FsiCoupling, TheConvergedStepDoesNotDependOnTheAccelerator) {
   EXPECT_LT(runs[1].iterations, runs[2].iterations);  // Aitken < constant 0.5
   EXPECT_LE(runs[0].iterations, 6.0);
   EXPECT_LE(runs[4].iterations, runs[0].iterations);  // IQN-IMVJ <= IQN-ILS
-  std::printf("iterations per coupled step: IQN-ILS %.2f, Aitken %.2f, constant %.2f, Aitken + augmented mass %.2f, "
+  std::printf("iterations per coupled step: IQN-ILS %.2f, Aitken %.2f, constant %.2f, augmented mass x3 (relaxation 1) %.2f, "
               "IQN-IMVJ %.2f\n",
               runs[0].iterations, runs[1].iterations, runs[2].iterations, runs[3].iterations, runs[4].iterations);
 }

@@ -22,8 +22,9 @@
 
 namespace lagfsi {
 
-/// A wet boundary of a structure: its nodes (global node ids, sorted) and its boundary edges as order+1
-/// node lists (global ids, from the first vertex to the second, the interior nodes in between).
+/// A wet boundary of a structure: its points (sorted ids of the structure's surface points — a continuum's
+/// node ids, a shell's face points, see StructuralBody in solid.hpp) and its boundary edges as order+1 point
+/// lists (from the first vertex to the second, the interior points in between).
 struct InterfaceBoundary {
   std::vector<Index> nodes;
   std::vector<std::vector<Index>> edges;

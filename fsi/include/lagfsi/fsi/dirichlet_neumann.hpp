@@ -14,16 +14,18 @@
 ///    structure went. With contact, the Dirichlet–Neumann loop of coupling.hpp runs on the interface node
 ///    positions: fluid with the ghosts prescribed (positions, and the velocities and accelerations the time
 ///    integrator gives them) -> ghost forces -> structure loaded by them -> its interface positions, until
-///    |x~ - x| <= tolerance * |x~ - x_n|, accelerated as chosen ("constant", "aitken", "iqn_ils"), from the
-///    first guess x_n + (dt/dt_prev)(x_n - x_{n-1}). Each pass re-solves both bodies from the step's start
+///    |x~ - x| <= tolerance * |x~ - x_n|, accelerated as chosen ("constant", "aitken", "iqn_ils",
+///    "iqn_imvj"), from the first guess x_n + (dt/dt_prev)(x_n - x_{n-1}) ("predictor": "extrapolation") or the
+///    structure's positions under the last step's interface forces ("forces"). Each pass re-solves both bodies from the step's start
 ///    (the fluid keeps the step's mesh and factorizations). A loop that fails after its first pass is run
 ///    once more with the accelerator's memory cleared; a second failure goes to the driver (dt/2);
-///  - optional augmented mass of the structure (interface.hpp), a consistent under-relaxation.
+///  - optional augmented mass of the structure (interface.hpp), a consistent under-relaxation (with constant
+///    relaxation only: with the other accelerators a pass would depend on the structure's previous iterate).
 ///
 /// Case file: "couplings": [{"type": "dirichlet_neumann", "name": "fsi", "fluid": <body>, "structure": <body>,
 /// "interface": <node selection>, "ghost_spacing": 0 (0: at the nodes), "acceleration": {...},
 /// "max_iterations": 50, "tolerance": 1e-6, "reference_floor": 1e-9 (m, the smallest motion the residual
-/// is compared with), "augmented_mass": 1}].
+/// is compared with), "augmented_mass": 1, "predictor": "extrapolation" | "forces"}].
 /// Probes of a coupling: {"type": "interface_force", "component": "x"|"y"} (total force of the fluid on the
 /// structure) and {"type": "iterations"}.
 #include <lagfsi/case.hpp>

@@ -11,6 +11,7 @@
 #include <lagfsi/time_integrator.hpp>
 #include <lagfsi/vtk_output.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -125,6 +126,9 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   double initial_energy() const { return energy0_; }
 
  private:
+  /// The surface edges all of whose points a selection (select_nodes syntax, on the points' reference
+  /// positions) picks; possibly none.
+  std::vector<std::vector<Index>> selected_surface_edges(Params select) const;
   /// External force at time t for positions x (follower loads depend on x).
   Vec external_force(double t, const Vec& x) const;
   /// Adds the tangent of the follower loads at time t, scaled by `scale`, to H (same pattern).
@@ -138,6 +142,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   CaseContext ctx_;
   bool is_static_;
   std::unique_ptr<StructuralBody> body_;
+  std::vector<Vec2> surface_reference_;  // reference positions of the body's surface points
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
   std::string solver_type_;
@@ -332,25 +337,15 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   // Loads: point loads (value split equally over the selected stations), tractions and pressures on
   // boundary edges (all of whose points are selected), body forces.
   Params loads = b.at("loads");
-  const auto& spoints = body_->surface_points();
-  std::vector<Vec2> surface_reference(spoints.size());
   {
-    const Vec s = body_->surface_values([&] {
-      std::vector<Index> all(spoints.size());
-      for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
-      return all;
-    }(), body_->reference_positions());
-    for (size_t k = 0; k < spoints.size(); ++k) surface_reference[k] = s.segment<2>(2 * k);
+    std::vector<Index> all(body_->surface_points().size());
+    for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
+    const Vec s = body_->surface_values(all, body_->reference_positions());
+    surface_reference_.resize(all.size());
+    for (size_t k = 0; k < all.size(); ++k) surface_reference_[k] = s.segment<2>(2 * k);
   }
   auto selected_edges = [&](Params l) {
-    const auto sel = select_nodes(l.at("select"), surface_reference);
-    std::set<Index> in(sel.begin(), sel.end());
-    std::vector<std::vector<Index>> chosen;
-    for (const auto& e : body_->surface_edges()) {
-      bool all = true;
-      for (Index n : e) all = all && in.count(n);
-      if (all) chosen.push_back(e);
-    }
+    auto chosen = selected_surface_edges(l.at("select"));
     if (chosen.empty()) l.fail("select", "the selection contains no boundary edge");
     return chosen;
   };
@@ -638,28 +633,24 @@ void SolidModel::write_output(double t) {
 
 // ------------------------------------------------------------------------------------------ coupling
 
+std::vector<std::vector<Index>> SolidModel::selected_surface_edges(Params select) const {
+  const auto sel = select_nodes(select, surface_reference_);
+  const std::set<Index> in(sel.begin(), sel.end());
+  std::vector<std::vector<Index>> chosen;
+  for (const auto& e : body_->surface_edges())
+    if (std::all_of(e.begin(), e.end(), [&](Index n) { return in.count(n) > 0; })) chosen.push_back(e);
+  return chosen;
+}
+
 InterfaceBoundary SolidModel::make_interface(Params select) const {
   // Interface "nodes" are surface points (a continuum's boundary nodes, a shell's face points).
-  const auto& sp = body_->surface_points();
-  std::vector<Index> all(sp.size());
-  for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
-  const Vec ref = body_->surface_values(all, body_->reference_positions());
-  std::vector<Vec2> points(sp.size());
-  for (size_t k = 0; k < sp.size(); ++k) points[k] = ref.segment<2>(2 * k);
-  const auto sel = select_nodes(select, points);
-  std::set<Index> in(sel.begin(), sel.end());
   InterfaceBoundary ib;
-  std::set<Index> used;
-  for (const auto& e : body_->surface_edges()) {
-    bool all_in = true;
-    for (Index n : e) all_in = all_in && in.count(n);
-    if (!all_in) continue;
-    ib.edges.push_back(e);
-    used.insert(e.begin(), e.end());
-  }
+  ib.edges = selected_surface_edges(select);
   if (ib.edges.empty()) select.fail("the selection contains no boundary edge of body '" + name_ + "'");
+  std::set<Index> used;
+  for (const auto& e : ib.edges) used.insert(e.begin(), e.end());
   ib.nodes.assign(used.begin(), used.end());
-  for (Index n : ib.nodes) ib.reference.push_back(points[n]);
+  for (Index n : ib.nodes) ib.reference.push_back(surface_reference_[n]);
   return ib;
 }
 

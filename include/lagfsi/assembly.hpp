@@ -35,6 +35,17 @@ class ElementPattern {
       for (int i = 0; i < m_; ++i) values[sc[j * m_ + i]] += Ke(i, j);
   }
 
+  /// Adds a scalar (node by node) local matrix Me (npe x npe) of element e on every one of the dofs_per_node
+  /// components, Me (x) I: a mass matrix.
+  template <class NodeMatrix>
+  void add_per_component(Index e, const NodeMatrix& Me, double* values) const {
+    const int* sc = scatter(e);
+    const int dpn = m_ / static_cast<int>(Me.rows());
+    for (int b = 0; b < Me.cols(); ++b)
+      for (int a = 0; a < Me.rows(); ++a)
+        for (int d = 0; d < dpn; ++d) values[sc[(dpn * b + d) * m_ + dpn * a + d]] += Me(a, b);
+  }
+
  private:
   int m_ = 0;
   Index ne_ = 0;

@@ -92,6 +92,7 @@ class ShellBody final : public StructuralBody {
 
   struct QuadPoint {
     Eigen::MatrixX2d G;  ///< d Phi / dX in the section's reference frame (npe x 2)
+    Eigen::VectorXd Phi; ///< the shape functions {N_a, eta N_a} (mass)
     double dV;
     bool shear_only;     ///< a point of the reduced shear rule
   };

@@ -78,39 +78,19 @@ ShellBody::ShellBody(int order, std::vector<Vec2> midline, const ShellSection& s
   }
   assembly_ = ElementPattern(conn, npe, num_nodes(), 2);
 
-  // Consistent mass (with rotary inertia): the full rule along xi, 3 points through the thickness.
+  build_points();
+
+  // Consistent mass (with rotary inertia): the points of the full rule (p + 1 along xi, 3 through the
+  // thickness), which integrate it exactly on a straight element.
   mass_ = assembly_.pattern();
   double* val = mass_.valuePtr();
   std::fill(val, val + mass_.nonZeros(), 0.0);
   for (Index e = 0; e < ne; ++e) {
     Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(npe, npe);
-    for (const auto& [s, ws] : line_quadrature(order_ + 1)) {
-      line_shape(order_, s, N, dN);
-      Vec2 dX = Vec2::Zero(), Gq = Vec2::Zero(), dG = Vec2::Zero();
-      for (int a = 0; a <= order_; ++a) {
-        dX += dN[a] * mid_[e * order_ + a];
-        Gq += N[a] * X_.segment<2>(2 * (n + e * order_ + a));
-        dG += dN[a] * X_.segment<2>(2 * (n + e * order_ + a));
-      }
-      for (const auto& [eta, we] : thickness_rule()) {
-        Mat2 A0;
-        A0.col(0) = dX + eta * dG;
-        A0.col(1) = Gq;
-        const double det = A0.determinant();
-        if (!(det > 0.0)) throw std::invalid_argument("shell element " + std::to_string(e) + " is too curved for its thickness");
-        Eigen::VectorXd Phi(npe);
-        Phi << N, eta * N;
-        Me += Phi * Phi.transpose() * (sec_.density * ws * we * det * sec_.width);
-      }
-    }
-    const int m = 2 * npe;
-    const int* sc = assembly_.scatter(e);
-    for (int b = 0; b < npe; ++b)
-      for (int a = 0; a < npe; ++a)
-        for (int d = 0; d < 2; ++d) val[sc[(2 * b + d) * m + 2 * a + d]] += Me(a, b);
+    for (const QuadPoint& q : points_[e])
+      if (!q.shear_only) Me += q.Phi * q.Phi.transpose() * (sec_.density * q.dV);
+    assembly_.add_per_component(e, Me, val);
   }
-
-  build_points();
 
   // Surface: faces (top ids 0..n-1 at eta = +1/2, bottom ids n..2n-1 at eta = -1/2) and the interior points
   // of the end edges; edges counter-clockwise around the section (outward normal on the right).
@@ -181,7 +161,9 @@ void ShellBody::build_points() {
           const double det = A0loc.determinant();
           if (!(det > 0.0))
             throw std::invalid_argument("shell element " + std::to_string(e) + " is too curved for its thickness");
-          points_[e].push_back({dPhi * A0loc.inverse(), ws * we * det * sec_.width, rule.shear_only});
+          Eigen::VectorXd Phi(npe);
+          Phi << N, eta * N;
+          points_[e].push_back({dPhi * A0loc.inverse(), Phi, ws * we * det * sec_.width, rule.shear_only});
         }
       }
   }

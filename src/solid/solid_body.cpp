@@ -60,7 +60,7 @@ void SolidBody::build_pattern() {
 }
 
 void SolidBody::build_mass() {
-  const int npe = mesh_.nodes_per_element(), m = 2 * npe;
+  const int npe = mesh_.nodes_per_element();
   const ParentRule rule = parent_rule(mesh_.order, 2 * mesh_.order);
   mass_ = pattern_;
   double* val = mass_.valuePtr();
@@ -77,10 +77,7 @@ void SolidBody::build_mass() {
       if (!(detA0 > 0.0)) throw std::invalid_argument("element " + std::to_string(e) + " has non-positive area or is clockwise");
       Me += rule.N[q] * rule.N[q].transpose() * (rho * rule.w[q] * detA0 * thickness_);
     }
-    const int* sc = assembly_.scatter(e);
-    for (int b = 0; b < npe; ++b)
-      for (int a = 0; a < npe; ++a)
-        for (int d = 0; d < 2; ++d) val[sc[(2 * b + d) * m + 2 * a + d]] += Me(a, b);
+    assembly_.add_per_component(e, Me, val);
   }
 }
 

@@ -106,12 +106,7 @@ TEST(BaffleShell, KeepsTwoFluidRegionsApart) {
     ],
     "output": {"every": 100}
   })");
-  std::ofstream(dir / "case.json") << c.dump(2);
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() +
-                               "\" --quiet --threads 1",
-                           dir);
-  r.out_dir = dir / "out";
-  const Csv p = completed(r);
+  const Csv p = completed(run_case_text(dir, c.dump(2), "--quiet --threads 1"));
   ASSERT_GT(p.rows(), 400u);
   double right_max = 0, left_min = 1, tip_max = 0;
   for (size_t i = 0; i < p.rows(); ++i) {

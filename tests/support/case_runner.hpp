@@ -60,6 +60,18 @@ inline RunResult run_case_file(const std::string& case_rel, const std::string& t
   return r;
 }
 
+/// Writes `text` as `dir`/case.json (relative paths in it start at `dir`, where the caller may have put other
+/// files) and runs it with the given options; output in `dir`/out.
+inline RunResult run_case_text(const fs::path& dir, const std::string& text, const std::string& options = "--quiet") {
+  {
+    std::ofstream o(dir / "case.json");
+    o << text;
+  }
+  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" " + options, dir);
+  r.out_dir = dir / "out";
+  return r;
+}
+
 /// A CSV file with a header row ('#' lines skipped): every column as numbers (NaN where a cell is not one) and
 /// as text (for label columns such as a series or component name).
 struct Csv {

@@ -39,10 +39,7 @@ struct Outcome {
 
 Outcome run_text(const std::string& tag, const std::string& text, const std::string& extra = "") {
   const fs::path dir = fresh_dir("bad_input_" + tag);
-  write_text(dir / "case.json", text);
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() +
-                               "\" --quiet " + extra,
-                           dir);
+  const RunResult r = run_case_text(dir, text, "--quiet " + extra);
   return {r.exit_code, r.stderr_text, dir};
 }
 

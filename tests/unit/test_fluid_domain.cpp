@@ -31,11 +31,7 @@ std::string blob_case(double end_time) {
 }
 
 RunResult run_blob(const std::string& tag, double end_time) {
-  const fs::path dir = fresh_dir(tag);
-  write_text(dir / "case.json", blob_case(end_time));
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" --quiet", dir);
-  r.out_dir = dir / "out";
-  return r;
+  return run_case_text(fresh_dir(tag), blob_case(end_time));
 }
 
 TEST(FluidDomain, ParticlesPastTheBoxAreRemoved) {

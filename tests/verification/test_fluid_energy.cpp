@@ -39,10 +39,7 @@ void check_blob(const std::string& scheme) {
   const fs::path dir = fresh_dir("free_blob_" + scheme);
   std::string text = kBlob;
   text.replace(text.find("SCHEME"), 6, scheme);
-  write_text(dir / "case.json", text);
-  const RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() +
-                                     "\" --quiet --threads 1",
-                                 dir);
+  const RunResult r = run_case_text(dir, text, "--quiet --threads 1");
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv c = read_csv(dir / "out" / "probes.csv");
   const double rho = 1000, U = 0.05, L = 0.2;

@@ -321,10 +321,7 @@ std::pair<double, double> layer(const std::string& lateral, double cell) {
   }
   j["probes"] = {{{"name", "centre"}, {"type", "particle"}, {"body", "soil"}, {"at", {40.0 + c, kH - c}}, {"quantity", "velocity_x"}},
                  {{"name", "side"}, {"type", "particle"}, {"body", "soil"}, {"at", {c, kH - c}}, {"quantity", "velocity_x"}}};
-  write_text(dir / "case.json", j.dump(2));
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" --quiet --threads 1", dir);
-  r.out_dir = dir / "out";
-  const Csv p = probes_of(r);
+  const Csv p = probes_of(run_case_text(dir, j.dump(2), "--quiet --threads 1"));
   double e_c = 0, e_s = 0;
   for (size_t i = 0; i < p.rows(); ++i) {
     const double v = surface_velocity(p["time"][i], c);

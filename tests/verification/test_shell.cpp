@@ -349,10 +349,7 @@ Csv run_beam(const std::string& tag, const nlohmann::json& bcs, const nlohmann::
          {"mesh", {{"elements", 4}, {"order", 3}}}, {"boundary_conditions", bcs}, {"loads", loads}}}},
       {"probes", probes},
       {"output", {{"vtk", false}}}};
-  write_text(dir / "case.json", j.dump(2));
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" --quiet", dir);
-  r.out_dir = dir / "out";
-  return probes_of(r);
+  return probes_of(run_case_text(dir, j.dump(2)));
 }
 
 nlohmann::json point(double x, double y) { return {{"type", "point"}, {"at", {x, y}}}; }

@@ -240,9 +240,9 @@ class MpmModel final : public PhysicsModel {
     double start = 0;              // rollers (fixed x) before this time, then the free field
     std::vector<double> reaction;  // the rollers' last horizontal reactions (the static traction after start)
     bool active(double t) const { return t >= start; }
-    /// Dynamic strains of element k: shear gamma_xy and axial eps_yy, and their rates.
-    Vec2 strain(size_t k) const { return (u[k + 1] - u[k]) / le[k]; }
-    Vec2 rate(size_t k) const { return (v[k + 1] - v[k]) / le[k]; }
+    /// Dynamic strains of element k (shear gamma_xy, axial eps_yy) plus beta times their rates: the strain
+    /// that a stiffness-proportional (Kelvin-Voigt) damping beta adds to the elastic stress.
+    Vec2 strain(size_t k, double beta) const { return (u[k + 1] - u[k] + beta * (v[k + 1] - v[k])) / le[k]; }
   };
   std::vector<FreeField> free_fields_;
   double k0_ = 0;  // the K0 of the geostatic initial stress (free-field columns)
@@ -977,20 +977,18 @@ void MpmModel::add_free_field_tractions() {
       const Index n = ff.nodes[k];
       if (!(gm_[n] > 0)) continue;
       // Column stress at the node: the average of its elements' (the static part at the node).
-      Vec2 e = Vec2::Zero(), er = Vec2::Zero();
+      Vec2 e = Vec2::Zero();
       int ne = 0;
       for (size_t el : {k - 1, k})
         if (el < m - 1) {
-          e += ff.strain(el);
-          er += ff.rate(el);
+          e += ff.strain(el, damp_stiff_);
           ++ne;
         }
       e /= ne;
-      er /= ne;
-      // e = (gamma_xy, eps_yy): sigma_xx = K0 sigma_v + lambda eps_yy, sigma_xy = mu gamma_xy (plus the
-      // stiffness-proportional damping stress of the body).
-      const double sxx = (ff.start > 0 ? 0.0 : k0_ * ff.sv[k]) + lambda_ * (e.y() + damp_stiff_ * er.y());
-      const double sxy = mu_ * (e.x() + damp_stiff_ * er.x());
+      // e = (gamma_xy, eps_yy) with the body's stiffness-proportional damping: sigma_xx = K0 sigma_v +
+      // lambda eps_yy, sigma_xy = mu gamma_xy.
+      const double sxx = (ff.start > 0 ? 0.0 : k0_ * ff.sv[k]) + lambda_ * e.y();
+      const double sxy = mu_ * e.x();
       gf_[n] += ff.length[k] * Vec2(sxx * ff.normal.x(), sxy * ff.normal.x()) + Vec2(ff.reaction[k], 0.0);
     }
   }
@@ -1029,8 +1027,8 @@ void MpmModel::step_free_fields(double dt) {
     for (size_t k = 0; k + 1 < m; ++k) {
       // Element stress: shear mu gamma, axial (lambda + 2 mu) eps (1D constrained), with the body's
       // stiffness-proportional damping; per unit width.
-      const Vec2 e = ff.strain(k), er = ff.rate(k);
-      const Vec2 s(mu_ * (e.x() + damp_stiff_ * er.x()), (lambda_ + 2 * mu_) * (e.y() + damp_stiff_ * er.y()));
+      const Vec2 e = ff.strain(k, damp_stiff_);
+      const Vec2 s(mu_ * e.x(), (lambda_ + 2 * mu_) * e.y());
       f[k] += s;
       f[k + 1] -= s;
     }

@@ -179,10 +179,7 @@ class IqnImvj final : public Acceleration {
   void end_step() override {
     if (r_.size() < 2) return;
     std::vector<Vec> dr, dx;
-    step_differences(r_, xt_, dr, dx);
-    std::vector<const Vec*> V;
-    for (const Vec& v : dr) V.push_back(&v);
-    const FilteredLeastSquares ls(V, r_.back(), filter_);
+    const FilteredLeastSquares ls = step_model(r_.back(), dr, dx);
     const Eigen::Index n = r_.back().size();
     if (J_.rows() != n) J_ = Eigen::MatrixXd::Zero(n, n);
     // J += (W - J_prev V) R^-1 Q^T over the kept columns (row i of R^-1 Q^T's transpose: R^-1 applied to
@@ -212,10 +209,7 @@ class IqnImvj final : public Acceleration {
     r_.push_back(r);
     xt_.push_back(x_tilde);
     std::vector<Vec> dr, dx;
-    step_differences(r_, xt_, dr, dx);
-    std::vector<const Vec*> V;
-    for (const Vec& v : dr) V.push_back(&v);
-    const FilteredLeastSquares ls(V, r, filter_);
+    const FilteredLeastSquares ls = step_model(r, dr, dx);
     columns_ = static_cast<int>(ls.kept.size());
     if (ls.kept.empty() && J_.size() == 0) return x + w0_ * r;
     Vec next = x_tilde;
@@ -229,6 +223,14 @@ class IqnImvj final : public Acceleration {
   }
 
  private:
+  /// This step's difference columns (into dr, dx) and their least-squares model for residual r.
+  FilteredLeastSquares step_model(const Vec& r, std::vector<Vec>& dr, std::vector<Vec>& dx) const {
+    step_differences(r_, xt_, dr, dx);
+    std::vector<const Vec*> V;
+    for (const Vec& v : dr) V.push_back(&v);
+    return FilteredLeastSquares(V, r, filter_);
+  }
+
   double w0_, filter_;
   std::vector<Vec> r_, xt_;
   Eigen::MatrixXd J_;  // previous steps' inverse Jacobian (empty before the first converged step)

@@ -24,7 +24,7 @@ case = {
         "regions": [{"type": "polygon", "points": [[0.0, 0.0], [Lt, 0.0]] + top}],
         "walls": [{"name": "tank", "points": [[0, 2 * d], [0, 0], [Lt, 0], [Lt, 2 * d]], "slip": True}],
         "initial_state": {"type": "solitary_wave", "depth": d, "height": H, "crest": x0},
-        "scheme": {"volume_correction": False, "free_surface_pressure": "natural"}
+        "scheme": {"volume_correction": "none", "free_surface_pressure": "natural"}
     }],
     "probes": [
         {"name": "eta_left", "type": "elevation", "body": "water", "x": 0.0, "band": 0.5 * h},

@@ -69,6 +69,8 @@ class PhysicsModel {
   /// Fluid area of the step's mesh right after remeshing (before the step moved it); with fluid_area() of
   /// the previous step it shows what remeshing added or removed.
   virtual double fluid_area_remeshed() const { return 0.0; }
+  /// The body's own numbers for summary.json (an object merged into its entry; empty: none).
+  virtual Json summary() const { return Json::object(); }
   PhaseTimes& times() { return times_; }
   /// A coupling: iterations of its last step (0 when the step needed none) and its final interface
   /// residual (relative); 0 for a single body.

@@ -307,9 +307,11 @@ int run_case(const RunOptions& opt) {
     Json bodies = Json::array();
     for (size_t i = 0; i < c.models.size(); ++i) {
       const auto& m = c.models[i];
-      bodies.push_back({{"name", m->name()}, {"type", m->type()}, {"nodes", m->num_nodes()},
-                        {"elements", m->num_elements()},
-                        {"timing", timing(i < tot.body_phases.size() ? tot.body_phases[i] : PhaseTimes{})}});
+      Json b{{"name", m->name()}, {"type", m->type()}, {"nodes", m->num_nodes()},
+             {"elements", m->num_elements()},
+             {"timing", timing(i < tot.body_phases.size() ? tot.body_phases[i] : PhaseTimes{})}};
+      b.update(m->summary());
+      bodies.push_back(std::move(b));
     }
     s["bodies"] = bodies;
 #ifdef LAGFSI_HAVE_OPENMP

@@ -9,7 +9,8 @@
 //
 // with P1 shape functions on the current (last iterate) configuration, Newmark (or generalized-alpha)
 // kinematics a(x), v(x) from the shared time integrators, and the tangent at frozen geometry
-// (d/dx of grad N and A neglected; Ryzhakov et al. 2010). c_vol is the optional global volume correction.
+// (d/dx of grad N and A neglected; Ryzhakov et al. 2010). c_vol is the optional global volume-correction
+// source ("volume_correction": "source"); the default correction ("surface") is geometric, see restore_area.
 #include "fluid_model.hpp"
 
 namespace lagfsi {
@@ -69,7 +70,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   scheme_ = s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.
   Json keys = {{"type", scheme_},
-               {"volume_correction", true},
+               {"volume_correction", "surface"},
                {"volume_relaxation_time", 0.1},
                {"remove_close_fraction", 0.3},
                {"insert_area_factor", 1.0},
@@ -106,7 +107,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     viscous_step_ = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
     solver_type_ = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
   }
-  volume_correction_ = s.boolean("volume_correction");
+  volume_correction_ = s.choice("volume_correction", {"surface", "source", "none"});
   relax_time_ = s.positive("volume_relaxation_time");
   close_fraction_ = s.non_negative("remove_close_fraction");
   bulk_ = s.non_negative("bulk_modulus");
@@ -245,6 +246,23 @@ void FluidModel::build_particles(Params b) {
   state_.x.resize(2 * np);
   for (Index i = 0; i < np; ++i) state_.x.segment<2>(2 * i) = pts[i];
   X0_ = state_.x;
+  // The fluid side of each wall segment: the side of the initial fluid particles that face it (whose
+  // projection falls on it; 0 when there are some on both sides, as beside a baffle, or none).
+  for (auto& w : walls_) {
+    w.fluid_side.assign(w.polyline.size() > 1 ? w.polyline.size() - 1 : 0, 0);
+    for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
+      const Vec2 a = w.polyline[k], e = w.polyline[k + 1] - a;
+      const Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+      int pos = 0, neg = 0;
+      for (Index i = 0; i < np; ++i) {
+        if (kind_[i] != ParticleKind::Fluid) continue;
+        const double u = (pts[i] - a).dot(e) / e.squaredNorm(), dist = (pts[i] - a).dot(nrm);
+        if (u < 0 || u > 1) continue;
+        (dist > 0 ? pos : neg) += 1;
+      }
+      w.fluid_side[k] = pos > 0 && neg == 0 ? 1 : neg > 0 && pos == 0 ? -1 : 0;
+    }
+  }
   state_.v = Vec::Zero(2 * np);
   const Vec2 v0 = b.vec2("initial_velocity");
   for (Index i = 0; i < np; ++i)
@@ -477,15 +495,21 @@ bool FluidModel::drop_particles(const std::vector<char>& drop) {
 
 bool FluidModel::drop_outside_domain() {
   // Fluid particles that left the domain box (walls and initial fluid, enlarged by domain_margin times the
-  // larger side) are gone: a jet that falls off the end of a floor would otherwise fly forever.
+  // larger side) are gone: a jet that falls off the end of a floor would otherwise fly forever. The box is
+  // open on the side gravity points away from: a splash thrown above the walls falls back.
   if (domain_lo_.x() > domain_hi_.x()) return false;
+  const Vec2 g = ctx_.gravity;
+  const Vec2 lo(g.x() > 0 ? -std::numeric_limits<double>::infinity() : domain_lo_.x(),
+                g.y() > 0 ? -std::numeric_limits<double>::infinity() : domain_lo_.y());
+  const Vec2 hi(g.x() < 0 ? std::numeric_limits<double>::infinity() : domain_hi_.x(),
+                g.y() < 0 ? std::numeric_limits<double>::infinity() : domain_hi_.y());
   std::vector<char> drop(n(), 0);
   bool any = false;
   Index fluid_left = 0;
   for (Index i = 0; i < n(); ++i) {
     if (kind_[i] != ParticleKind::Fluid) continue;
     const Vec2 q = state_.x.segment<2>(2 * i);
-    if (q.x() < domain_lo_.x() || q.y() < domain_lo_.y() || q.x() > domain_hi_.x() || q.y() > domain_hi_.y()) {
+    if (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y()) {
       drop[i] = 1;
       any = true;
     } else {
@@ -495,7 +519,105 @@ bool FluidModel::drop_outside_domain() {
   if (!any) return false;
   if (fluid_left == 0)
     throw SolverError("body '" + name_ + "': all fluid particles left the domain box by t = " + std::to_string(t_new_));
+  // The fluid that left is gone: its share of the last mesh (A_e / 3 per dropped particle of each element)
+  // leaves the reference area too, so that the volume correction does not make it up elsewhere.
+  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e)
+    for (Index i : tri_[e])
+      if (drop[i]) area_left_ += element_area(state_.x, e) / 3.0;
+  area_ref_ = area_initial_ - area_left_;
   return drop_particles(drop);
+}
+
+void FluidModel::restore_area() {
+  // Remeshing changes the fluid's area: the alpha shape closes or opens elements along the free surface
+  // (a splash joining the pool, a film tearing), and inserted or removed particles shift it. The error is
+  // geometric and sits on the free surface, so it is removed there, before the step is solved: the
+  // free-surface particles move along the gradient of the mesh area, g_i = dA/dx_i = sum_e (A_e grad N_i)
+  // (zero at interior particles, (1/2) J (x_next - x_prev) on the boundary), by the smallest such motion
+  // that restores the reference area to first order, dx_i = lambda g_i, lambda = (A_ref - A) / sum |g_i|^2
+  // (two passes close the second-order remainder). No velocity changes and no pressure is needed (the
+  // "source" correction needs a pressure of order rho L^2 (error) / T^2 to contract the whole fluid). Each
+  // pass moves a particle by at most 0.05 h; a larger error is closed over several steps.
+  if (!(area_ref_ > 0)) return;
+  const Index np = n();
+  // Only the surface of the bulk moves: a free-surface particle of an element with an interior fluid
+  // particle. Films, jets and drops (elements of free-surface particles only) keep their positions: their
+  // continuity rows are not solved (p = 0 on the free surface), and a push along their thin outline would
+  // accumulate at their tips (the front of a dam break runs ahead by a film).
+  std::vector<char> movable(np, 0), at_wall(np, 0);
+  for (const auto& t : tri_) {
+    bool interior = false, wall = false;
+    for (Index i : t) {
+      interior = interior || (kind_[i] == ParticleKind::Fluid && !free_[i]);
+      wall = wall || kind_[i] != ParticleKind::Fluid;
+    }
+    for (Index i : t) {
+      if (interior && kind_[i] == ParticleKind::Fluid && free_[i]) movable[i] = 1;
+      if (wall) at_wall[i] = 1;
+    }
+  }
+  for (Index i = 0; i < np; ++i) movable[i] = movable[i] && !at_wall[i];
+  Vec g(2 * np);
+  std::vector<double> lumped(np);   // lumped areas (the particles' masses / rho): the potential energy
+                                    // the correction moves is counted (probe volume_correction_energy)
+  for (int pass = 0; pass < 2; ++pass) {
+    double area = 0;
+    g.setZero();
+    std::fill(lumped.begin(), lumped.end(), 0.0);
+    for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) {
+      const auto& t = tri_[e];
+      const Vec2 xa = state_.x.segment<2>(2 * t[0]), xb = state_.x.segment<2>(2 * t[1]),
+                 xc = state_.x.segment<2>(2 * t[2]);
+      const double Ae = 0.5 * ((xb - xa).x() * (xc - xa).y() - (xb - xa).y() * (xc - xa).x());
+      area += Ae;
+      for (Index i : t) lumped[i] += Ae / 3.0;
+      const Vec2 xs[3] = {xa, xb, xc};
+      for (int k = 0; k < 3; ++k) {
+        const Vec2& q = xs[(k + 1) % 3];
+        const Vec2& r = xs[(k + 2) % 3];
+        g.segment<2>(2 * t[k]) += 0.5 * Vec2(q.y() - r.y(), r.x() - q.x());
+      }
+    }
+    const double error = area_ref_ - area;
+    if (std::abs(error) <= 1e-12 * area_ref_) return;
+    // A particle whose move would shrink one of its elements below half its area (a sliver at a splash)
+    // stays where it is; lambda is then recomputed over the others.
+    double lambda = 0;
+    for (int guard = 0; guard < 4; ++guard) {
+      double gg = 0, gmax = 0;
+      for (Index i = 0; i < np; ++i) {
+        if (!movable[i]) continue;
+        gg += g.segment<2>(2 * i).squaredNorm();
+        gmax = std::max(gmax, g.segment<2>(2 * i).norm() / hvec_[i]);
+      }
+      if (!(gg > 0)) return;
+      lambda = error / gg;
+      if (std::abs(lambda) * gmax > 0.05) lambda = std::copysign(0.05 / gmax, lambda);
+      bool frozen = false;
+      for (const auto& t : tri_) {
+        if (!(movable[t[0]] || movable[t[1]] || movable[t[2]])) continue;
+        Vec2 y[3];
+        for (int k = 0; k < 3; ++k)
+          y[k] = state_.x.segment<2>(2 * t[k]) + (movable[t[k]] ? lambda : 0.0) * g.segment<2>(2 * t[k]);
+        const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+          return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+        };
+        const Vec2 xa = state_.x.segment<2>(2 * t[0]), xb = state_.x.segment<2>(2 * t[1]),
+                   xc = state_.x.segment<2>(2 * t[2]);
+        if (area2(y[0], y[1], y[2]) < 0.5 * area2(xa, xb, xc)) {
+          for (Index i : t) movable[i] = 0;
+          frozen = true;
+        }
+      }
+      if (!frozen) break;
+      if (guard == 3) return;
+    }
+    for (Index i = 0; i < np; ++i) {
+      if (!movable[i]) continue;
+      state_.x.segment<2>(2 * i) += lambda * g.segment<2>(2 * i);
+      correction_energy_ -= rho_ * lumped[i] * ctx_.gravity.dot(lambda * g.segment<2>(2 * i));
+    }
+  }
 }
 
 bool FluidModel::insert_particles() {
@@ -590,7 +712,7 @@ void FluidModel::initialize() {
   }
   area_ref_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
-  area_remesh_ = area_end_ = area_ref_;
+  area_remesh_ = area_end_ = area_initial_ = area_ref_;
   double ymin = 1e300, ymax = -1e300;
   for (Index i = 0; i < np; ++i)
     if (kind_[i] == ParticleKind::Fluid) {
@@ -634,6 +756,11 @@ void FluidModel::initialize() {
 
 void FluidModel::predict(double t_new, double dt) {
   auto t0 = Clock::now();
+  // A retry of a failed step (the driver calls predict again with a smaller dt): start again from the
+  // step's initial pressures. The failed attempt left its own in p_, and taking them as the start of the
+  // retry compounded the failure (a projection velocity growing like 1/dt at every halving).
+  if (step_open_) p_ = p_old_;
+  step_open_ = true;
   t_new_ = t_new;
   dt_ = dt;
   if (remesh_ && solved_once_) {
@@ -642,6 +769,7 @@ void FluidModel::predict(double t_new, double dt) {
     const bool removed = remove_close_particles();
     if (removed) remesh_now();
     if (insert_particles()) remesh_now();
+    if (volume_correction_ == "surface") restore_area();
   }
   times_.remesh += seconds_since(t0);
   t0 = Clock::now();
@@ -661,11 +789,14 @@ void FluidModel::predict(double t_new, double dt) {
   set_dirichlet();
   area_remesh_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_remesh_ += element_area(state_.x, e);
-  // Global volume correction: a uniform source in the continuity equation, div v = -(A - A_ref)/(A_ref T),
+  // Volume correction "source": a uniform source in the continuity equation, div v = -(A - A_ref)/(A_ref T),
   // that closes the area error of remeshing (alpha shape, inserted/removed particles) over the relaxation
-  // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt
-  // (0.1 s keeps it to a few Pa in a dam break, against about 10 Pa per step-sized T of 1 ms... per 0.1 %).
-  c_vol_ = volume_correction_ && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
+  // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt;
+  // then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
+  // elements): the default is the "surface" correction (restore_area) instead.
+  c_vol_ = volume_correction_ == "source" && area_ref_ > 0
+               ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_)
+               : 0.0;
 
   if (scheme_ == "monolithic_pspg") integrator_->begin_step(state_, dt);
   p_old_ = p_;
@@ -1003,8 +1134,73 @@ void FluidModel::account_energy() {
   dissipation_ += diss;
 }
 
+void FluidModel::keep_inside_walls(const Vec& x_start) {
+  // A fluid particle in no element with a wall's particles (a drop flying ballistically) is not held by
+  // the wall, and a fast one may pass between the particles of its element: in one step it can cross the
+  // wall (a drop at 4 m/s moves 0.8 h a step at h = 5 mm, dt = 1 ms). Without this check the drops were
+  // lost through the walls and dropped at the domain box (1.3 % of the fluid in elastic_obstacle_walhorn by
+  // 1 s). A particle that ends more than 0.25 h (h if held, below) beyond a wall segment is put back 0.05 h
+  // on the segment's fluid side, and loses the velocity component into the wall (an inelastic impact), if
+  //  - the segment has a fluid side (the initial fluid's) and the particle started less than that
+  //    beyond it (within the segment's span), or
+  //  - its path x_n -> x_{n+1} crossed the segment (the side it came from is then the fluid side).
+  // A particle in an element with a wall particle is held by the mesh, and its excursions across the wall
+  // line of up to one spacing (a film sliding on the floor between the no-slip particles) are the
+  // discretization's: only a held particle more than h beyond the wall is put back (putting back the film's
+  // particles at 0.25 h made the film at a dam-break toe run ahead: dam_break_floor front RMS 0.21 -> 0.50).
+  if (!remesh_) return;
+  std::vector<char> held(n(), 0);
+  for (const auto& t : tri_)
+    if (kind_[t[0]] == ParticleKind::Wall || kind_[t[1]] == ParticleKind::Wall || kind_[t[2]] == ParticleKind::Wall)
+      for (Index i : t) held[i] = 1;
+  const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  for (Index i = 0; i < n(); ++i) {
+    if (kind_[i] != ParticleKind::Fluid) continue;
+    const Vec2 p0 = x_start.segment<2>(2 * i);
+    Vec2 p1 = state_.x.segment<2>(2 * i);
+    const double tol = (held[i] ? 1.0 : 0.5) * hvec_[i];
+    for (const auto& w : walls_) {
+      const Vec2 off = w.offset(t_new_);
+      for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
+        const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
+        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        double u;  // where the particle goes back, along the segment
+        if (w.fluid_side[k] != 0) {
+          nrm *= w.fluid_side[k];
+          u = (p1 - a).dot(e) / e.squaredNorm();
+          if (!(u >= 0 && u <= 1) || nrm.dot(p1 - a) >= -tol || nrm.dot(p0 - a) <= -tol) continue;
+        } else {
+          const Vec2 d = p1 - p0;
+          const double den = cross(d, e);
+          if (std::abs(den) <= 1e-300) continue;  // parallel
+          const double s = cross(a - p0, e) / den;
+          u = cross(a - p0, d) / den;
+          if (!(s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0)) continue;
+          if (nrm.dot(p0 - a) < 0) nrm = -nrm;  // towards the side the particle came from
+          if (nrm.dot(p1 - a) > -tol) continue;
+        }
+        p1 = a + u * e + 0.05 * hvec_[i] * nrm;
+        Vec2 v = state_.v.segment<2>(2 * i);
+        const double vn = v.dot(nrm);
+        if (vn < 0) v -= vn * nrm;
+        state_.v.segment<2>(2 * i) = v;
+        ++wall_crossings_;
+      }
+    }
+    state_.x.segment<2>(2 * i) = p1;
+  }
+}
+
+Json FluidModel::summary() const {
+  return {{"fluid_area", {{"initial", area_initial_}, {"final", area_end_}, {"left_domain", area_left_},
+                          {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}}},
+          {"wall_crossings", wall_crossings_}};
+}
+
 void FluidModel::finalize_step() {
+  step_open_ = false;
   if (energy_probes_) account_energy();
+  const Vec x_start = state_.x;
   if (scheme_ == "monolithic_pspg") {
     integrator_->end_step(x_, state_);
     set_wall_motion(t_new_, state_.v, state_.a);
@@ -1014,6 +1210,7 @@ void FluidModel::finalize_step() {
     state_.v = v_new_;
     state_.x = x_;
   }
+  keep_inside_walls(x_start);
   area_end_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_end_ += element_area(state_.x, e);
   p_scale_ = std::max(p_scale_, p_.cwiseAbs().maxCoeff());
@@ -1067,7 +1264,8 @@ void FluidModel::write_output(double t) {
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
-                                          "kinetic_energy", "gravity_work", "viscous_dissipation"});
+                                          "kinetic_energy", "gravity_work", "viscous_dissipation",
+                                          "volume_correction_energy"});
   // The work of gravity and the dissipation are summed over the run only when a probe asks for them (an
   // extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation") energy_probes_ = true;
@@ -1113,6 +1311,7 @@ std::vector<double> FluidProbe::sample() const {
   if (type_ == "kinetic_energy") return {m_.kinetic_energy()};
   if (type_ == "gravity_work") return {m_.gravity_work()};
   if (type_ == "viscous_dissipation") return {m_.viscous_dissipation()};
+  if (type_ == "volume_correction_energy") return {m_.correction_energy()};
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
     const Vec2 d = b_ - a_;

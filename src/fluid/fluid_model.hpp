@@ -39,6 +39,8 @@ struct Wall {
   std::shared_ptr<TimeFunction> fn;
   bool velocity = false;
   std::vector<Index> particles;  // PFEM mode: its particles in polyline order
+  std::vector<int> fluid_side;   // per segment: +1 / -1 the initial fluid lies on the side of
+                                 // perp(b - a) / of its opposite, 0 on both or neither (keep_inside_walls)
   Vec2 offset(double t) const {
     if (!fn) return Vec2::Zero();
     return value * (velocity ? fn->integral(t) : fn->value(t));
@@ -66,6 +68,9 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   Index num_elements() const override { return static_cast<Index>(tri_.size()); }
   double fluid_area() const override { return area_end_; }
   double fluid_area_remeshed() const override { return area_remesh_; }
+  /// The fluid area (initial mesh, now, of the fluid dropped outside the domain box, and the drift without
+  /// the latter: the scheme's own) and the particles put back inside a wall (keep_inside_walls).
+  Json summary() const override;
 
   void initialize() override;
   void predict(double t_new, double dt) override;
@@ -95,6 +100,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// when a gravity_work or viscous_dissipation probe exists).
   double gravity_work() const { return gravity_work_; }
   double viscous_dissipation() const { return dissipation_; }
+  /// Potential energy put into the fluid by the "surface" volume correction's moves, -sum m_i g . dx_i.
+  double correction_energy() const { return correction_energy_; }
   double area_end() const { return area_end_; }
 
  private:
@@ -148,6 +155,11 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
     }
     return prescribed >= 2 && ghost;
   }
+  /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
+  /// that the area after remeshing equals the reference area again (fluid_model.cpp).
+  void restore_area();
+  /// Fluid particles whose step crossed a wall segment go back to its fluid side (fluid_model.cpp).
+  void keep_inside_walls(const Vec& x_start);
   /// One Newton iteration of the monolithic PSPG scheme (fluid_model.cpp).
   IterationReport newton_iteration();
   /// The whole step of the fractional-step scheme (fractional_step.cpp).
@@ -165,8 +177,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   bool remesh_ = true, lumped_ = true, p_free_dirichlet_ = true;
   std::string tau_type_ = "automatic";
   double tau_U_ = 1.0;
-  bool volume_correction_ = true;
-  double relax_time_ = 0.1;      // s: the volume correction closes an area error over this time
+  std::string volume_correction_ = "surface";  // surface | source | none
+  double relax_time_ = 0.1;      // s: the "source" correction closes an area error over this time
   double tol_ = 1e-4;
   int refactor_every_ = 0;       // 0: one factorization per step (the matrix barely changes within a
                                  // step); k >= 1: refactorized every k iterations (1: Newton)
@@ -200,12 +212,15 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   ElementPattern pattern_;
   SparseMatrix J_;
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
+  double area_initial_ = 0, area_left_ = 0;
+  long wall_crossings_ = 0;         // fluid particles put back inside a wall (keep_inside_walls)  // initial mesh area; area of the fluid dropped outside the box
   double p_scale_ = 1;
 
   Vec x_;                           // iterate of x_{n+1}
   double t_new_ = 0, dt_ = 0;
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
   bool solved_once_ = false;
+  bool step_open_ = false;          // predict called and the step not finalized yet (a retry if predicted again)
 
   // Fractional step: the pressure Poisson matrix and the implicit viscous predictor's matrix (both one dof
   // per particle, one pattern) on the step's mesh; the step's new velocities.
@@ -224,7 +239,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::vector<std::vector<Index>> ghost_neighbours_;  // per ghost particle (local), neighbouring ghost particles
   Vec ghost_x_, ghost_v_, ghost_a_, ghost_force_;
   bool contact_ = false;
-  double gravity_work_ = 0, dissipation_ = 0;
+  double gravity_work_ = 0, dissipation_ = 0, correction_energy_ = 0;
   bool energy_probes_ = false;  // account_energy() only for runs that probe it
 };
 

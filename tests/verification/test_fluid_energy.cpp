@@ -26,7 +26,7 @@ const char* kBlob = R"({
     "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.01,
     "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.2, 0.2]}],
     "initial_state": {"type": "taylor_green", "amplitude": 0.05, "length": 0.2},
-    "scheme": {"type": "SCHEME", "volume_correction": false}
+    "scheme": {"type": "SCHEME", "volume_correction": "none"}
   }],
   "probes": [
     {"name": "kinetic_energy", "type": "kinetic_energy", "body": "water"},

@@ -122,30 +122,39 @@ TEST(FsiCoupling, TheStructuresEnergyBalanceClosesWithTheInterfaceWork) {
 TEST(FsiCoupling, TheCoupledEnergyBalanceCloses) {
   // Kinetic energy of the water and of the plate, the plate's strain energy, minus the work of gravity on
   // both, plus the water's viscous dissipation: the interface work leaves the water and enters the plate, so
-  // the sum B(t) changes only by the schemes' own errors (the fractional step's stabilization dissipates, the
-  // remeshing adds or removes particles). Over the first 0.3 s (the plate's first swing) |B| stays below 3 %
-  // of the largest energy the plate takes (measured 2.2 %); over 1 s it reaches 11 %, the energy gain of the
-  // remeshed free surface (issue #3), so the test stops at 0.3 s.
+  // the sum B(t) changes only by the schemes' own errors (the fractional step's stabilization dissipates,
+  // the remeshing adds or removes particles) and by the potential energy the volume correction moves (it
+  // lifts or lowers the free surface to keep the area; counted by its own probe and taken out of B). Over
+  // the first 0.3 s (the plate's first swing) |B| stays below 4 % of the largest energy the plate takes
+  // (measured 3.3 % with the default "surface" volume correction, whose own energy is 0.23 %; 3.75 % with no
+  // correction, 2.2 % with the "source" one); over 1 s it reaches 11 %, the energy gain of the remeshed free
+  // surface (issue #3), so the test stops at 0.3 s. A coupling that lost or made interface work would show
+  // the plate's whole energy here.
   const std::string probes =
       R"(probes=[{"name": "ke_f", "type": "kinetic_energy", "body": "water"},
                  {"name": "wg_f", "type": "gravity_work", "body": "water"},
                  {"name": "d_f", "type": "viscous_dissipation", "body": "water"},
+                 {"name": "c_f", "type": "volume_correction_energy", "body": "water"},
                  {"name": "e_s", "type": "energy", "body": "plate", "kind": "total"},
                  {"name": "wext_s", "type": "energy", "body": "plate", "kind": "external_work"},
                  {"name": "wif_s", "type": "energy", "body": "plate", "kind": "interface_work"}])";
   const auto r = run_case_1thread(kCase, "fsi_coupled_energy", {kFs, "analysis.end_time=0.3", "output.vtk=false", probes});
   const Csv c = probes_of(r);
-  double e_max = 0, b_max = 0, wif_max = 0;
+  double e_max = 0, b_max = 0, wif_max = 0, corr_max = 0;
   for (size_t i = 0; i < c.rows(); ++i) {
     const double es = c["e_s"][i] - c["e_s"][0];
-    const double b = (c["ke_f"][i] - c["ke_f"][0]) + es - c["wg_f"][i] - (c["wext_s"][i] - c["wif_s"][i]) + c["d_f"][i];
+    const double b = (c["ke_f"][i] - c["ke_f"][0]) + es - c["wg_f"][i] - (c["wext_s"][i] - c["wif_s"][i]) + c["d_f"][i] -
+                     c["c_f"][i];
     e_max = std::max(e_max, std::abs(es));
     b_max = std::max(b_max, std::abs(b));
     wif_max = std::max(wif_max, std::abs(c["wif_s"][i]));
+    corr_max = std::max(corr_max, std::abs(c["c_f"][i]));
   }
+  std::printf("coupled energy balance: largest |B| %.2f %%, the volume correction's energy %.2f %% of the plate's largest energy\n",
+              100 * b_max / e_max, 100 * corr_max / e_max);
   ASSERT_GT(e_max, 0.05) << "J per metre: the plate must take a real share of the water's energy";
   EXPECT_GT(wif_max, 0.5 * e_max) << "the plate's energy comes through the interface";
-  EXPECT_LT(b_max, 0.03 * e_max) << "largest |energy balance| against the largest energy of the plate";
+  EXPECT_LT(b_max, 0.04 * e_max) << "largest |energy balance| against the largest energy of the plate";
 }
 
 }  // namespace

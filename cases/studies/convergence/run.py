@@ -87,7 +87,7 @@ def sloshing_case(h):
             "regions": [{"type": "polygon", "points": [[0.0, 0.0], [Ls, 0.0]] + top}],
             "walls": [{"name": "tank", "points": [[0, 2 * d], [0, 0], [Ls, 0], [Ls, 2 * d]], "slip": True}],
             "initial_pressure": {"type": "hydrostatic", "level": d},
-            "scheme": {"volume_correction": False, "free_surface_pressure": "natural"}}],
+            "scheme": {"volume_correction": "none", "free_surface_pressure": "natural"}}],
         "probes": [{"name": "eta_left", "type": "elevation", "body": "water", "x": 0.0, "band": 0.5 * h},
                    {"name": "fluid_area", "type": "fluid_area", "body": "water"}],
         "output": {"every": 100, "vtk": False}}

@@ -77,10 +77,11 @@ TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
 }
 
 TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
-  // Dam break onto the elastic obstacle, fractional-step fluid, non-matching interface, IQN-IMVJ; 0.45 s
-  // covers the impact and the first swing. Against the PFEM of Idelsohn et al. 2008: peak 48.3 mm at
-  // 0.260 s (measured 48.0 mm at 0.234 s) within 10 % and 0.04 s; RMS difference over 0-0.45 s <= 8 mm
-  // (measured 4.7 mm; over the whole reference, 0-0.69 s, 9.3 mm).
+  // Dam break onto the elastic obstacle, fractional-step fluid, non-matching interface, IQN-IMVJ with the
+  // force predictor; 0.45 s covers the impact and the first swing. Against the PFEM of Idelsohn et al. 2008:
+  // peak 48.3 mm at 0.260 s (measured 48.8 mm at 0.236 s) within 10 % and 0.04 s; RMS difference over
+  // 0-0.45 s <= 8 mm (measured 5.1 mm; over the whole reference, 0-0.69 s, 11.5 mm). Iterations: the
+  // issue's goal is at most 5 per coupled step (measured 4.63 over 0.45 s, 4.78 over 1 s).
   const auto r = run_case_1thread("cases/elastic_obstacle_walhorn/case.json", "fsi_walhorn",
                                   {"analysis.end_time=0.45", "output.every=50"});
   const Csv c = probes_of(r);
@@ -94,7 +95,7 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
   EXPECT_NEAR(peak, 0.0483, 0.1 * 0.0483);
   EXPECT_NEAR(t_peak, 0.260, 0.04);
   EXPECT_LE(rms_against(c, "tip_ux", ref, 0.45), 0.008);
-  EXPECT_LE(check_coupling(r, 250), 6.5) << "IQN-IMVJ iterations per coupled step (measured 5.25 over 1 s)";
+  EXPECT_LE(check_coupling(r, 250), 5.0) << "IQN-IMVJ iterations per coupled step";
 }
 
 TEST(ElasticGateAntoci, OpensLikeTheExperimentUntilItsPeak) {

@@ -1139,7 +1139,7 @@ void FluidModel::keep_inside_walls(const Vec& x_start) {
   // the wall, and a fast one may pass between the particles of its element: in one step it can cross the
   // wall (a drop at 4 m/s moves 0.8 h a step at h = 5 mm, dt = 1 ms). Without this check the drops were
   // lost through the walls and dropped at the domain box (1.3 % of the fluid in elastic_obstacle_walhorn by
-  // 1 s). A particle that ends more than 0.25 h (h if held, below) beyond a wall segment is put back 0.05 h
+  // 1 s). A particle that ends more than 0.5 h (h if held, below) beyond a wall segment is put back 0.05 h
   // on the segment's fluid side, and loses the velocity component into the wall (an inelastic impact), if
   //  - the segment has a fluid side (the initial fluid's) and the particle started less than that
   //    beyond it (within the segment's span), or
@@ -1147,7 +1147,8 @@ void FluidModel::keep_inside_walls(const Vec& x_start) {
   // A particle in an element with a wall particle is held by the mesh, and its excursions across the wall
   // line of up to one spacing (a film sliding on the floor between the no-slip particles) are the
   // discretization's: only a held particle more than h beyond the wall is put back (putting back the film's
-  // particles at 0.25 h made the film at a dam-break toe run ahead: dam_break_floor front RMS 0.21 -> 0.50).
+  // particles at 0.25 h made the film at a dam-break toe run ahead: dam_break_floor front RMS 0.21 -> 0.50;
+  // 0.5 h leaves that film alone).
   if (!remesh_) return;
   std::vector<char> held(n(), 0);
   for (const auto& t : tri_)

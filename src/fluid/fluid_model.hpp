@@ -212,8 +212,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   ElementPattern pattern_;
   SparseMatrix J_;
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
-  double area_initial_ = 0, area_left_ = 0;
-  long wall_crossings_ = 0;         // fluid particles put back inside a wall (keep_inside_walls)  // initial mesh area; area of the fluid dropped outside the box
+  double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
+  long wall_crossings_ = 0;         // fluid particles put back inside a wall (keep_inside_walls)
   double p_scale_ = 1;
 
   Vec x_;                           // iterate of x_{n+1}

@@ -85,7 +85,7 @@ TEST(FluidDomain, ASplashThrownAboveTheWallsFallsBack) {
 
 TEST(FluidDomain, ADropDoesNotPassThroughAWall) {
   // A small blob flying at 10 m/s (half a spacing per step) against a wall at x = 0.5 m, no gravity: its
-  // particles that end a step beyond the wall's line by more than 0.25 h (h for those in an element with a
+  // particles that end a step beyond the wall's line by more than 0.5 h (h for those in an element with a
   // wall particle) are put back on the near side.
   const RunResult r = run_case_text(fresh_dir("fluid_domain_wall"), R"({
     "name": "drop_at_wall",

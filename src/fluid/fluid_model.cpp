@@ -84,7 +84,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
                      {"refactorize_every", 0},
                      {"linear_solver", "klu"}});
   } else {
-    keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}});
+    keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}, {"inverted_elements", "retry"}});
   }
   s.validate(keys);
   if (scheme_ == "monolithic_pspg") {
@@ -106,6 +106,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
     viscous_step_ = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
     solver_type_ = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
+    retry_inverted_ = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
   }
   volume_correction_ = s.choice("volume_correction", {"surface", "source", "none"});
   relax_time_ = s.positive("volume_relaxation_time");
@@ -1195,11 +1196,14 @@ void FluidModel::keep_inside_walls(const Vec& x_start) {
 Json FluidModel::summary() const {
   return {{"fluid_area", {{"initial", area_initial_}, {"final", area_end_}, {"left_domain", area_left_},
                           {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}}},
-          {"wall_crossings", wall_crossings_}};
+          {"wall_crossings", wall_crossings_},
+          {"inverted_elements_kept", inverted_kept_}};
 }
 
 void FluidModel::finalize_step() {
   step_open_ = false;
+  inverted_kept_ += inverted_in_step_;
+  inverted_in_step_ = 0;
   if (energy_probes_) account_energy();
   const Vec x_start = state_.x;
   if (scheme_ == "monolithic_pspg") {

@@ -214,6 +214,9 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
   long wall_crossings_ = 0;         // fluid particles put back inside a wall (keep_inside_walls)
+  bool retry_inverted_ = true;      // fractional step: an element inverted within the step fails it (retry)
+  long inverted_in_step_ = 0, inverted_kept_ = 0;  // fractional step: inverted elements in the last solve /
+                                                   // in the accepted steps ("inverted_elements": "remesh")
   double p_scale_ = 1;
 
   Vec x_;                           // iterate of x_{n+1}

@@ -545,19 +545,10 @@ void FluidModel::restore_area() {
   // particle. Films, jets and drops (elements of free-surface particles only) keep their positions: their
   // continuity rows are not solved (p = 0 on the free surface), and a push along their thin outline would
   // accumulate at their tips (the front of a dam break runs ahead by a film).
-  std::vector<char> movable(np, 0), at_wall(np, 0);
-  for (const auto& t : tri_) {
-    bool interior = false, wall = false;
-    for (Index i : t) {
-      interior = interior || (kind_[i] == ParticleKind::Fluid && !free_[i]);
-      wall = wall || kind_[i] != ParticleKind::Fluid;
-    }
-    for (Index i : t) {
-      if (interior && kind_[i] == ParticleKind::Fluid && free_[i]) movable[i] = 1;
-      if (wall) at_wall[i] = 1;
-    }
-  }
-  for (Index i = 0; i < np; ++i) movable[i] = movable[i] && !at_wall[i];
+  std::vector<char> movable = beside_interior_fluid();
+  const std::vector<char> at_wall = in_element_with([&](Index i) { return kind_[i] != ParticleKind::Fluid; });
+  for (Index i = 0; i < np; ++i)
+    movable[i] = movable[i] && kind_[i] == ParticleKind::Fluid && free_[i] && !at_wall[i];
   Vec g(2 * np);
   std::vector<double> lumped(np);   // lumped areas (the particles' masses / rho): the potential energy
                                     // the correction moves is counted (probe volume_correction_energy)
@@ -672,6 +663,18 @@ void FluidModel::set_wall_motion(double t, Vec& v, Vec& a) const {
   }
 }
 
+std::vector<char> FluidModel::in_element_with(const std::function<bool(Index)>& pred) const {
+  std::vector<char> flag(static_cast<size_t>(n()), 0);
+  for (const auto& t : tri_)
+    if (pred(t[0]) || pred(t[1]) || pred(t[2]))
+      for (Index i : t) flag[i] = 1;
+  return flag;
+}
+
+std::vector<char> FluidModel::beside_interior_fluid() const {
+  return in_element_with([&](Index i) { return kind_[i] == ParticleKind::Fluid && !free_[i]; });
+}
+
 void FluidModel::set_dirichlet() {
   const Index np = n();
   fixed_.assign(3 * np, 0);
@@ -686,13 +689,7 @@ void FluidModel::set_dirichlet() {
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
   // suction that pulls the surface particles up the wall (spurious currents in a tank at rest).
   if (p_free_dirichlet_ && remesh_) {
-    std::vector<char> wet(np, 0);
-    for (const auto& t : tri_) {
-      bool interior = false;
-      for (Index i : t) interior = interior || (kind_[i] == ParticleKind::Fluid && !free_[i]);
-      if (interior)
-        for (Index i : t) wet[i] = 1;
-    }
+    const std::vector<char> wet = beside_interior_fluid();
     for (Index i = 0; i < np; ++i)
       if (kind_[i] != ParticleKind::Fluid && !wet[i]) fixed_[3 * i + 2] = 1;
   }
@@ -1151,10 +1148,7 @@ void FluidModel::keep_inside_walls(const Vec& x_start) {
   // particles at 0.25 h made the film at a dam-break toe run ahead: dam_break_floor front RMS 0.21 -> 0.50;
   // 0.5 h leaves that film alone).
   if (!remesh_) return;
-  std::vector<char> held(n(), 0);
-  for (const auto& t : tri_)
-    if (kind_[t[0]] == ParticleKind::Wall || kind_[t[1]] == ParticleKind::Wall || kind_[t[2]] == ParticleKind::Wall)
-      for (Index i : t) held[i] = 1;
+  const std::vector<char> held = in_element_with([&](Index i) { return kind_[i] == ParticleKind::Wall; });
   const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
   for (Index i = 0; i < n(); ++i) {
     if (kind_[i] != ParticleKind::Fluid) continue;

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <cstdlib>
 #include <chrono>
 #include <cmath>
@@ -155,6 +156,10 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
     }
     return prescribed >= 2 && ghost;
   }
+  /// Flags of the particles of the step's elements (tri_) that have a particle i with pred(i).
+  std::vector<char> in_element_with(const std::function<bool(Index)>& pred) const;
+  /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.
+  std::vector<char> beside_interior_fluid() const;
   /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
   /// that the area after remeshing equals the reference area again (fluid_model.cpp).
   void restore_area();

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers for tests that run whole cases: run the lagfsi executable, read CSV output.
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +150,22 @@ inline double at_time(const Csv& c, const std::string& col, double t) {
     if (std::abs(tt[i] - t) < std::abs(tt[best] - t)) best = i;
   EXPECT_NEAR(tt[best], t, 1e-9);
   return c[col][best];
+}
+
+/// Tip of a cantilever elastica run (probes tip_ux, tip_uy; load factor lambda reached at t = lambda / 10)
+/// against Mattiasson's table in `case_dir`/reference/mattiasson_1981_cantilever_elastica.csv: expects the
+/// four rows and |w / w_ref - 1|, |u / u_ref - 1| below `tol` at each (u = -tip_ux, w = tip_uy, over L).
+inline void expect_tip_matches_mattiasson(const Csv& c, const std::string& case_dir, double tol) {
+  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / case_dir / "reference/mattiasson_1981_cantilever_elastica.csv");
+  ASSERT_EQ(ref.rows(), 4u);
+  for (size_t i = 0; i < ref.rows(); ++i) {
+    const double lambda = ref["lambda"][i];
+    const double w = at_time(c, "tip_uy", lambda / 10.0), u = -at_time(c, "tip_ux", lambda / 10.0);
+    std::printf("lambda %4.1f  w/L %.5f (%.5f)  u/L %.5f (%.5f)\n", lambda, w, ref["w_over_L"][i], u,
+                ref["u_over_L"][i]);
+    EXPECT_LT(std::abs(w / ref["w_over_L"][i] - 1.0), tol) << "lambda " << lambda << " w/L " << w;
+    EXPECT_LT(std::abs(u / ref["u_over_L"][i] - 1.0), tol) << "lambda " << lambda << " u/L " << u;
+  }
 }
 
 /// Writes a text file (for case files made by a test).

@@ -23,13 +23,16 @@ double check_coupling(const RunResult& r, int min_coupled_steps) {
   return s["coupling"]["iterations_mean"].get<double>();
 }
 
-/// Reference series (time, value) from a CSV; `component` keeps the rows of that component (a label column).
+/// Reference series (time, value) from a CSV; `component` and `source` keep the rows with those labels (label
+/// columns of the same names).
 std::vector<std::pair<double, double>> reference(const std::string& rel, const std::string& tcol, const std::string& vcol,
-                                                 const std::string& component = "") {
+                                                 const std::string& component = "", const std::string& source = "") {
   const Csv c = read_csv(fs::path(LAGFSI_SOURCE_DIR) / rel);
   std::vector<std::pair<double, double>> out;
   for (size_t i = 0; i < c.rows(); ++i)
-    if (component.empty() || c.text.at("component")[i] == component) out.push_back({c[tcol][i], c[vcol][i]});
+    if ((component.empty() || c.text.at("component")[i] == component) &&
+        (source.empty() || c.text.at("source")[i] == source))
+      out.push_back({c[tcol][i], c[vcol][i]});
   EXPECT_FALSE(out.empty()) << rel;
   return out;
 }
@@ -99,12 +102,17 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
   EXPECT_LE(check_coupling(r, 250), 5.0) << "IQN-IMVJ iterations per coupled step";
 }
 
-TEST(ElasticGateAntoci, OpensLikeTheExperimentUntilItsPeak) {
+TEST(ElasticGateAntoci, OpensLikeTheExperimentAndFollowsThePublishedSolutions) {
   // Rubber gate released by the water, fractional-step fluid, non-matching interface, IQN-IMVJ, 0.2 s.
   // Against the experiment of Antoci et al. 2007: the free end's horizontal displacement within 4 mm at
-  // 0.04 and 0.08 s (measured 2.2 and 2.4 mm); the gate closes again too early afterwards (README), so over
-  // the points of 0-0.2 s the RMS errors are only held at what this version reaches: x <= 9 mm (measured
-  // 7.7), y <= 7.5 mm (measured 5.9).
+  // 0.04 and 0.08 s (measured 2.2 and 2.4 mm); after its peak at 0.1 s the gate closes again while the
+  // experiment's stays open, as in the three published solutions with the same constants (README), so over the
+  // experiment's points of 0-0.2 s the RMS errors are only held at what this version reaches: x <= 9 mm
+  // (measured 8.2), y <= 7.5 mm (measured 6.2). Against each published solution (Khayyer et al. 2018, Yang
+  // et al. 2012, Ng et al. 2020) over their points of 0-0.2 s: x <= 6 mm (measured 4.3 / 2.5 / 2.2 mm; the
+  // three differ from one another by up to 3.2 mm), and y of the end's downstream corner (the point those
+  // solutions report; the upstream corner is t sin(theta) ~ 3 mm lower) <= 3.5 mm (2.3 / 1.5 / 1.4 mm). A
+  // gate of half the stiffness, which follows the experiment better, is 7.2 mm from two of them in x.
   const auto r = run_case_1thread("cases/elastic_gate_antoci/case.json", "fsi_antoci",
                                   {"analysis.end_time=0.2", "output.every=100"});
   const Csv c = probes_of(r);
@@ -118,6 +126,11 @@ TEST(ElasticGateAntoci, OpensLikeTheExperimentUntilItsPeak) {
   }
   EXPECT_LE(rms_against(c, "tip_ux", rx, 0.2), 0.009);
   EXPECT_LE(rms_against(c, "tip_uy", ry, 0.2), 0.0075);
+  const std::string num = "cases/elastic_gate_antoci/reference/antoci_gate_numerical_tip_displacement.csv";
+  for (const std::string src : {"khayyer_2018", "yang_2012", "ng_2020"}) {
+    EXPECT_LE(rms_against(c, "tip_ux", reference(num, "time", "displacement", "x", src), 0.2), 0.006) << src;
+    EXPECT_LE(rms_against(c, "tip_right_uy", reference(num, "time", "displacement", "y", src), 0.2), 0.0035) << src;
+  }
   EXPECT_LE(check_coupling(r, 390), 5.5) << "IQN-IMVJ iterations per coupled step (measured 4.67 over 0.4 s)";
 }
 

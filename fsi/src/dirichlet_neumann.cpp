@@ -101,9 +101,7 @@ DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsMode
               {"reference_floor", 1e-9},
               {"augmented_mass", 1.0},
               {"predictor", "extrapolation"}});
-  name_ = p.string("name");
-  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
-    p.fail("name", "must be a non-empty name without spaces or slashes");
+  name_ = p.identifier("name");
   fluid_ = dynamic_cast<InterfaceFluid*>(&fluid);
   structure_ = dynamic_cast<InterfaceStructure*>(&structure);
   if (!fluid_) p.fail("fluid", "body '" + fluid.name() + "' is a " + fluid.type() + ", not a fluid");

@@ -160,6 +160,39 @@ void mark_nesting_levels(CDT& cdt) {
     f->set_in_domain(!cdt.is_infinite(f) && f->info() % 2 == 1);
 }
 
+/// Rejects a region with a feature far thinner than h: the refinement would need elements of that size
+/// and did not finish on a 1e-12 m wide rectangle. The feature size is the smallest distance from a vertex
+/// to a segment that does not end at it (any loop); the bound is kMinFeature h.
+void check_feature_size(const std::vector<const std::vector<Vec2>*>& loops, double h) {
+  constexpr double kMinFeature = 0.02;
+  auto distance = [](const Vec2& p, const Vec2& a, const Vec2& b) {
+    const Vec2 ab = b - a;
+    const double l2 = ab.squaredNorm();
+    const double s = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+    return (p - (a + s * ab)).norm();
+  };
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    for (std::size_t i = 0; i < loops[l]->size(); ++i) {
+      const Vec2& p = (*loops[l])[i];
+      for (std::size_t m = 0; m < loops.size(); ++m) {
+        const auto& loop = *loops[m];
+        const std::size_t n = loop.size();
+        for (std::size_t j = 0; j < n; ++j) {
+          const std::size_t k = (j + 1) % n;
+          if (m == l && (j == i || k == i)) continue;
+          const double d = distance(p, loop[j], loop[k]);
+          if (d < kMinFeature * h) {
+            std::ostringstream os;
+            os << "point " << i << " of " << loop_name(l) << " is " << d << " from segment " << j << " of "
+               << loop_name(m) << ", less than " << kMinFeature << " h (h = " << h
+               << "): a feature that thin cannot be meshed at this size";
+            fail(os.str());
+          }
+        }
+      }
+    }
+}
+
 }  // namespace
 
 TriMesh mesh_polygon(const PolygonRegion& region, double h) {
@@ -192,6 +225,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h) {
     area += l == 0 ? a : -a;
   }
   check_simple(loops);
+  check_feature_size(loops, h);
   // Holes must lie inside the outer loop and outside one another (loops do not intersect, so one
   // vertex per loop decides).
   std::vector<Point> ring;

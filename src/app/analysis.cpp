@@ -126,8 +126,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.root = Params::load(opt.case_file);
   for (const auto& o : opt.overrides) apply_override(c.root.json(), o);
   c.root.validate(case_defaults());
-  c.name = c.root.string("name");
-  if (c.name.empty()) c.name = opt.case_file.stem().string();
+  c.name = c.root.string("name").empty() ? opt.case_file.stem().string() : c.root.identifier("name");
   c.ctx.case_file = opt.case_file;
   c.ctx.base_dir = opt.case_file.parent_path();
   c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
@@ -192,6 +191,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
     if (!p.has("name")) p.fail("name", "required key is missing");
     if (!p.has("type")) p.fail("type", "required key is missing");
     if (!p.has("body")) p.fail("body", "required key is missing");
+    (void)p.identifier("name");   // a column of probes.csv: no commas, quotes or line breaks
     const std::string body = p.string("body");
     PhysicsModel* m = nullptr;
     for (auto& mm : c.models)
@@ -322,9 +322,18 @@ int run_case(const RunOptions& opt) {
     write_atomic(out / "summary.json", s.dump(2) + "\n");
   };
 
+  // The output folder first: if it cannot be written, say so once and write nothing else.
   try {
     fs::create_directories(out);
+    if (!fs::is_directory(out)) throw std::runtime_error("it is not a folder");
     write_atomic(out / "resolved_case.json", c.root.json().dump(2) + "\n");
+  } catch (const std::exception& e) {
+    const auto* fe = dynamic_cast<const fs::filesystem_error*>(&e);
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": cannot write the output folder " << out.string()
+              << " (" << (fe ? fe->code().message() : std::string(e.what())) << ")\n";
+    return kInputError;
+  }
+  try {
     probes_csv.open(out / "probes.csv");
     log_csv.open(out / "log.csv");
     if (!probes_csv || !log_csv) throw std::runtime_error("cannot write in " + out.string());
@@ -457,8 +466,11 @@ int run_case(const RunOptions& opt) {
   try {
     write_summary();
   } catch (const std::exception& e) {
-    std::cerr << "lagfsi: error: " << e.what() << "\n";
-    if (code == kOk) code = kInternalError;
+    // After a failure its message has been printed: one line per run.
+    if (code == kOk) {
+      std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
+      code = kInternalError;
+    }
   }
   if (!opt.quiet && code == kOk)
     std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,

@@ -74,11 +74,13 @@ int app_main(int argc, char** argv) {
         opt.overrides.push_back(a.substr(6));
       } else if (a == "--threads") {
         const std::string v = value("a number");
+        size_t used = 0;
         try {
-          opt.threads = std::stoi(v);
+          opt.threads = std::stoi(v, &used);
         } catch (...) {
           opt.threads = -1;
         }
+        if (used != v.size()) opt.threads = -1;   // "1x", "2 threads"
         if (opt.threads < 1) {
           std::cerr << "lagfsi: error: --threads needs a positive integer (got '" << v << "')\n";
           return kUsage;

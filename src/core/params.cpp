@@ -1,8 +1,12 @@
 #include <lagfsi/params.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <vector>
 
 namespace lagfsi {
 
@@ -38,22 +42,90 @@ std::string join(const std::vector<std::string>& v) {
 }
 }  // namespace
 
+namespace {
+/// Parser callback that rejects a key repeated in one object (nlohmann keeps the last silently, so a case
+/// file with "dt" twice would run with whichever came last). Tracks the JSON path for the message.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+  bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
+    switch (event) {
+      case Json::parse_event_t::object_start: frames_.push_back({true, {}, "", 0}); break;
+      case Json::parse_event_t::array_start: frames_.push_back({false, {}, "", 0}); break;
+      case Json::parse_event_t::key: {
+        Frame& f = frames_.back();
+        const std::string k = parsed.get<std::string>();
+        if (!f.keys.insert(k).second) throw InputError(file_, parent_path() + "/" + k, "duplicate key");
+        f.key = k;
+        break;
+      }
+      case Json::parse_event_t::object_end:
+      case Json::parse_event_t::array_end:
+        frames_.pop_back();
+        advance();
+        break;
+      case Json::parse_event_t::value: advance(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;   // objects: the key being read
+    size_t index;      // arrays: the element being read
+  };
+  void advance() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  std::string parent_path() const {
+    std::string path;
+    for (size_t i = 0; i + 1 < frames_.size(); ++i)
+      path += "/" + (frames_[i].object ? frames_[i].key : std::to_string(frames_[i].index));
+    return path;
+  }
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
+size_t line_of(const std::string& text, size_t byte) {
+  size_t line = 1;
+  for (size_t i = 0; i < std::min(byte, text.size()); ++i) line += text[i] == '\n';
+  return line;
+}
+}  // namespace
+
 Params Params::load(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw InputError(file.string(), "", "is a folder, not a case file");
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), "", "cannot open the file");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
   try {
-    return Params(Json::parse(text, nullptr, true, /*ignore_comments=*/true), file.string(), "");
+    DuplicateKeyCheck check(file.string());
+    Json::parser_callback_t cb = [&check](int depth, Json::parse_event_t event, Json& parsed) {
+      return check(depth, event, parsed);
+    };
+    return Params(Json::parse(text, cb, true, /*ignore_comments=*/true), file.string(), "");
   } catch (const Json::parse_error& e) {
-    // Line number from the byte offset.
-    size_t line = 1;
-    for (size_t i = 0; i < std::min(e.byte, text.size()); ++i) line += text[i] == '\n';
     std::string what = e.what();
     const auto pos = what.find("syntax error");
-    throw InputError(file.string(), "", "invalid JSON at line " + std::to_string(line) + ": " +
+    throw InputError(file.string(), "", "invalid JSON at line " + std::to_string(line_of(text, e.byte)) + ": " +
                                             (pos == std::string::npos ? what : what.substr(pos)));
+  } catch (const Json::out_of_range& e) {
+    // A number beyond double's range (1e999): nlohmann reports the literal, not its position.
+    std::string what = e.what(), where;
+    const auto q0 = what.find('\''), q1 = what.rfind('\'');
+    if (q0 != std::string::npos && q1 > q0) {
+      const std::string literal = what.substr(q0 + 1, q1 - q0 - 1);
+      const auto at = text.find(literal);
+      if (at != std::string::npos) where = " at line " + std::to_string(line_of(text, at));
+      what = "number " + literal + " is out of range";
+    }
+    throw InputError(file.string(), "", "invalid JSON" + where + ": " + what);
   }
 }
 
@@ -147,6 +219,19 @@ std::string Params::string(const std::string& key) const {
   return v.get<std::string>();
 }
 
+std::string Params::identifier(const std::string& key) const {
+  const std::string s = string(key);
+  const bool ok = !s.empty() && s.size() <= 64 && s[0] != '.' &&
+                  std::all_of(s.begin(), s.end(), [](char ch) {
+                    const unsigned char u = static_cast<unsigned char>(ch);
+                    return std::isalnum(u) || ch == '_' || ch == '-' || ch == '.' || ch == '+';
+                  });
+  if (!ok)
+    fail(key, "must be 1-64 characters from letters, digits, '_', '-', '.' and '+', not starting with '.' (it "
+              "names output files)");
+  return s;
+}
+
 std::string Params::choice(const std::string& key, const std::vector<std::string>& options) const {
   const std::string s = string(key);
   for (const auto& o : options)
@@ -200,6 +285,10 @@ void apply_override(Json& doc, const std::string& assignment) {
     value = Json::parse(text);
   } catch (const Json::parse_error&) {
     value = text;
+  } catch (const Json::out_of_range&) {
+    std::string where = "/" + key;
+    std::replace(where.begin(), where.end(), '.', '/');
+    throw InputError("--set", where, "number " + text + " is out of range");
   }
   Json* node = &doc;
   std::string path;
@@ -212,11 +301,10 @@ void apply_override(Json& doc, const std::string& assignment) {
     path += "/" + p;
     if (node->is_array()) {
       size_t idx = 0;
-      try {
-        idx = std::stoul(p);
-      } catch (...) {
-        throw InputError("--set", path, "expected an array index");
-      }
+      const bool digits = !p.empty() && p.size() < 10 &&
+                          std::all_of(p.begin(), p.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+      if (!digits) throw InputError("--set", path, "expected an array index");
+      idx = std::stoul(p);
       if (idx >= node->size()) throw InputError("--set", path, "array index out of range");
       node = &(*node)[idx];
     } else if (node->is_object()) {

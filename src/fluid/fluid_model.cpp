@@ -13,8 +13,45 @@
 // source ("volume_correction": "source"); the default correction ("surface") is geometric, see restore_area.
 #include "fluid_model.hpp"
 
+#include <unordered_map>
+
 namespace lagfsi {
 namespace fluid_detail {
+namespace {
+/// Points hashed on a square grid of cell size `cell`: "is there a point within r <= cell of p" in O(1), for
+/// building the particle set (shared wall corners, fluid particles next to walls or on a region's border),
+/// which compared every pair before (hours at a millionth of the default spacing).
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  void add(const Vec2& p, Index id) { cells_[key(std::floor(p.x() / cell_), std::floor(p.y() / cell_))].push_back(id); }
+  /// The last added point within r of p among `pts`, or -1.
+  Index find(const Vec2& p, double r, const std::vector<Vec2>& pts) const {
+    const double cx = std::floor(p.x() / cell_), cy = std::floor(p.y() / cell_);
+    Index found = -1;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = cells_.find(key(cx + dx, cy + dy));
+        if (it == cells_.end()) continue;
+        for (Index j : it->second)
+          if ((pts[static_cast<size_t>(j)] - p).norm() < r) found = std::max(found, j);
+      }
+    return found;
+  }
+
+ private:
+  struct Key {
+    double x, y;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y; }
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const { return std::hash<double>()(k.x) * 1000003u ^ std::hash<double>()(k.y); }
+  };
+  static Key key(double x, double y) { return {x, y}; }
+  double cell_;
+  std::unordered_map<Key, std::vector<Index>, Hash> cells_;
+};
+}  // namespace
 
 namespace {
 
@@ -53,9 +90,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_pressure", Json{{"type", "zero"}}},
               {"initial_state", Json{{"type", "given"}}},
               {"scheme", Json::object()}});
-  name_ = b.string("name");
-  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
-    b.fail("name", "must be a non-empty name without spaces or slashes");
+  name_ = b.identifier("name");
   if (ctx.analysis.type != "dynamic") b.fail("type", "a fluid needs a dynamic analysis");
   rho_ = b.positive("density");
   mu_ = b.non_negative("viscosity");
@@ -138,6 +173,10 @@ void FluidModel::build_particles(Params b) {
     wall.name = w.string("name");
     wall.polyline = w.points("points");
     if (wall.polyline.size() < 2) w.fail("points", "a wall needs at least two points");
+    for (size_t k = 0; k + 1 < wall.polyline.size(); ++k)
+      if (!((wall.polyline[k + 1] - wall.polyline[k]).norm() > 1e-6 * h_))
+        w.fail("points", "segment " + std::to_string(k) + " has zero length (points " + std::to_string(k) + " and " +
+                             std::to_string(k + 1) + " coincide)");
     wall.slip = w.boolean("slip");
     Params mo = w.at("motion");
     if (!mo.json().empty()) {
@@ -156,7 +195,12 @@ void FluidModel::build_particles(Params b) {
     pts.push_back(p);
     kind_.push_back(k);
   };
+  PointGrid wall_grid(0.5 * h_), fluid_grid(0.5 * h_);   // the particles so far, for the proximity tests
   if (remesh_) {
+    double wall_particles = 0;
+    for (const auto& w : walls_)
+      for (size_t s = 0; s + 1 < w.polyline.size(); ++s) wall_particles += (w.polyline[s + 1] - w.polyline[s]).norm() / h_;
+    if (!(wall_particles <= 1e6)) walls.fail("more than a million wall particles at this spacing");
     for (auto& w : walls_) {
       for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
         const Vec2 a = w.polyline[s], c = w.polyline[s + 1];
@@ -164,11 +208,10 @@ void FluidModel::build_particles(Params b) {
         for (int k = (s == 0 ? 0 : 1); k <= n; ++k) {
           const Vec2 p = a + (c - a) * (double(k) / n);
           // Shared corner with an earlier wall: reuse its particle.
-          Index found = -1;
-          for (Index j = 0; j < static_cast<Index>(pts.size()); ++j)
-            if ((pts[j] - p).norm() < 1e-9 * h_) found = j;
+          const Index found = wall_grid.find(p, 1e-9 * h_, pts);
           if (found < 0) {
             w.particles.push_back(static_cast<Index>(pts.size()));
+            wall_grid.add(p, static_cast<Index>(pts.size()));
             add(p, ParticleKind::Wall);
             slip_particle_.push_back(w.slip);
           } else {
@@ -197,6 +240,10 @@ void FluidModel::build_particles(Params b) {
         g.fail("type", "structured particles need rectangle regions (use \"particles\": \"unstructured\")");
       g.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
       const Vec2 sz = g.vec2("size");
+      if (!(sz.x() >= 0.5 * h_ && sz.y() >= 0.5 * h_))
+        g.fail("size", "each side must be at least half the particle spacing (" + std::to_string(h_) + ")");
+      if (!(sz.x() / h_ * (sz.y() / h_) <= 5e6))
+        g.fail("size", "more than 5 million particles at this spacing");
       mesh_params = {{"size", h_},
                      {"order", 1},
                      {"type", "structured"},
@@ -205,19 +252,20 @@ void FluidModel::build_particles(Params b) {
                      {"pattern", "crossed"}};
     }
     mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+    std::vector<Index> new_particles;   // this region's, added to the grid after the region
     const Index base = static_cast<Index>(pts.size());
     std::vector<Index> map(mesh.nodes.size(), -1);
     for (size_t k = 0; k < mesh.nodes.size(); ++k) {
       const Vec2& q = mesh.nodes[k];
-      bool near_wall = false;
-      for (Index j = 0; j < n_wall && !near_wall; ++j) near_wall = (pts[j] - q).norm() < 0.5 * h_;
-      bool duplicate = false;  // shared boundary of two regions
-      for (Index j = n_wall; j < static_cast<Index>(pts.size()) && !duplicate && r > 0; ++j)
-        duplicate = (pts[j] - q).norm() < 1e-9 * h_;
+      // Within h/2 of a wall particle, or on the shared boundary with an earlier region.
+      const bool near_wall = wall_grid.find(q, 0.5 * h_, pts) >= 0;
+      const bool duplicate = r > 0 && fluid_grid.find(q, 1e-9 * h_, pts) >= 0;
       if (near_wall || duplicate) continue;
       map[k] = static_cast<Index>(pts.size());
+      new_particles.push_back(map[k]);
       add(q, ParticleKind::Fluid);
     }
+    for (Index j : new_particles) fluid_grid.add(pts[static_cast<size_t>(j)], j);
     if (!remesh_) {
       if (regions.size() > 1) regions.fail("fixed connectivity supports one fluid region");
       fixed_conn = mesh.conn;

@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <sstream>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -316,9 +317,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"time_integration", "explicit"},
               {"loads", Json::array()},
               {"gravity", true}});
-  name_ = b.string("name");
-  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
-    b.fail("name", "must be a non-empty name without spaces or slashes");
+  name_ = b.identifier("name");
   if (ctx.analysis.type != "dynamic") b.fail("type", "an MPM body needs a dynamic analysis");
   Params mat = b.at("material");
   if (!mat.json().is_object() || !mat.has("type")) mat.fail("type", "required key is missing");
@@ -542,6 +541,23 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
         if (value[c] != 0.0) moving_.push_back({n, c, value[c], fn, type == "prescribed_acceleration"});
   }
   implicit_ = b.choice("time_integration", {"explicit", "implicit"}) == "implicit";
+  if (!implicit_) {
+    // The explicit substep is cfl h / c (solve_iteration); a stiff, light or nearly water-filled body could
+    // ask for billions of them and the run would look hung.
+    const double n0 = two_phase_ && !P_.n.empty() ? P_.n[0] : 0.0;
+    const double rho_sat = two_phase_ ? (1 - n0) * rho_ + n0 * rho_w_ : rho_;
+    const double c = std::sqrt((lambda_ + 2 * mu_ + (two_phase_ ? K_w_ / n0 : 0.0)) / rho_sat);
+    const double substeps = ctx.analysis.end_time * c / (cfl_ * h_);
+    const double work = substeps * static_cast<double>(P_.size());   // particle updates; ~0.1-1 us each
+    if (!(substeps <= 1e8) || !(work <= 1e11)) {
+      std::ostringstream os;
+      os << "the explicit scheme's stable step cfl h / c (wave speed c = " << c << " m/s, cell " << h_
+         << " m) needs " << substeps << " substeps over the run (" << work
+         << " particle updates; the limits are 1e8 and 1e11): check the density, stiffness"
+         << (two_phase_ ? ", porosity" : "") << " and cell size";
+      b.fail("material", os.str());
+    }
+  }
   if (implicit_) {
     if (plastic_ || two_phase_ || local_damping_ > 0 || damp_stiff_ > 0 || damp_mass_ > 0)
       b.fail("time_integration", "implicit MPM bodies are linear elastic, single phase and undamped in this version");

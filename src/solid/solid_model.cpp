@@ -231,9 +231,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
     defaults["shear_integration"] = "reduced";
   }
   b.validate(defaults);
-  name_ = b.string("name");
-  if (name_.empty() || name_.find_first_of("/\\ ") != std::string::npos)
-    b.fail("name", "must be a non-empty name without spaces or slashes");
+  name_ = b.identifier("name");
 
   Params mat = b.at("material");
   mat.validate({{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
@@ -333,6 +331,13 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
         for (int c = 0; c < 2; ++c) hold(2 * rn + c, 0.0, nullptr);
     }
   }
+
+  // A static body must be held: fewer than three fixed components leave a rigid motion free, and the
+  // singular tangent would fail at the first Newton step with a less telling message.
+  const auto held = std::count(fixed_mask_.begin(), fixed_mask_.end(), 1);
+  if (is_static_ && held < 3)
+    bcs.fail("a static analysis needs boundary conditions that hold the body (at least 3 fixed components; "
+             "this body has " + std::to_string(held) + ")");
 
   // Loads: point loads (value split equally over the selected stations), tractions and pressures on
   // boundary edges (all of whose points are selected), body forces.
@@ -456,13 +461,16 @@ void SolidModel::factorize(const SparseMatrix& H) {
     solver_->factorize(H);
   } catch (const SolverError& e) {
     if (solver_type_ != "cholmod" && solver_type_ != "cholmod_supernodal") throw;
-    // An indefinite tangent (buckling, strong compression): switch to LU for the rest of the run.
-    if (!warned_fallback_)
-      std::cerr << "lagfsi: warning: body '" << name_ << "': " << e.what() << "; switching to umfpack\n";
-    warned_fallback_ = true;
+    // Non-finite entries are not a matter of definiteness: LU would fail the same way.
+    if (!std::all_of(H.valuePtr(), H.valuePtr() + H.nonZeros(), [](double v) { return std::isfinite(v); })) throw;
+    // An indefinite tangent (buckling, strong compression): switch to LU for the rest of the run. The
+    // warning comes once the LU has factorized, so that a run that fails says it in one line.
     solver_type_ = "umfpack";
     solver_ = make_linear_solver(solver_type_);
     solver_->factorize(H);
+    if (!warned_fallback_)
+      std::cerr << "lagfsi: warning: body '" << name_ << "': " << e.what() << "; switched to umfpack\n";
+    warned_fallback_ = true;
   }
 }
 

@@ -345,10 +345,141 @@ TEST(BadInput, UsageErrors) {
   EXPECT_EQ(run_lagfsi("frobnicate", dir).exit_code, 1);
   EXPECT_EQ(run_lagfsi("run", dir).exit_code, 1);
   EXPECT_EQ(run_lagfsi("run x.json --threads zero", dir).exit_code, 1);
+  EXPECT_EQ(run_lagfsi("run x.json --threads 1x", dir).exit_code, 1);
   EXPECT_EQ(run_lagfsi("--version", dir).exit_code, 0);
 }
 
+// The findings of a fuzzing session (26 000 mutated case files and command lines), one test each.
+
+TEST(BadInput, RepeatedKeyAndNumberOutOfRange) {
+  // nlohmann keeps the last of two equal keys silently; a case with "dt" twice would run with either.
+  std::string text = base_case().dump(2);
+  text.replace(text.find("\"load_steps\": 2"), 15, "\"load_steps\": 2, \"load_steps\": 3");
+  Outcome o = run_text("repeated_key", text);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/analysis/load_steps", "duplicate key");
+  // 1e999 overflows double: the parser's own message named neither the line nor the value's meaning.
+  text = base_case().dump(2);
+  text.replace(text.find("\"load_steps\": 2"), 15, "\"load_steps\": 1e999");
+  o = run_text("out_of_range", text);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "", "1e999 is out of range");
+  EXPECT_NE(o.message.find("line"), std::string::npos) << o.message;
+  o = run_json("out_of_range_set", base_case(), "--set bodies.0.material.young=1e999");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.message.find("/bodies/0/material/young: number 1e999 is out of range"), std::string::npos) << o.message;
+  o = run_json("bad_set_index_text", base_case(), "--set bodies.0x0.name=x");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.message.find("expected an array index"), std::string::npos) << o.message;
+}
+
+TEST(BadInput, NamesThatWouldEscapeTheOutputFolder) {
+  // Body and case names become file and folder names: "..", "/abs", NUL characters and 300-character names
+  // wrote outside the output folder or failed in VTK with a dump of its own.
+  const std::vector<std::string> names{"..", "/tmp/x", "a/b", std::string("a\0b", 3), std::string(300, 'a'), ".hidden"};
+  for (const std::string& bad : names) {
+    json j = base_case();
+    j["bodies"][0]["name"] = bad;
+    j["probes"][0]["body"] = bad;
+    const Outcome o = run_json("bad_body_name", j);
+    EXPECT_EQ(o.code, 2) << bad;
+    expect_one_line(o, "/bodies/0/name", "names output files");
+  }
+  json j = base_case();
+  j["name"] = "../escape";
+  Outcome o = run_json("bad_case_name", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/name", "names output files");
+  j = base_case();
+  j["probes"][0]["name"] = "a,b";   // a column of probes.csv
+  o = run_json("bad_probe_name", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/probes/0/name", "names output files");
+}
+
+TEST(BadInput, OutputFolderThatCannotBeWritten) {
+  // A file where the folder should be: one line naming the folder, exit 2, and nothing else written.
+  const fs::path dir = fresh_dir("bad_input_outdir");
+  { std::ofstream(dir / "occupied") << "x"; }
+  { std::ofstream(dir / "case.json") << base_case().dump(); }
+  const RunResult r =
+      run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "occupied").string() + "\" --quiet", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("cannot write the output folder"), std::string::npos) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("case.json"), std::string::npos) << r.stderr_text;
+}
+
+TEST(BadInput, GeometryAndSizesThatWouldNotFinish) {
+  // A fluid region 1e-12 m wide: the Delaunay refinement of the unstructured region never finished.
+  json j = fluid_case();
+  j["bodies"][0]["particles"] = "unstructured";
+  j["bodies"][0]["regions"][0]["size"] = {1e-12, 0.2};
+  Outcome o = run_json("sliver_region", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0", "a feature that thin");
+  j = fluid_case();
+  j["bodies"][0]["regions"][0]["size"] = {1e-12, 0.2};
+  o = run_json("sliver_structured", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0/size", "half the particle spacing");
+  // A spacing a thousand times too small: refused before any particle is made.
+  j = fluid_case();
+  j["bodies"][0]["spacing"] = 5e-5;
+  o = run_json("tiny_spacing", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0/size", "more than 5 million particles");
+  j = fluid_case();
+  j["bodies"][0]["spacing"] = 5e-8;
+  o = run_json("tiny_spacing_walls", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/walls", "more than a million wall particles");
+  // A wall with two equal consecutive points.
+  j = fluid_case();
+  j["bodies"][0]["walls"][0]["points"] = {{0, 0.3}, {0, 0}, {0, 0}, {0.4, 0}};
+  o = run_json("zero_length_wall", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/walls/0/points", "segment 1 has zero length");
+}
+
+TEST(BadInput, StaticBodyThatIsNotHeld) {
+  // No boundary condition: the tangent is singular; the run used to fail in Newton after a warning line.
+  json j = base_case();
+  j["bodies"][0]["boundary_conditions"] = json::array();
+  const Outcome o = run_json("not_held", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/boundary_conditions", "at least 3 fixed components");
+}
+
+TEST(BadInput, NonFiniteTangentFailsInOneLine) {
+  // gamma = 1e308 makes the Newmark tangent overflow: no switch to LU (which fails the same way) and no
+  // warning before the error.
+  json j = base_case();
+  j["analysis"] = {{"type", "dynamic"}, {"dt", 1e-3}, {"end_time", 2e-3},
+                   {"integrator", {{"type", "newmark"}, {"beta", 0.25}, {"gamma", 1e308}}}};
+  const Outcome o = run_json("non_finite_tangent", j);
+  EXPECT_NE(o.code, 0);
+  expect_one_line(o, "", "non-finite");
+}
+
 }  // namespace
+
+TEST(BadInput, MpmBodyTooStiffForTheExplicitStep) {
+  // E = 1e14 on a 0.1 m grid: billions of stable substeps, a run that looked hung.
+  const json j = json::parse(R"({
+    "name": "bad_input_mpm_stiff",
+    "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 10},
+    "bodies": [{
+      "name": "block", "type": "mpm",
+      "material": {"type": "linear_elastic", "young": 1e14, "poisson": 0.3, "density": 1},
+      "grid": {"origin": [0, 0], "size": [1.0, 1.0], "cell": 0.1},
+      "regions": [{"type": "rectangle", "origin": [0.2, 0.0], "size": [0.4, 0.4]}]
+    }]
+  })");
+  const Outcome o = run_json("mpm_stiff", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/material", "substeps over the run");
+}
 
 TEST(BadInput, ShellErrorsNameTheirKey) {
   const json base = json::parse(R"({

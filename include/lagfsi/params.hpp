@@ -51,7 +51,7 @@ class Params {
   int integer(const std::string& key, int min_value = std::numeric_limits<int>::min()) const;
   bool boolean(const std::string& key) const;
   std::string string(const std::string& key) const;
-  /// A name that becomes part of file names (cases, bodies, couplings): 1-64 characters from letters, digits,
+  /// A name that becomes part of file names or a CSV column (cases, bodies, couplings, probes): 1-64 characters from letters, digits,
   /// '_', '-', '.' and '+', not starting with '.' (no paths, no hidden files, no '.' or '..').
   std::string identifier(const std::string& key) const;
   /// A string that must be one of `options` (error lists them).

@@ -225,7 +225,6 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h) {
     area += l == 0 ? a : -a;
   }
   check_simple(loops);
-  check_feature_size(loops, h);
   // Holes must lie inside the outer loop and outside one another (loops do not intersect, so one
   // vertex per loop decides).
   std::vector<Point> ring;
@@ -250,6 +249,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h) {
        << "), more than the limit " << kMaxElements;
     fail(os.str());
   }
+  check_feature_size(loops, h);   // after the size check: it compares every vertex with every segment
 
   // ---- boundary: split every segment into ceil(len / h) equal pieces, insert as constraints
   CDT cdt;

@@ -40,9 +40,7 @@ std::string join(const std::vector<std::string>& v) {
   for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
   return s;
 }
-}  // namespace
 
-namespace {
 /// Parser callback that rejects a key repeated in one object (nlohmann keeps the last silently, so a case
 /// file with "dt" twice would run with whichever came last). Tracks the JSON path for the message.
 class DuplicateKeyCheck {
@@ -227,8 +225,8 @@ std::string Params::identifier(const std::string& key) const {
                     return std::isalnum(u) || ch == '_' || ch == '-' || ch == '.' || ch == '+';
                   });
   if (!ok)
-    fail(key, "must be 1-64 characters from letters, digits, '_', '-', '.' and '+', not starting with '.' (it "
-              "names output files)");
+    fail(key, "must be 1-64 characters from letters, digits, '_', '-', '.' and '+', not starting with '.' (names "
+              "become file names and CSV columns)");
   return s;
 }
 

@@ -51,9 +51,7 @@ class PointGrid {
   double cell_;
   std::unordered_map<Key, std::vector<Index>, Hash> cells_;
 };
-}  // namespace
 
-namespace {
 
 class FluidProbe final : public Probe {
  public:

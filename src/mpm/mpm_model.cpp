@@ -36,12 +36,12 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <sstream>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #ifdef _OPENMP
 #include <omp.h>

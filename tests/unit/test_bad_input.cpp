@@ -383,18 +383,18 @@ TEST(BadInput, NamesThatWouldEscapeTheOutputFolder) {
     j["probes"][0]["body"] = bad;
     const Outcome o = run_json("bad_body_name", j);
     EXPECT_EQ(o.code, 2) << bad;
-    expect_one_line(o, "/bodies/0/name", "names output files");
+    expect_one_line(o, "/bodies/0/name", "become file names");
   }
   json j = base_case();
   j["name"] = "../escape";
   Outcome o = run_json("bad_case_name", j);
   EXPECT_EQ(o.code, 2);
-  expect_one_line(o, "/name", "names output files");
+  expect_one_line(o, "/name", "become file names");
   j = base_case();
   j["probes"][0]["name"] = "a,b";   // a column of probes.csv
   o = run_json("bad_probe_name", j);
   EXPECT_EQ(o.code, 2);
-  expect_one_line(o, "/probes/0/name", "names output files");
+  expect_one_line(o, "/probes/0/name", "become file names");
 }
 
 TEST(BadInput, OutputFolderThatCannotBeWritten) {

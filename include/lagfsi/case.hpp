@@ -42,6 +42,7 @@ struct CaseContext {
   std::filesystem::path out_dir;
   AnalysisSettings analysis;
   Vec2 gravity = Vec2::Zero();
+  bool quiet = false;   ///< --quiet: no progress and no warnings on stderr (errors only; notes go to summary.json)
 };
 
 /// Top-level defaults of a case file (null = required).

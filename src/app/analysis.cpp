@@ -128,6 +128,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.root.validate(case_defaults());
   c.name = c.root.string("name").empty() ? opt.case_file.stem().string() : c.root.identifier("name");
   c.ctx.case_file = opt.case_file;
+  c.ctx.quiet = opt.quiet;
   c.ctx.base_dir = opt.case_file.parent_path();
   c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
   c.ctx.analysis = read_analysis(c.root.at("analysis"));

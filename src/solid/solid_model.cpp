@@ -93,10 +93,14 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   std::string type() const override { return type_; }
   Index num_nodes() const override { return body_->num_nodes(); }
   Index num_elements() const override { return body_->num_elements(); }
+  Json summary() const override {
+    return fallback_note_.empty() ? Json::object() : Json{{"linear_solver_fallback", fallback_note_}};
+  }
 
   void initialize() override;
   void predict(double t_new, double dt) override;
   IterationReport solve_iteration() override;
+  IterationReport newton_iteration();   // solve_iteration without the body's name on its errors
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
@@ -164,7 +168,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   bool need_reaction_ = false;
   Vec reaction_;
   std::unique_ptr<PvdSeries> series_;
-  bool warned_fallback_ = false;
+  std::string fallback_note_;   // why and when the solver switched to LU (summary.json; a warning unless --quiet)
   // Partitioned coupling: interface forces of the step (and of the last step, for the work), augmented mass.
   Vec f_iface_, f_iface_old_;
   double work_iface_ = 0;  // part of work_ext_ done by the interface forces
@@ -468,9 +472,8 @@ void SolidModel::factorize(const SparseMatrix& H) {
     solver_type_ = "umfpack";
     solver_ = make_linear_solver(solver_type_);
     solver_->factorize(H);
-    if (!warned_fallback_)
-      std::cerr << "lagfsi: warning: body '" << name_ << "': " << e.what() << "; switched to umfpack\n";
-    warned_fallback_ = true;
+    fallback_note_ = std::string(e.what()) + "; switched to umfpack at t = " + std::to_string(t_new_);
+    if (!ctx_.quiet) std::cerr << "lagfsi: warning: body '" << name_ << "': " << fallback_note_ << "\n";
   }
 }
 
@@ -516,6 +519,17 @@ void SolidModel::predict(double t_new, double dt) {
 }
 
 IterationReport SolidModel::solve_iteration() {
+  // The element kernels do not know the body: name it in their failures ("element 3: inverted element").
+  try {
+    return newton_iteration();
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    if (what.rfind("body '", 0) == 0) throw;
+    throw SolverError("body '" + name_ + "': " + what);
+  }
+}
+
+IterationReport SolidModel::newton_iteration() {
   auto t0 = Clock::now();
   IterationReport rep;
   Vec r;

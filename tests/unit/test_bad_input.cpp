@@ -258,6 +258,9 @@ TEST(BadInput, CouplingErrorsNameTheirKey) {
        }},
       {"unknown_key", "/couplings/0/relaxation", "unknown key", [](json& j) { j["couplings"][0]["relaxation"] = 0.5; }},
       {"fixed_mesh", "/couplings/0/fluid", "remesh", [](json& j) { j["bodies"][0]["remesh"] = false; }},
+      // Millions of ghosts made the fluid's initialisation run for ever (fuzzing: a 5 km thick shell).
+      {"ghost_spacing", "/couplings/0/ghost_spacing", "more than 100 000 ghost particles",
+       [](json& j) { j["couplings"][0]["ghost_spacing"] = 1e-7; }},
   };
   for (const auto& m : mutations) {
     json j = coupled_case();
@@ -266,6 +269,26 @@ TEST(BadInput, CouplingErrorsNameTheirKey) {
     EXPECT_EQ(o.code, 2) << m.tag << ": " << o.message;
     expect_one_line(o, m.path, m.reason);
   }
+}
+
+TEST(BadInput, QuietRunsPrintOnlyTheError) {
+  // The rubber gate under plain relaxation 1 (the fixed-point iteration diverges): the gate's tangent turns
+  // indefinite (the solver switches to LU) and then an element inverts. With --quiet the switch is recorded
+  // in summary.json instead of a warning line, so stderr holds the error alone, and it names the body.
+  const fs::path dir = fresh_dir("bad_input_quiet");
+  const fs::path c = fs::path(LAGFSI_SOURCE_DIR) / "cases" / "elastic_gate_antoci" / "case.json";
+  RunResult r = run_lagfsi("run \"" + c.string() + "\" -o \"" + (dir / "out").string() +
+                               "\" --quiet --threads 1 --set analysis.end_time=0.003 --set "
+                               "'couplings.0.acceleration={\"type\": \"constant\", \"relaxation\": 1}'",
+                           dir);
+  r.out_dir = dir / "out";
+  EXPECT_EQ(r.exit_code, 3) << r.stderr_text;
+  EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
+  EXPECT_NE(r.stderr_text.find("body 'gate': element"), std::string::npos) << r.stderr_text;
+  const auto s = summary_of(r);
+  ASSERT_EQ(s["bodies"].size(), 2u);
+  EXPECT_NE(s["bodies"][1].value("linear_solver_fallback", "").find("switched to umfpack"), std::string::npos)
+      << s["bodies"][1].dump();
 }
 
 TEST(BadInput, MpmErrors) {

@@ -5,6 +5,7 @@
 #include <lagfsi/fsi/dirichlet_neumann.hpp>
 #include <lagfsi/interface.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -123,12 +124,24 @@ DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsMode
                                  " a coupling pass would depend on the structure's previous iterate)");
 
   boundary_ = structure_->make_interface(p.at("interface"));
-  map_ = std::make_unique<InterfaceMap>(boundary_, p.non_negative("ghost_spacing"));
   // The fluid compares ghosts with its particles pairwise when it takes them in (a 5 km thick shell's edges
-  // at 2.5 mm gave millions of ghosts and an initialisation that did not end).
-  if (map_->reference().size() > 100000)
-    p.fail("ghost_spacing", "more than 100 000 ghost particles (" + std::to_string(map_->reference().size()) +
-                                "): the spacing is too small for the interface's length");
+  // at 2.5 mm gave millions of ghosts and an initialisation that did not end; 1e-9 m ran out of memory).
+  const double ghost_spacing = p.non_negative("ghost_spacing");
+  if (ghost_spacing > 0) {
+    double ghosts = 0;
+    for (const auto& e : boundary_.edges)
+      for (size_t j = 0; j + 1 < e.size(); ++j) {
+        const auto a = std::find(boundary_.nodes.begin(), boundary_.nodes.end(), e[j]);
+        const auto b = std::find(boundary_.nodes.begin(), boundary_.nodes.end(), e[j + 1]);
+        if (a == boundary_.nodes.end() || b == boundary_.nodes.end()) continue;
+        ghosts += (boundary_.reference[static_cast<size_t>(b - boundary_.nodes.begin())] -
+                   boundary_.reference[static_cast<size_t>(a - boundary_.nodes.begin())]).norm() / ghost_spacing;
+      }
+    if (!(ghosts <= 1e5))
+      p.fail("ghost_spacing", "more than 100 000 ghost particles (about " + fmt(ghosts, 3) +
+                                  "): the spacing is too small for the interface's length");
+  }
+  map_ = std::make_unique<InterfaceMap>(boundary_, ghost_spacing);
   try {
     fluid_->add_ghosts(map_->reference(), map_->adjacent());
   } catch (const std::invalid_argument& e) {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #ifdef LAGFSI_HAVE_OPENMP
@@ -245,6 +246,9 @@ std::unique_ptr<Case> build_case_or_report(const RunOptions& opt, bool for_check
     return std::make_unique<Case>(build_case(opt, for_check));
   } catch (const InputError& e) {
     std::cerr << "lagfsi: error: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string()
+              << ": out of memory while building the case (a mesh size, spacing or length far from the others?)\n";
   } catch (const std::exception& e) {
     std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
   }
@@ -449,6 +453,10 @@ int run_case(const RunOptions& opt) {
     status = "failed";
     message = e.what();
     code = kInputError;
+  } catch (const std::bad_alloc&) {
+    status = "failed";
+    message = "out of memory at t = " + std::to_string(t);
+    code = kSolverError;
   } catch (const std::exception& e) {
     status = "failed";
     message = e.what();

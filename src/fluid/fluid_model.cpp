@@ -1320,15 +1320,31 @@ std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
 FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, Params p)
     : m_(m), name_(std::move(name)), type_(std::move(type)) {
   const double h = m.spacing();
+  // Where there is something to measure: the particles' extent (fluid and walls) at the start, plus h. A
+  // probe outside it is a typing error (x of another case, a flipped sign) that would write nan or 0 for ever.
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (Index i = 0; i < m.n(); ++i) {
+    lo = lo.cwiseMin(m.pos(i));
+    hi = hi.cwiseMax(m.pos(i));
+  }
+  lo -= Vec2::Constant(h);
+  hi += Vec2::Constant(h);
+  auto inside = [&](const std::string& key, double v, int axis) {
+    if (!(v >= lo[axis] && v <= hi[axis]))
+      p.fail(key, "lies outside the fluid and its walls (" + std::string(axis ? "y" : "x") + " from " +
+                      std::to_string(lo[axis] + h) + " to " + std::to_string(hi[axis] - h) + ")");
+  };
   if (type_ == "front") {
     // largest x of fluid within a band above the floor
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"floor", 0.0}, {"band", 2.0 * h}});
     coord_ = p.number("floor");
+    inside("floor", coord_, 1);
     band_ = p.positive("band");
   } else if (type_ == "column_height") {
     // largest y of fluid within a band next to the left wall
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"wall", 0.0}, {"band", 2.0 * h}});
     coord_ = p.number("wall");
+    inside("wall", coord_, 0);
     band_ = p.positive("band");
   } else if (type_ == "elevation") {
     // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
@@ -1337,6 +1353,7 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"},
                 {"band", 1.5 * h}});
     coord_ = p.number("x");
+    inside("x", coord_, 0);
     band_ = p.positive("band");
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
@@ -1344,6 +1361,10 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
                 {"tolerance", 0.5 * h}});
     a_ = p.vec2("from");
     b_ = p.vec2("to");
+    for (int axis = 0; axis < 2; ++axis) {
+      inside("from", a_[axis], axis);
+      inside("to", b_[axis], axis);
+    }
     band_ = p.positive("tolerance");
   } else {
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}});

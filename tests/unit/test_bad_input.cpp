@@ -465,6 +465,21 @@ TEST(BadInput, GeometryAndSizesThatWouldNotFinish) {
   expect_one_line(o, "/bodies/0/walls/0/points", "segment 1 has zero length");
 }
 
+TEST(BadInput, FluidProbeOutsideTheFluid) {
+  // An elevation probe at x = 400 instead of 0.4 (fuzzing: it wrote nan at every step with exit 0).
+  json j = fluid_case();
+  j["probes"] = json::parse(R"([{"name": "eta", "type": "elevation", "body": "water", "x": 0.2}])");
+  EXPECT_EQ(run_json("probe_inside", j).code, 0);
+  j["probes"][0]["x"] = 400.0;
+  Outcome o = run_json("probe_outside", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/probes/0/x", "lies outside the fluid and its walls");
+  j["probes"] = json::parse(R"([{"name": "p", "type": "pressure", "body": "water", "from": [0, 0], "to": [0.4, -3]}])");
+  o = run_json("sensor_outside", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/probes/0/to", "lies outside the fluid and its walls");
+}
+
 TEST(BadInput, StaticBodyThatIsNotHeld) {
   // No boundary condition: the tangent is singular; the run used to fail in Newton after a warning line.
   json j = base_case();

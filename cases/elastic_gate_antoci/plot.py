@@ -3,7 +3,6 @@
 (reference/antoci_gate_numerical_tip_displacement.csv). Prints the RMS error of each component over the
 points of each series and the coupling statistics.
 Usage: /usr/bin/python3 cases/elastic_gate_antoci/plot.py OUTDIR"""
-import math
 import os
 import sys
 
@@ -11,45 +10,30 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-from lagfsi_post import read_csv, out_dir_from_argv, save, coupling_lines, interp
+from lagfsi_post import read_csv, out_dir_from_argv, save, coupling_lines, rms_against, antoci_solutions, ANTOCI_SOLUTIONS
 
 out = out_dir_from_argv("out/elastic_gate_antoci")
 p = read_csv(os.path.join(out, "probes.csv"))
 here = os.path.join(os.path.dirname(__file__), "reference")
 ref = read_csv(os.path.join(here, "antoci_2007_experiment_tip_displacement.csv"))
-num = read_csv(os.path.join(here, "antoci_gate_numerical_tip_displacement.csv"))
-SOURCES = (("khayyer_2018", "Khayyer et al. 2018 (ISPH-SPH)"), ("yang_2012", "Yang et al. 2012 (SPH-FEM)"),
-           ("ng_2020", "Ng et al. 2020 (SPH-VCPM)"))
 t = p["time"]
 lines = []
 series = {}
-numerical = {}
-
-
+numerical = antoci_solutions(here, t[-1])
 # The published solutions report the end's downstream corner (x = 0.105 m at rest): probes tip_right_*; tip_* is
 # the upstream corner (x = 0.1 m). The two differ by t sin(theta) ~ 3 mm in y once the end has turned.
 RIGHT = {"x": "tip_right_ux", "y": "tip_right_uy"}
-
-
-def rms(pts, col):
-    return math.sqrt(sum((interp(tr, t, p[col]) - ur) ** 2 for tr, ur in pts) / len(pts))
-
 
 for comp, col in (("x", "tip_ux"), ("y", "tip_uy")):
     pts = [(tr, ur) for c, tr, ur in zip(ref["component"], ref["time"], ref["displacement"]) if c == comp and tr <= t[-1]]
     series[comp] = pts
     lines.append("%s: RMS error %.1f mm over %d experimental points (largest measured %.1f mm)" %
-                 (col, 1e3 * rms(pts, col), len(pts), 1e3 * max(abs(u) for _, u in pts)))
-    errs = []
+                 (col, 1e3 * rms_against(t, p[col], pts), len(pts), 1e3 * max(abs(u) for _, u in pts)))
     ncol = RIGHT[comp] if RIGHT[comp] in p else col
     if ncol != col:
         lines.append("%s (downstream corner): RMS error %.1f mm over the experimental points" %
-                     (ncol, 1e3 * rms(pts, ncol)))
-    for src, _ in SOURCES:
-        npts = [(tr, ur) for s_, c, tr, ur in zip(num["source"], num["component"], num["time"], num["displacement"])
-                if s_ == src and c == comp and tr <= t[-1]]
-        numerical[(src, comp)] = npts
-        errs.append("%s %.1f" % (src, 1e3 * rms(npts, ncol)))
+                     (ncol, 1e3 * rms_against(t, p[ncol], pts)))
+    errs = ["%s %.1f" % (src, 1e3 * rms_against(t, p[ncol], numerical[(src, comp)])) for src, _ in ANTOCI_SOLUTIONS]
     lines.append("%s: RMS difference from the published solutions [mm]: %s" % (ncol, ", ".join(errs)))
 lines += coupling_lines(out)
 print("\n".join(lines))
@@ -59,7 +43,7 @@ for ax, comp, col in zip(axes, ("x", "y"), ("tip_ux", "tip_uy")):
     ax.plot(t, [1e3 * u for u in p[col]], label="lagfsi, upstream corner", lw=2)
     if RIGHT[comp] in p:
         ax.plot(t, [1e3 * u for u in p[RIGHT[comp]]], color="C0", ls="--", lw=1.5, label="lagfsi, downstream corner")
-    for (src, name), style in zip(SOURCES, (":", "--", "-.")):
+    for (src, name), style in zip(ANTOCI_SOLUTIONS, (":", "--", "-.")):
         pts = numerical[(src, comp)]
         ax.plot([a for a, _ in pts], [1e3 * b for _, b in pts], style, color="gray", lw=1, label=name)
     ax.plot([a for a, _ in series[comp]], [1e3 * b for _, b in series[comp]], "ko", ms=4,

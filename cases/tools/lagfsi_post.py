@@ -143,6 +143,27 @@ def interp(x, xs, ys):
     return ys[-1]
 
 
+def rms_against(t, u, pts):
+    """RMS of u(t) (interpolated) minus the reference points [(t_ref, u_ref), ...]."""
+    return math.sqrt(sum((interp(tr, t, u) - ur) ** 2 for tr, ur in pts) / len(pts))
+
+
+ANTOCI_SOLUTIONS = (("khayyer_2018", "Khayyer et al. 2018 (ISPH-SPH)"), ("yang_2012", "Yang et al. 2012 (SPH-FEM)"),
+                    ("ng_2020", "Ng et al. 2020 (SPH-VCPM)"))
+
+
+def antoci_solutions(reference_dir, t_end):
+    """The published numerical solutions of the Antoci gate (antoci_gate_numerical_tip_displacement.csv):
+    {(source, component): [(t, u), ...]} up to t_end."""
+    num = read_csv(os.path.join(reference_dir, "antoci_gate_numerical_tip_displacement.csv"))
+    out = {}
+    for src, _ in ANTOCI_SOLUTIONS:
+        for comp in ("x", "y"):
+            out[(src, comp)] = [(tr, ur) for s, c, tr, ur in zip(num["source"], num["component"], num["time"],
+                                                                num["displacement"]) if s == src and c == comp and tr <= t_end]
+    return out
+
+
 def shell_vs_continuum(out_shell, out_t10, columns, title, scale=1e3, unit="mm", t_max=None):
     """Comparison of a shell run with the same case meshed by continuum (T10) elements: for each probe column,
     the largest |shell - T10| (T10 interpolated at the shell's times, up to t_max) relative to the T10 peak,

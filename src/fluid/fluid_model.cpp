@@ -1340,12 +1340,14 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     coord_ = p.number("floor");
     inside("floor", coord_, 1);
     band_ = p.positive("band");
+    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
   } else if (type_ == "column_height") {
     // largest y of fluid within a band next to the left wall
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"wall", 0.0}, {"band", 2.0 * h}});
     coord_ = p.number("wall");
     inside("wall", coord_, 0);
     band_ = p.positive("band");
+    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
   } else if (type_ == "elevation") {
     // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
     // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
@@ -1355,6 +1357,7 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     coord_ = p.number("x");
     inside("x", coord_, 0);
     band_ = p.positive("band");
+    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"from", nullptr}, {"to", nullptr},

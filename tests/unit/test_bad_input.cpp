@@ -474,6 +474,10 @@ TEST(BadInput, FluidProbeOutsideTheFluid) {
   Outcome o = run_json("probe_outside", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/probes/0/x", "lies outside the fluid and its walls");
+  j["probes"] = json::parse(R"([{"name": "f", "type": "front", "body": "water", "band": 0.001}])");
+  o = run_json("band_too_narrow", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/probes/0/band", "narrower than a quarter of the particle spacing");
   j["probes"] = json::parse(R"([{"name": "p", "type": "pressure", "body": "water", "from": [0, 0], "to": [0.4, -3]}])");
   o = run_json("sensor_outside", j);
   EXPECT_EQ(o.code, 2);

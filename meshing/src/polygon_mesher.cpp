@@ -195,7 +195,7 @@ void check_feature_size(const std::vector<const std::vector<Vec2>*>& loops, doub
 
 }  // namespace
 
-TriMesh mesh_polygon(const PolygonRegion& region, double h) {
+TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements) {
   // ---- validation
   if (!std::isfinite(h) || h <= 0.0) fail("target size h must be finite and > 0 (got " + std::to_string(h) + ")");
   std::vector<Vec2> outer = region.outer;
@@ -243,10 +243,10 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h) {
   }
   if (!(area > 0.0)) fail("the holes cover the whole region");
   const double expected = area / (kAreaPerElement * h * h);
-  if (!(expected <= kMaxElements)) {
+  if (!(expected <= std::min(max_elements, kMaxElements))) {
     std::ostringstream os;
     os << "about " << expected << " elements expected (area " << area << ", h " << h
-       << "), more than the limit " << kMaxElements;
+       << "), more than the limit " << std::min(max_elements, kMaxElements);
     fail(os.str());
   }
   check_feature_size(loops, h);   // after the size check: it compares every vertex with every segment
@@ -281,15 +281,26 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h) {
 
   // ---- domain and refinement
   mark_nesting_levels(cdt);
+  // Refinement one point at a time, so that a region whose small angles make it insert far more points than
+  // its area suggests stops at the limit (a flag stretched to 210 m took minutes and 5 GB) instead of ending.
+  const double max_vertices = std::min(max_elements, kMaxElements);   // about half the elements, with margin
+  auto refine = [&](auto& mesher) {
+    mesher.init(/*domain_specified=*/true);
+    while (mesher.step_by_step_refine_mesh())
+      if (!(static_cast<double>(cdt.number_of_vertices()) <= max_vertices)) {
+        std::ostringstream os;
+        os << "the refinement needs more than " << max_vertices << " points at h = " << h
+           << " (small angles or a region far larger than h)";
+        fail(os.str());
+      }
+  };
   {
     FaceMesher mesher(cdt, Criteria(kShapeBound, h));
-    mesher.init(/*domain_specified=*/true);
-    mesher.refine_mesh();
+    refine(mesher);
   }
   {
     Mesher mesher(cdt, Criteria(kShapeBound, kSecondPassSize * h));
-    mesher.init(/*domain_specified=*/true);
-    mesher.refine_mesh();
+    refine(mesher);
   }
 
   // ---- output: in-domain faces (counter-clockwise in CGAL), compact numbering in vertex order

@@ -94,6 +94,13 @@ TriMesh build_mesh(Params g, Params m) {
   const int order = m.integer("order", 1);
   if (order > 3) m.fail("order", "must be 1, 2 or 3");
   const std::string mtype = m.choice("type", {"unstructured", "structured"});
+  // At most about 2 million nodes once elevated (an element of order p brings about p^2/2 nodes).
+  const double max_elements = 2e6 / std::max(0.5, 0.5 * order * order);
+  auto too_many = [&](double elements) {
+    m.fail("size", "about " + std::to_string(static_cast<long long>(elements)) + " elements, more than the " +
+                       std::to_string(static_cast<long long>(max_elements)) + " of 2 million nodes at order " +
+                       std::to_string(order));
+  };
   TriMesh linear;
   try {
     if (type == "rectangle") {
@@ -110,12 +117,13 @@ TriMesh build_mesh(Params g, Params m) {
           nx = div[0].get<int>();
           ny = div[1].get<int>();
         }
+        if (!(2.0 * nx * ny <= max_elements)) too_many(2.0 * nx * ny);
         linear = meshing::mesh_rectangle_structured(o.x(), o.y(), o.x() + s.x(), o.y() + s.y(), nx, ny,
                                                     m.choice("pattern", {"crossed", "right", "left"}));
       } else {
         meshing::PolygonRegion r;
         r.outer = {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
-        linear = meshing::mesh_polygon(r, h);
+        linear = meshing::mesh_polygon(r, h, max_elements);
       }
     } else {
       if (mtype == "structured") m.fail("type", "a structured mesh needs a rectangle geometry");
@@ -128,12 +136,12 @@ TriMesh build_mesh(Params g, Params m) {
           Params hp(Json{{"p", holes.json()[i]}}, g.file(), holes.path() + "/" + std::to_string(i));
           r.holes.push_back(hp.points("p"));
         }
-        linear = meshing::mesh_polygon(r, h);
+        linear = meshing::mesh_polygon(r, h, max_elements);
       } else {
         g.validate({{"type", "circle_cut"}, {"points", nullptr}, {"centre", nullptr}, {"radius", nullptr}});
         meshing::PolygonRegion r;
         r.outer = circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
-        linear = meshing::mesh_polygon(r, h);
+        linear = meshing::mesh_polygon(r, h, max_elements);
       }
     }
   } catch (const std::invalid_argument& e) {

@@ -484,6 +484,20 @@ TEST(BadInput, FluidProbeOutsideTheFluid) {
   expect_one_line(o, "/probes/0/to", "lies outside the fluid and its walls");
 }
 
+TEST(BadInput, SolidMeshTooFineForItsOrder) {
+  // About 2 million nodes at most: a flag stretched to 210 m meshed for minutes and took 5 GB (fuzzing).
+  json j = base_case();
+  j["bodies"][0]["mesh"]["size"] = 1e-4;   // structured: 2 x 10 000 x 1 000 triangles
+  Outcome o = run_json("mesh_structured_too_fine", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/mesh/size", "2 million nodes at order 1");
+  j = base_case();
+  j["bodies"][0]["mesh"] = {{"type", "unstructured"}, {"size", 3e-4}, {"order", 3}};
+  o = run_json("mesh_unstructured_too_fine", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/geometry", "more than the limit");
+}
+
 TEST(BadInput, StaticBodyThatIsNotHeld) {
   // No boundary condition: the tangent is singular; the run used to fail in Newton after a warning line.
   json j = base_case();

@@ -22,8 +22,10 @@ struct PolygonRegion {
 /// at most h first, so that the boundary node spacing is about h; then CGAL's Delaunay mesher refines
 /// with the size criterion h and the shape criterion (minimum angle about 20.7 degrees)).
 /// Throws std::invalid_argument for a degenerate region (fewer than 3 points, zero area,
-/// self-intersecting loop, h <= 0 or h not finite, or more than 5e6 expected elements).
-TriMesh mesh_polygon(const PolygonRegion& region, double h);
+/// self-intersecting loop, h <= 0 or h not finite, a feature thinner than h/50, or more than `max_elements`
+/// elements: expected from the area before meshing, or counted during the refinement, which small input
+/// angles can drive far beyond the area's estimate).
+TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements = 5e6);
 
 /// Structured linear mesh of the rectangle [x0, x1] x [y0, y1] with nx x ny cells, each cut into two
 /// triangles. pattern: "right" (all diagonals bottom-left to top-right), "left", or "crossed"

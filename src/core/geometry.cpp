@@ -108,7 +108,10 @@ TriMesh build_mesh(Params g, Params m) {
       const Vec2 o = g.vec2("origin"), s = g.vec2("size");
       if (!(s.x() > 0 && s.y() > 0)) g.fail("size", "width and height must be positive");
       if (mtype == "structured") {
-        int nx = static_cast<int>(std::ceil(s.x() / h - 1e-9)), ny = static_cast<int>(std::ceil(s.y() / h - 1e-9));
+        // Counted in double first: s / h can exceed int's range.
+        const double fx = std::ceil(s.x() / h - 1e-9), fy = std::ceil(s.y() / h - 1e-9);
+        if (m.json().at("divisions").empty() && !(2.0 * fx * fy <= max_elements)) too_many(2.0 * fx * fy);
+        int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
         const auto div = m.json().at("divisions");
         if (!div.empty()) {
           if (!div.is_array() || div.size() != 2 || !div[0].is_number_integer() || !div[1].is_number_integer() ||

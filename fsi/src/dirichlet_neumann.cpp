@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 namespace lagfsi::fsi {
 
@@ -126,22 +127,11 @@ DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsMode
   boundary_ = structure_->make_interface(p.at("interface"));
   // The fluid compares ghosts with its particles pairwise when it takes them in (a 5 km thick shell's edges
   // at 2.5 mm gave millions of ghosts and an initialisation that did not end; 1e-9 m ran out of memory).
-  const double ghost_spacing = p.non_negative("ghost_spacing");
-  if (ghost_spacing > 0) {
-    double ghosts = 0;
-    for (const auto& e : boundary_.edges)
-      for (size_t j = 0; j + 1 < e.size(); ++j) {
-        const auto a = std::find(boundary_.nodes.begin(), boundary_.nodes.end(), e[j]);
-        const auto b = std::find(boundary_.nodes.begin(), boundary_.nodes.end(), e[j + 1]);
-        if (a == boundary_.nodes.end() || b == boundary_.nodes.end()) continue;
-        ghosts += (boundary_.reference[static_cast<size_t>(b - boundary_.nodes.begin())] -
-                   boundary_.reference[static_cast<size_t>(a - boundary_.nodes.begin())]).norm() / ghost_spacing;
-      }
-    if (!(ghosts <= 1e5))
-      p.fail("ghost_spacing", "more than 100 000 ghost particles (about " + fmt(ghosts, 3) +
-                                  "): the spacing is too small for the interface's length");
+  try {
+    map_ = std::make_unique<InterfaceMap>(boundary_, p.non_negative("ghost_spacing"));
+  } catch (const std::length_error& e) {
+    p.fail("ghost_spacing", std::string(e.what()) + ": the spacing is too small for the interface's length");
   }
-  map_ = std::make_unique<InterfaceMap>(boundary_, ghost_spacing);
   try {
     fluid_->add_ghosts(map_->reference(), map_->adjacent());
   } catch (const std::invalid_argument& e) {
@@ -291,14 +281,24 @@ InterfaceMap::InterfaceMap(const InterfaceBoundary& boundary, double spacing)
       for (size_t j = 0; j + 1 < e.size(); ++j) adjacent_.push_back({index_of(e[j]), index_of(e[j + 1])});
     return;
   }
-  // Non-matching: ghosts along each edge at about `spacing`; the ones at a vertex are shared.
-  std::map<Index, Index> at_vertex;  // global vertex node -> ghost
+  // Non-matching: ghosts along each edge at about `spacing`; the ones at a vertex are shared. The pieces of
+  // every edge are counted first, in double, so that a spacing far too small for the interface is refused
+  // before any ghost is made (1e-9 m ran out of memory).
+  std::vector<double> pieces;
+  double total = 0;
   for (const auto& e : boundary.edges) {
-    const int order = static_cast<int>(e.size()) - 1;
     double length = 0;
     for (size_t j = 0; j + 1 < e.size(); ++j)
       length += (boundary.reference[index_of(e[j + 1])] - boundary.reference[index_of(e[j])]).norm();
-    const int n = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
+    pieces.push_back(std::max(1.0, std::ceil(length / spacing - 1e-9)));
+    total += pieces.back();
+  }
+  if (!(total <= 1e5)) throw std::length_error("more than 100 000 ghost particles (about " + fmt(total, 3) + ")");
+  std::map<Index, Index> at_vertex;  // global vertex node -> ghost
+  for (size_t ei = 0; ei < boundary.edges.size(); ++ei) {
+    const auto& e = boundary.edges[ei];
+    const int order = static_cast<int>(e.size()) - 1;
+    const int n = static_cast<int>(pieces[ei]);
     Index previous = -1;
     for (int k = 0; k <= n; ++k) {
       Index g = -1;

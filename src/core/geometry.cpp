@@ -108,19 +108,18 @@ TriMesh build_mesh(Params g, Params m) {
       const Vec2 o = g.vec2("origin"), s = g.vec2("size");
       if (!(s.x() > 0 && s.y() > 0)) g.fail("size", "width and height must be positive");
       if (mtype == "structured") {
-        // Counted in double first: s / h can exceed int's range.
-        const double fx = std::ceil(s.x() / h - 1e-9), fy = std::ceil(s.y() / h - 1e-9);
-        if (m.json().at("divisions").empty() && !(2.0 * fx * fy <= max_elements)) too_many(2.0 * fx * fy);
-        int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
+        // Cell counts in double until they are checked: s / h, or a given division, can exceed int's range.
+        double fx = std::ceil(s.x() / h - 1e-9), fy = std::ceil(s.y() / h - 1e-9);
         const auto div = m.json().at("divisions");
         if (!div.empty()) {
           if (!div.is_array() || div.size() != 2 || !div[0].is_number_integer() || !div[1].is_number_integer() ||
-              div[0].get<int>() < 1 || div[1].get<int>() < 1)
+              div[0].get<double>() < 1 || div[1].get<double>() < 1)
             m.fail("divisions", "expected [nx, ny], two positive integers");
-          nx = div[0].get<int>();
-          ny = div[1].get<int>();
+          fx = div[0].get<double>();
+          fy = div[1].get<double>();
         }
-        if (!(2.0 * nx * ny <= max_elements)) too_many(2.0 * nx * ny);
+        if (!(2.0 * fx * fy <= max_elements)) too_many(2.0 * fx * fy);
+        const int nx = static_cast<int>(fx), ny = static_cast<int>(fy);
         linear = meshing::mesh_rectangle_structured(o.x(), o.y(), o.x() + s.x(), o.y() + s.y(), nx, ny,
                                                     m.choice("pattern", {"crossed", "right", "left"}));
       } else {

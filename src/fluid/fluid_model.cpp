@@ -595,6 +595,9 @@ void FluidModel::restore_area() {
   const std::vector<char> at_wall = in_element_with([&](Index i) { return kind_[i] != ParticleKind::Fluid; });
   for (Index i = 0; i < np; ++i)
     movable[i] = movable[i] && kind_[i] == ParticleKind::Fluid && free_[i] && !at_wall[i];
+  const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {   // twice the signed area
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
   Vec g(2 * np);
   std::vector<double> lumped(np);   // lumped areas (the particles' masses / rho): the potential energy
                                     // the correction moves is counted (probe volume_correction_energy)
@@ -606,7 +609,7 @@ void FluidModel::restore_area() {
       const auto& t = tri_[e];
       const Vec2 xa = state_.x.segment<2>(2 * t[0]), xb = state_.x.segment<2>(2 * t[1]),
                  xc = state_.x.segment<2>(2 * t[2]);
-      const double Ae = 0.5 * ((xb - xa).x() * (xc - xa).y() - (xb - xa).y() * (xc - xa).x());
+      const double Ae = 0.5 * area2(xa, xb, xc);
       area += Ae;
       for (Index i : t) lumped[i] += Ae / 3.0;
       const Vec2 xs[3] = {xa, xb, xc};
@@ -637,9 +640,6 @@ void FluidModel::restore_area() {
         Vec2 y[3];
         for (int k = 0; k < 3; ++k)
           y[k] = state_.x.segment<2>(2 * t[k]) + (movable[t[k]] ? lambda : 0.0) * g.segment<2>(2 * t[k]);
-        const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {
-          return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-        };
         const Vec2 xa = state_.x.segment<2>(2 * t[0]), xb = state_.x.segment<2>(2 * t[1]),
                    xc = state_.x.segment<2>(2 * t[2]);
         if (area2(y[0], y[1], y[2]) < 0.5 * area2(xa, xb, xc)) {
@@ -1329,6 +1329,11 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
   }
   lo -= Vec2::Constant(h);
   hi += Vec2::Constant(h);
+  // A band narrower than a quarter of the spacing sees no particle (a nan for ever).
+  auto read_band = [&] {
+    band_ = p.positive("band");
+    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
+  };
   auto inside = [&](const std::string& key, double v, int axis) {
     if (!(v >= lo[axis] && v <= hi[axis]))
       p.fail(key, "lies outside the fluid and its walls (" + std::string(axis ? "y" : "x") + " from " +
@@ -1339,15 +1344,13 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"floor", 0.0}, {"band", 2.0 * h}});
     coord_ = p.number("floor");
     inside("floor", coord_, 1);
-    band_ = p.positive("band");
-    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
+    read_band();
   } else if (type_ == "column_height") {
     // largest y of fluid within a band next to the left wall
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"wall", 0.0}, {"band", 2.0 * h}});
     coord_ = p.number("wall");
     inside("wall", coord_, 0);
-    band_ = p.positive("band");
-    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
+    read_band();
   } else if (type_ == "elevation") {
     // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
     // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
@@ -1356,8 +1359,7 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
                 {"band", 1.5 * h}});
     coord_ = p.number("x");
     inside("x", coord_, 0);
-    band_ = p.positive("band");
-    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
+    read_band();
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
     p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"from", nullptr}, {"to", nullptr},

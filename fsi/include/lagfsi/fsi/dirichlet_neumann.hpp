@@ -43,7 +43,8 @@ namespace lagfsi::fsi {
 class InterfaceMap {
  public:
   /// spacing = 0: one ghost per boundary node (a matching interface); > 0: along each edge at about that
-  /// spacing (a non-matching interface; the ghosts at the edges' vertices are shared).
+  /// spacing (a non-matching interface; the ghosts at the edges' vertices are shared). Throws
+  /// std::length_error before making any ghost if there would be more than 100 000.
   InterfaceMap(const InterfaceBoundary& boundary, double spacing);
   Index num_ghosts() const { return static_cast<Index>(ghosts_.size()); }
   /// Ghost positions in the reference configuration.

@@ -432,6 +432,16 @@ double FluidModel::kinetic_energy() const {
   return e;
 }
 
+double FluidModel::potential_energy() const {
+  double e = 0;
+  for (Index k = 0; k < static_cast<Index>(tri_.size()); ++k) {
+    Vec2 c = Vec2::Zero();
+    for (Index i : tri_[k]) c += state_.x.segment<2>(2 * i);
+    e -= rho_ * element_area(state_.x, k) * ctx_.gravity.dot(c / 3.0);
+  }
+  return e;
+}
+
 void FluidModel::remesh_now() {
   const Index np = n();
   std::vector<Vec2> pts(np);
@@ -1309,8 +1319,8 @@ void FluidModel::write_output(double t) {
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
-                                          "kinetic_energy", "gravity_work", "viscous_dissipation",
-                                          "volume_correction_energy"});
+                                          "kinetic_energy", "potential_energy", "gravity_work",
+                                          "viscous_dissipation", "volume_correction_energy"});
   // The work of gravity and the dissipation are summed over the run only when a probe asks for them (an
   // extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation") energy_probes_ = true;
@@ -1380,6 +1390,7 @@ std::vector<double> FluidProbe::sample() const {
   const Index n = m_.n();
   if (type_ == "fluid_area") return {m_.area_end()};
   if (type_ == "kinetic_energy") return {m_.kinetic_energy()};
+  if (type_ == "potential_energy") return {m_.potential_energy()};
   if (type_ == "gravity_work") return {m_.gravity_work()};
   if (type_ == "viscous_dissipation") return {m_.viscous_dissipation()};
   if (type_ == "volume_correction_energy") return {m_.correction_energy()};

@@ -97,6 +97,10 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double spacing() const { return h_; }
   const std::vector<std::array<Index, 3>>& triangles() const { return tri_; }
   double kinetic_energy() const;
+  /// Potential energy of gravity over the current mesh, -rho integral of g . x dA (exact on linear triangles:
+  /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
+  /// lumped masses) it depends only on the present fluid: KE + PE is the energy balance of a remeshed flow.
+  double potential_energy() const;
   /// Work of gravity on the fluid and viscous dissipation since the start (account_energy(); summed only
   /// when a gravity_work or viscous_dissipation probe exists).
   double gravity_work() const { return gravity_work_; }

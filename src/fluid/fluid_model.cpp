@@ -13,6 +13,7 @@
 // source ("volume_correction": "source"); the default correction ("surface") is geometric, see restore_area.
 #include "fluid_model.hpp"
 
+#include <sstream>
 #include <unordered_map>
 
 namespace lagfsi {
@@ -229,8 +230,40 @@ void FluidModel::build_particles(Params b) {
   if (regions.size() == 0) regions.fail("at least one fluid region is needed");
   const std::string layout = b.choice("particles", {"structured", "unstructured"});
   std::vector<Index> fixed_conn;  // fixed-connectivity mode: the initial mesh
+  // The walls' bounding box: a region reaching beyond it by more than the walls' own extent (on an axis
+  // where they have one) is a typing error (a size 1000 times too large), which would otherwise be meshed
+  // into millions of particles before anything else is checked.
+  Vec2 wall_lo = Vec2::Constant(std::numeric_limits<double>::infinity()), wall_hi = -wall_lo;
+  for (const auto& w : walls_)
+    for (const auto& q : w.polyline) {
+      wall_lo = wall_lo.cwiseMin(q);
+      wall_hi = wall_hi.cwiseMax(q);
+    }
   for (size_t r = 0; r < regions.size(); ++r) {
     Params g = regions.at(r);
+    if (!walls_.empty() && g.json().is_object() && g.has("type")) {
+      std::vector<Vec2> corners;
+      const std::string rt = g.string("type");
+      if (rt == "rectangle" && g.has("size")) {
+        const Vec2 o = g.has("origin") ? g.vec2("origin") : Vec2::Zero();
+        corners = {o, o + g.vec2("size")};
+      } else if ((rt == "polygon" || rt == "circle_cut") && g.has("points")) {
+        corners = g.points("points");
+      }
+      for (size_t c = 0; c < corners.size(); ++c)
+        for (int axis = 0; axis < 2; ++axis) {
+          const Vec2& q = corners[c];
+          const double extent = wall_hi[axis] - wall_lo[axis];
+          if (extent > 0 && (q[axis] < wall_lo[axis] - extent || q[axis] > wall_hi[axis] + extent)) {
+            std::ostringstream os;
+            const char* xy = axis ? "y" : "x";
+            os << "reaches " << xy << " = " << q[axis] << ", far beyond the walls (" << xy << " from "
+               << wall_lo[axis] << " to " << wall_hi[axis] << ")";
+            g.fail(rt == "rectangle" ? std::string(c == 0 ? "origin" : "size") : "points/" + std::to_string(c),
+                   os.str());
+          }
+        }
+    }
     TriMesh mesh;
     Json mesh_params = {{"size", h_}, {"order", 1}, {"type", "unstructured"}};
     if (layout == "structured") {

@@ -355,11 +355,18 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   const Vec2 size = g.vec2("size");
   h_ = g.positive("cell");
   if (!(size.x() > 0 && size.y() > 0)) g.fail("size", "must be positive");
-  nx_ = static_cast<int>(std::lround(size.x() / h_));
-  ny_ = static_cast<int>(std::lround(size.y() / h_));
+  // Cell counts in double until checked (size / cell may be far beyond int's range). A grid costs about
+  // 200 bytes per cell (nodal fields, per-thread copies): 1e7 cells is 2 GB.
+  const double nxd = std::round(size.x() / h_), nyd = std::round(size.y() / h_);
+  if (!(nxd * nyd <= 1e7)) {
+    std::ostringstream os;
+    os << nxd << " x " << nyd << " cells (size / cell): more than 1e7, about 200 bytes each";
+    g.fail(os.str());
+  }
+  nx_ = static_cast<int>(nxd);
+  ny_ = static_cast<int>(nyd);
   if (nx_ < 1 || ny_ < 1 || std::abs(nx_ * h_ - size.x()) > 1e-9 * size.x() || std::abs(ny_ * h_ - size.y()) > 1e-9 * size.y())
     g.fail("cell", "the grid size must be a whole number of cells in each direction");
-  if (double(nx_) * ny_ > 5e7) g.fail("cell", "more than 5e7 cells");
   ppc_ = b.integer("particles_per_cell", 1);
   if (ppc_ > 8) b.fail("particles_per_cell", "at most 8 per direction");
   gimp_ = b.choice("shape_functions", {"linear", "gimp"}) == "gimp";
@@ -548,12 +555,13 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     const double rho_sat = two_phase_ ? (1 - n0) * rho_ + n0 * rho_w_ : rho_;
     const double c = std::sqrt((lambda_ + 2 * mu_ + (two_phase_ ? K_w_ / n0 : 0.0)) / rho_sat);
     const double substeps = ctx.analysis.end_time * c / (cfl_ * h_);
-    const double work = substeps * static_cast<double>(P_.size());   // particle updates; ~0.1-1 us each
+    // particle and grid-node updates (the grid is cleared and solved every substep); ~0.1-1 us each
+    const double work = substeps * (static_cast<double>(P_.size()) + (nx_ + 1.0) * (ny_ + 1.0));
     if (!(substeps <= 1e8) || !(work <= 1e11)) {
       std::ostringstream os;
       os << "the explicit scheme's stable step cfl h / c (wave speed c = " << c << " m/s, cell " << h_
          << " m) needs " << substeps << " substeps over the run (" << work
-         << " particle updates; the limits are 1e8 and 1e11): check the density, stiffness"
+         << " particle and grid-node updates; the limits are 1e8 and 1e11): check the density, stiffness"
          << (two_phase_ ? ", porosity" : "") << " and cell size";
       b.fail("material", os.str());
     }
@@ -1401,8 +1409,11 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   }
   if (t == "height") {  // the largest y of the particles within `band` of the vertical line x
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h_ / ppc_}});
+    const double x = p.number("x"), x0 = origin_.x(), x1 = origin_.x() + nx_ * h_;
+    if (!(x >= x0 && x <= x1))  // outside the grid no particle can be: nan at every step
+      p.fail("x", "lies outside the grid (x from " + std::to_string(x0) + " to " + std::to_string(x1) + ")");
     auto probe = std::make_unique<MpmProbe>(*this, p.string("name"), "height", -1);
-    probe->set_line(p.number("x"), p.positive("band"));
+    probe->set_line(x, p.positive("band"));
     return probe;
   }
   if (t == "energy") {

@@ -315,6 +315,20 @@ TEST(BadInput, MpmErrors) {
   o = run_json("mpm_cell", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/grid/cell", "whole number");
+  // A grid of 2.4e7 cells took 4.2 GB in check and 5.9 GB in a run (fuzzing round 4): at most 1e7 cells.
+  j = base;
+  j["bodies"][0]["grid"]["size"] = {1.0, 1.0e6};
+  o = run_json("mpm_grid_too_large", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/grid", "more than 1e7");
+  // A height probe outside the grid saw no particle and wrote nan at every step with exit 0.
+  j = base;
+  j["probes"] = json::parse(R"([{"name": "h", "type": "height", "body": "block", "x": 0.5}])");
+  EXPECT_EQ(run_json("mpm_height_inside", j).code, 0);
+  j["probes"][0]["x"] = 2500.0;
+  o = run_json("mpm_height_outside", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/probes/0/x", "outside the grid");
   j = base;
   j["bodies"][0]["absorbing_boundaries"] = json::array(
       {{{"select", {{"type", "segment"}, {"from", {0, 0}}, {"to", {1, 0}}}}, {"normal", {0, -1}}, {"free_field", true}}});
@@ -482,6 +496,25 @@ TEST(BadInput, FluidProbeOutsideTheFluid) {
   o = run_json("sensor_outside", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/probes/0/to", "lies outside the fluid and its walls");
+}
+
+TEST(BadInput, FluidRegionFarBeyondTheWalls) {
+  // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
+  // run that went out of memory in its first step) is refused from the region's corners before meshing; a
+  // region that sticks out of the walls by less than their own extent is allowed (an overflowing tank).
+  json j = fluid_case();
+  j["bodies"][0]["regions"][0]["size"] = {0.4, 0.5};   // above the walls' top (0.3), by less than 0.3
+  EXPECT_EQ(run_json("region_above_walls", j).code, 0);
+  j["bodies"][0]["regions"][0]["size"] = {400.0, 0.2};
+  Outcome o = run_json("region_far_beyond", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0/size", "far beyond the walls");
+  j = fluid_case();
+  j["bodies"][0]["particles"] = "unstructured";
+  j["bodies"][0]["regions"][0] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [0.4, 350], [0, 0.2]]})");
+  o = run_json("polygon_far_beyond", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/regions/0/points/2", "far beyond the walls");
 }
 
 TEST(BadInput, SolidMeshTooFineForItsOrder) {

@@ -1410,8 +1410,11 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   if (t == "height") {  // the largest y of the particles within `band` of the vertical line x
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h_ / ppc_}});
     const double x = p.number("x"), x0 = origin_.x(), x1 = origin_.x() + nx_ * h_;
-    if (!(x >= x0 && x <= x1))  // outside the grid no particle can be: nan at every step
-      p.fail("x", "lies outside the grid (x from " + std::to_string(x0) + " to " + std::to_string(x1) + ")");
+    if (!(x >= x0 && x <= x1)) {  // outside the grid no particle can be: nan at every step
+      std::ostringstream os;
+      os << "lies outside the grid (x from " << x0 << " to " << x1 << ")";
+      p.fail("x", os.str());
+    }
     auto probe = std::make_unique<MpmProbe>(*this, p.string("name"), "height", -1);
     probe->set_line(x, p.positive("band"));
     return probe;

@@ -455,6 +455,14 @@ TEST(BadInput, GeometryAndSizesThatWouldNotFinish) {
   Outcome o = run_json("sliver_region", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/regions/0", "a feature that thin");
+  // A solid wedge 600 m long and 0.02 m wide at its base (a coordinate 1000 times too large): its boundary
+  // took minutes to insert before the refinement's point limit stopped it (fuzzing round 4).
+  j = base_case();
+  j["bodies"][0]["geometry"] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [600, 0.02], [0, 0.02]]})");
+  j["bodies"][0]["mesh"] = {{"type", "unstructured"}, {"size", 0.01}};
+  o = run_json("sharp_spike", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/geometry", "a spike that sharp cannot be meshed");
   j = fluid_case();
   j["bodies"][0]["regions"][0]["size"] = {1e-12, 0.2};
   o = run_json("sliver_structured", j);

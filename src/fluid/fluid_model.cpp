@@ -230,9 +230,9 @@ void FluidModel::build_particles(Params b) {
   if (regions.size() == 0) regions.fail("at least one fluid region is needed");
   const std::string layout = b.choice("particles", {"structured", "unstructured"});
   std::vector<Index> fixed_conn;  // fixed-connectivity mode: the initial mesh
-  // The walls' bounding box: a region reaching beyond it by more than the walls' own extent (on an axis
-  // where they have one) is a typing error (a size 1000 times too large), which would otherwise be meshed
-  // into millions of particles before anything else is checked.
+  // The walls' bounding box (also the start of the domain box below): a region reaching beyond it by more
+  // than the walls' own extent (on an axis where they have one) is a typing error (a size 1000 times too
+  // large), which would otherwise be meshed into millions of particles before anything else is checked.
   Vec2 wall_lo = Vec2::Constant(std::numeric_limits<double>::infinity()), wall_hi = -wall_lo;
   for (const auto& w : walls_)
     for (const auto& q : w.polyline) {
@@ -308,17 +308,12 @@ void FluidModel::build_particles(Params b) {
 
   const Index np = static_cast<Index>(pts.size());
   if (remesh_) {
-    domain_lo_ = Vec2::Constant(std::numeric_limits<double>::infinity());
-    domain_hi_ = -domain_lo_;
+    domain_lo_ = wall_lo;   // the walls' box (empty without walls), enlarged to every particle
+    domain_hi_ = wall_hi;
     for (const auto& q : pts) {
       domain_lo_ = domain_lo_.cwiseMin(q);
       domain_hi_ = domain_hi_.cwiseMax(q);
     }
-    for (const auto& w : walls_)
-      for (const auto& q : w.polyline) {
-        domain_lo_ = domain_lo_.cwiseMin(q);
-        domain_hi_ = domain_hi_.cwiseMax(q);
-      }
     const double margin = domain_margin_ * (domain_hi_ - domain_lo_).maxCoeff();
     domain_lo_ -= Vec2::Constant(margin);
     domain_hi_ += Vec2::Constant(margin);

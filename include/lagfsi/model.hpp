@@ -69,6 +69,10 @@ class PhysicsModel {
   /// Fluid area of the step's mesh right after remeshing (before the step moved it); with fluid_area() of
   /// the previous step it shows what remeshing added or removed.
   virtual double fluid_area_remeshed() const { return 0.0; }
+  /// What the step's remeshing changed (a PFEM fluid): its area and the kinetic energy of the same velocities
+  /// on the new mesh, minus those of the last step's mesh (log.csv: remesh_dA, remesh_dKE).
+  virtual double remesh_area_change() const { return 0.0; }
+  virtual double remesh_kinetic_energy_change() const { return 0.0; }
   /// The body's own numbers for summary.json (an object merged into its entry; empty: none).
   virtual Json summary() const { return Json::object(); }
   PhaseTimes& times() { return times_; }

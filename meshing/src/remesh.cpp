@@ -1,7 +1,8 @@
 /// @file remesh.cpp
 /// PFEM remeshing: CGAL Delaunay triangulation (exact predicates, inexact constructions) of the particle
-/// cloud, the alpha test on each Delaunay face, removal of wall/ghost-only faces, free-surface detection
-/// by a neighbour check through the triangulation, and the geometric particle-quality helpers.
+/// cloud, the domain detection on each Delaunay face (the alpha test, or the advected previous domain:
+/// remesh.hpp, DomainDetection), removal of wall/ghost-only faces, free-surface detection by a neighbour
+/// check through the triangulation, and the geometric particle-quality helpers.
 /// Every CGAL type stays in this translation unit.
 #include <lagfsi/meshing/remesh.hpp>
 
@@ -125,6 +126,16 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
                     ", h " + std::to_string(h.size()) + ")");
   const double alpha = settings.alpha;
   if (!(std::isfinite(alpha) && alpha > 0)) fail(where, "alpha must be finite and > 0");
+  const PreviousDomain* previous = nullptr;
+  if (settings.detection != DomainDetection::Alpha) {
+    if (settings.previous == nullptr || settings.previous->empty())
+      fail(where, "the advected and level-set detections need the previous domain");
+    if (!(std::isfinite(settings.separation_alpha) && settings.separation_alpha >= alpha))
+      fail(where, "separation_alpha must be finite and >= alpha");
+    if (!(std::isfinite(settings.level_set_band) && settings.level_set_band >= 0))
+      fail(where, "level_set_band must be finite and >= 0");
+    previous = settings.previous;
+  }
   const double tol2 = check_points(points, where);
   for (std::size_t i = 0; i < n; ++i) {
     if (!(std::isfinite(h[i]) && h[i] > 0)) fail(where, "h[" + std::to_string(i) + "] must be finite and > 0");
@@ -155,7 +166,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
   result.triangles.reserve(dt.number_of_faces());
   std::uint8_t* connected = result.connected.data();
   double area2 = 0.0, area2_comp = 0.0;   // twice the kept area, Neumaier-compensated sum
-  int removed_alpha = 0, removed_boundary = 0;
+  int removed_alpha = 0, removed_boundary = 0, added = 0, separated = 0;
 
   // Pass 1: the alpha test, in double from the input coordinates (CGAL's faces are counter-clockwise).
   // An element failing both tests counts as removed by the alpha test.
@@ -178,13 +189,60 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     // R = l_ab l_ac l_bc / (4 A) <= alpha h_e  <=>  l_ab l_ac l_bc <= 2 cr alpha h_e (for cr > 0)
     const double he = (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] +
                        h[static_cast<std::size_t>(c)]) * (1.0 / 3.0);
-    if (!(cr > 0) || std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2) > 2.0 * cr * alpha * he) {
+    const double lll = std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2);
+    const int walls = (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid) +
+                      (kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid) +
+                      (kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid);
+    if (!(cr > 0)) {
       ++removed_alpha;
       continue;
     }
-    if (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid &&
-        kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid &&
-        kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid) {
+    if (previous == nullptr) {
+      if (lll > 2.0 * cr * alpha * he) {
+        ++removed_alpha;
+        continue;
+      }
+    } else {
+      const Vec2 centroid = (pa + pb + pc) * (1.0 / 3.0);
+      if (previous->contains(centroid)) {
+        if (lll > 2.0 * cr * settings.separation_alpha * he) {
+          ++separated;
+          continue;
+        }
+      } else {
+        // Outside the advected domain: a new contact (surfaces meeting, a surface reaching a wall), never
+        // an element leaning on two boundary particles (the meniscus element of a dry wall), nor the fill of
+        // a dent of one surface (an element with two edges on the previous boundary: consecutive surface
+        // particles), nor an element reaching a dry wall or ghost particle (one the previous mesh did not
+        // use) from fluid particles all farther than wetting_distance h_e from it (a dry wall is wetted by
+        // fluid that reaches it, not by a surface particle passing at a spacing's distance).
+        const double band = settings.level_set_band * he;
+        const int on_boundary = previous->is_boundary_edge(a, b) + previous->is_boundary_edge(b, c) +
+                                previous->is_boundary_edge(c, a);
+        bool reaches = true;
+        const Index ids[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) {
+          const auto w = static_cast<std::size_t>(ids[k]);
+          if (kind[w] == ParticleKind::Fluid || previous->meshed(ids[k])) continue;
+          double nearest = std::numeric_limits<double>::infinity();
+          for (int m = 0; m < 3; ++m) {
+            const auto f = static_cast<std::size_t>(ids[m]);
+            if (kind[f] == ParticleKind::Fluid) nearest = std::min(nearest, (points[f] - points[w]).norm());
+          }
+          reaches = reaches && nearest <= settings.wetting_distance * he;
+        }
+        const bool accept = walls <= 1 && on_boundary < 2 && reaches &&
+                            (settings.detection == DomainDetection::LevelSet
+                                 ? previous->boundary_distance(centroid, band) < band
+                                 : lll <= 2.0 * cr * alpha * he);
+        if (!accept) {
+          ++removed_alpha;
+          continue;
+        }
+        ++added;
+      }
+    }
+    if (walls == 3) {
       ++removed_boundary;
       continue;
     }
@@ -212,6 +270,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
   result.area = 0.5 * (area2 + area2_comp);
   result.removed_alpha = removed_alpha;
   result.removed_boundary_only = removed_boundary;
+  result.added_outside = added;
+  result.separated_inside = separated;
   return result;
 }
 
@@ -243,6 +303,17 @@ std::vector<std::array<Index, 3>> delaunay_triangles(const std::vector<Vec2>& po
 std::vector<Index> close_fluid_particles(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
                                          const std::vector<double>& h,
                                          const std::vector<std::array<Index, 3>>& triangles, double fraction) {
+  std::vector<Index> remove;
+  for (const auto& pr : close_fluid_pairs(points, kind, h, triangles, fraction)) remove.push_back(pr.second);
+  std::sort(remove.begin(), remove.end());
+  return remove;
+}
+
+std::vector<std::pair<Index, Index>> close_fluid_pairs(const std::vector<Vec2>& points,
+                                                       const std::vector<ParticleKind>& kind,
+                                                       const std::vector<double>& h,
+                                                       const std::vector<std::array<Index, 3>>& triangles,
+                                                       double fraction) {
   const char* where = "close_fluid_particles";
   const std::size_t n = points.size();
   if (kind.size() != n || h.size() != n) fail(where, "sizes of points, kind and h do not match");
@@ -266,18 +337,17 @@ std::vector<Index> close_fluid_particles(const std::vector<Vec2>& points, const 
       }
     }
   }
-  std::vector<Index> remove;
-  if (close.empty()) return remove;
+  std::vector<std::pair<Index, Index>> pairs;
+  if (close.empty()) return pairs;
   std::sort(close.begin(), close.end());
   std::vector<std::uint8_t> removed(n, 0);
   for (const auto& [r2, i, j] : close) {
     (void)r2;
     if (removed[static_cast<std::size_t>(i)] || removed[static_cast<std::size_t>(j)]) continue;
     removed[static_cast<std::size_t>(j)] = 1;
-    remove.push_back(j);
+    pairs.emplace_back(i, j);
   }
-  std::sort(remove.begin(), remove.end());
-  return remove;
+  return pairs;
 }
 
 std::vector<Index> oversized_elements(const std::vector<Vec2>& points, const std::vector<double>& h,

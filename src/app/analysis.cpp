@@ -346,7 +346,7 @@ int run_case(const RunOptions& opt) {
     for (const auto& p : c.probes)
       for (const auto& col : p->columns()) probes_csv << "," << col;
     probes_csv << "\n" << std::setprecision(12);
-    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,"
+    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
                "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n"
             << std::setprecision(10);
     auto sample = [&]() {
@@ -421,7 +421,7 @@ int run_case(const RunOptions& opt) {
       if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt) output();
       PhaseTimes ph;
       Index nn = 0, ne = 0;
-      double area = 0, area_remeshed = 0;
+      double area = 0, area_remeshed = 0, remesh_dA = 0, remesh_dKE = 0;
       tot.body_phases.resize(c.models.size());
       for (size_t i = 0; i < c.models.size(); ++i) tot.body_phases[i] += c.models[i]->times();
       for (auto& m : c.models) {
@@ -430,11 +430,13 @@ int run_case(const RunOptions& opt) {
         ne += m->num_elements();
         area += m->fluid_area();
         area_remeshed += m->fluid_area_remeshed();
+        remesh_dA += m->remesh_area_change();
+        remesh_dKE += m->remesh_kinetic_energy_change();
       }
       tot.phases += ph;
       const double wall_step = since(t_step);
       log_csv << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn << "," << ne
-              << "," << area_remeshed << "," << area << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
+              << "," << area_remeshed << "," << area << "," << remesh_dA << "," << remesh_dKE << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
               << ph.output << "," << wall_step << "," << fsi_iterations << "," << fsi_residual << "\n";
       log_csv.flush();
       if (!opt.quiet) {

@@ -80,6 +80,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"viscosity", nullptr},
               {"spacing", nullptr},
               {"alpha", 1.2},
+              {"domain_detection", "alpha"},
+              {"separation_alpha", 2.5},
+              {"level_set_band", 0.25},
               {"domain_margin", 0.1},
               {"remesh", true},
               {"regions", nullptr},
@@ -97,6 +100,13 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   alpha_ = b.positive("alpha");
   if (alpha_ < 1.0 || alpha_ > 5.0) b.fail("alpha", "must lie in [1, 5] (the literature uses 1.0-1.5)");
   remesh_ = b.boolean("remesh");
+  const std::string detection = b.choice("domain_detection", {"alpha", "advected", "level_set"});
+  detection_ = detection == "alpha"      ? meshing::DomainDetection::Alpha
+               : detection == "advected" ? meshing::DomainDetection::Advected
+                                         : meshing::DomainDetection::LevelSet;
+  separation_alpha_ = b.positive("separation_alpha");
+  if (separation_alpha_ < alpha_) b.fail("separation_alpha", "must be at least alpha (" + std::to_string(alpha_) + ")");
+  level_set_band_ = b.non_negative("level_set_band");
   domain_margin_ = b.non_negative("domain_margin");
 
   Params s = b.at("scheme");
@@ -104,7 +114,10 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   scheme_ = s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.
   Json keys = {{"type", scheme_},
-               {"volume_correction", "surface"},
+               // The alpha shape changes the area at every remesh and needs the surface correction; the
+               // advected and level-set detections keep it where the topology does not change.
+               {"volume_correction", detection_ == meshing::DomainDetection::Alpha ? "surface" : "none"},
+               {"split_edge_factor", 1.6},
                {"volume_relaxation_time", 0.1},
                {"remove_close_fraction", 0.3},
                {"insert_area_factor", 1.0},
@@ -148,6 +161,8 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   bulk_ = s.non_negative("bulk_modulus");
   insert_factor_ = s.non_negative("insert_area_factor");
   flat_fraction_ = s.non_negative("flat_element_fraction");
+  split_factor_ = s.non_negative("split_edge_factor");
+  if (split_factor_ > 0 && split_factor_ < 1.0) s.fail("split_edge_factor", "must be 0 (off) or at least 1");
   if (close_fraction_ >= 0.9) s.fail("remove_close_fraction", "must be below 0.9");
 
   Params it(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
@@ -283,6 +298,8 @@ void FluidModel::build_particles(Params b) {
                      {"pattern", "crossed"}};
     }
     mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+    for (size_t e = 0; e + 2 < mesh.conn.size(); e += 3)
+      region_triangles_.push_back({mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});
     std::vector<Index> new_particles;   // this region's, added to the grid after the region
     const Index base = static_cast<Index>(pts.size());
     std::vector<Index> map(mesh.nodes.size(), -1);
@@ -470,16 +487,26 @@ double FluidModel::potential_energy() const {
   return e;
 }
 
-void FluidModel::remesh_now() {
+void FluidModel::remesh_now(const meshing::PreviousDomain* previous) {
   const Index np = n();
   std::vector<Vec2> pts(np);
   for (Index i = 0; i < np; ++i) pts[i] = state_.x.segment<2>(2 * i);
   meshing::RemeshResult r;
+  meshing::RemeshSettings settings;
+  settings.alpha = alpha_;
+  if (previous != nullptr && !previous->empty()) {
+    settings.detection = detection_;
+    settings.previous = previous;
+    settings.separation_alpha = separation_alpha_;
+    settings.level_set_band = level_set_band_;
+  }
   try {
-    r = meshing::remesh(pts, kind_, hvec_, meshing::RemeshSettings{alpha_});
+    r = meshing::remesh(pts, kind_, hvec_, settings);
   } catch (const std::exception& e) {
     throw SolverError("body '" + name_ + "': remeshing failed: " + e.what());
   }
+  added_outside_ += r.added_outside;
+  separated_ += r.separated_inside;
   tri_ = std::move(r.triangles);
   free_ = std::move(r.free_surface);
   connected_ = std::move(r.connected);
@@ -489,6 +516,9 @@ void FluidModel::remesh_now() {
   // wall is driven up and down the wall (spurious currents in a tank at rest). Removing them costs a
   // wedge of h^2/2 at a front sliding on a wall, where the front particle stays connected through its
   // other elements.
+  // With the advected domain (previous != nullptr) a meniscus element is only ever there because the fluid
+  // was: new ones are not added (meshing/remesh.cpp), and existing ones go by the separation test.
+  const bool meniscus_filter = previous == nullptr || previous->empty();
   size_t kept = 0;
   bool removed = false;
   for (size_t e = 0; e < tri_.size(); ++e) {
@@ -497,7 +527,7 @@ void FluidModel::remesh_now() {
       walls += kind_[i] != ParticleKind::Fluid;
       free_fluid += kind_[i] == ParticleKind::Fluid && free_[i];
     }
-    if ((walls == 2 && free_fluid == 1) || element_area(state_.x, static_cast<Index>(e)) < flat_fraction_ * h_ * h_ ||
+    if ((meniscus_filter && walls == 2 && free_fluid == 1) || element_area(state_.x, static_cast<Index>(e)) < flat_fraction_ * h_ * h_ ||
         (ghost_particles_ > 0 && crosses_structure(static_cast<Index>(e)))) {
       removed = true;
       continue;
@@ -556,8 +586,11 @@ bool FluidModel::remove_close_particles() {
 bool FluidModel::drop_particles(const std::vector<char>& drop) {
   const Index np = n();
   Index kept = 0;
+  std::vector<Index>& renumber = renumber_;
+  renumber.assign(np, -1);
   for (Index i = 0; i < np; ++i) {
     if (drop[i]) continue;
+    renumber[i] = kept;
     kind_[kept] = kind_[i];
     hvec_[kept] = hvec_[i];
     state_.x.segment<2>(2 * kept) = state_.x.segment<2>(2 * i);
@@ -568,6 +601,12 @@ bool FluidModel::drop_particles(const std::vector<char>& drop) {
     ++kept;
   }
   if (kept == np) return false;
+  size_t kept_elements = 0;
+  for (const auto& t : tri_) {
+    if (renumber[t[0]] < 0 || renumber[t[1]] < 0 || renumber[t[2]] < 0) continue;
+    tri_[kept_elements++] = {renumber[t[0]], renumber[t[1]], renumber[t[2]]};
+  }
+  tri_.resize(kept_elements);
   kind_.resize(kept);
   hvec_.resize(kept);
   state_.x.conservativeResize(2 * kept);
@@ -696,6 +735,22 @@ void FluidModel::restore_area() {
   }
 }
 
+void FluidModel::append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h) {
+  const Index k = n();
+  state_.x.conservativeResize(2 * k + 2);
+  state_.v.conservativeResize(2 * k + 2);
+  state_.a.conservativeResize(2 * k + 2);
+  X0_.conservativeResize(2 * k + 2);
+  p_.conservativeResize(k + 1);
+  state_.x.segment<2>(2 * k) = x;
+  X0_.segment<2>(2 * k) = x;
+  state_.v.segment<2>(2 * k) = v;
+  state_.a.segment<2>(2 * k) = a;
+  p_[k] = p;
+  kind_.push_back(ParticleKind::Fluid);
+  hvec_.push_back(h);
+}
+
 bool FluidModel::insert_particles() {
   // Where the flow stretches the particle distribution, elements grow until the alpha test deletes them
   // and the fluid tears; a particle at the centroid of every element larger than insert_factor * h^2
@@ -706,13 +761,6 @@ bool FluidModel::insert_particles() {
   for (Index i = 0; i < np; ++i) pts[i] = state_.x.segment<2>(2 * i);
   const auto big = meshing::oversized_elements(pts, hvec_, tri_, insert_factor_);
   if (big.empty()) return false;
-  const Index nn = np + static_cast<Index>(big.size());
-  state_.x.conservativeResize(2 * nn);
-  state_.v.conservativeResize(2 * nn);
-  state_.a.conservativeResize(2 * nn);
-  X0_.conservativeResize(2 * nn);
-  p_.conservativeResize(nn);
-  Index k = np;
   for (Index e : big) {
     const auto& t = tri_[e];
     Vec2 x = Vec2::Zero(), v = Vec2::Zero(), a = Vec2::Zero();
@@ -724,14 +772,7 @@ bool FluidModel::insert_particles() {
       p += p_[i] / 3.0;
       hh += hvec_[i] / 3.0;
     }
-    state_.x.segment<2>(2 * k) = x;
-    X0_.segment<2>(2 * k) = x;
-    state_.v.segment<2>(2 * k) = v;
-    state_.a.segment<2>(2 * k) = a;
-    p_[k] = p;
-    kind_.push_back(ParticleKind::Fluid);
-    hvec_.push_back(hh);
-    ++k;
+    append_particle(x, v, a, p, hh);
   }
   return true;
 }
@@ -784,7 +825,21 @@ void FluidModel::set_dirichlet() {
 void FluidModel::initialize() {
   const auto t0 = Clock::now();
   const Index np = n();
-  if (remesh_) {
+  if (remesh_ && detection_ != meshing::DomainDetection::Alpha) {
+    // The initial domain is the regions themselves: the Delaunay elements whose centroid lies in them (with
+    // the separation test), none outside (a level set of zero band). The alpha shape would cut the corners
+    // where the surface meets a wall, which the advected domain would then keep filling and emptying.
+    meshing::PreviousDomain regions(std::move(region_triangles_), {});
+    region_triangles_.clear();
+    const auto keep = detection_;
+    const double band = level_set_band_;
+    detection_ = meshing::DomainDetection::LevelSet;
+    level_set_band_ = 0.0;
+    remesh_now(&regions);
+    detection_ = keep;
+    level_set_band_ = band;
+    added_outside_ = separated_ = 0;
+  } else if (remesh_) {
     remesh_now();
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
@@ -795,6 +850,7 @@ void FluidModel::initialize() {
   area_ref_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
   area_remesh_ = area_end_ = area_initial_ = area_ref_;
+  n_initial_ = np;
   double ymin = 1e300, ymax = -1e300;
   for (Index i = 0; i < np; ++i)
     if (kind_[i] == ParticleKind::Fluid) {
@@ -845,14 +901,7 @@ void FluidModel::predict(double t_new, double dt) {
   step_open_ = true;
   t_new_ = t_new;
   dt_ = dt;
-  if (remesh_ && solved_once_) {
-    drop_outside_domain();
-    remesh_now();
-    const bool removed = remove_close_particles();
-    if (removed) remesh_now();
-    if (insert_particles()) remesh_now();
-    if (volume_correction_ == "surface") restore_area();
-  }
+  if (remesh_ && solved_once_) remesh_step();
   times_.remesh += seconds_since(t0);
   t0 = Clock::now();
   solved_once_ = true;
@@ -1128,6 +1177,13 @@ IterationReport FluidModel::newton_iteration() {
   for (size_t gi = 0; gi < ghost_index_.size(); ++gi)
     for (int c = 0; c < 2; ++c)
       ghost_force_[2 * gi + c] = ghost_merged_[gi] ? 0.0 : -R[3 * ghost_index_[gi] + c];
+  // The force each wall or ghost particle applies to the fluid (its prescribed momentum row's residual):
+  // the boundary work of the energy balance.
+  if (energy_probes_) {
+    boundary_force_.resize(2 * n_boundary_particles());
+    for (Index i = 0; i < boundary_force_.size() / 2; ++i)
+      for (int c = 0; c < 2; ++c) boundary_force_[2 * i + c] = R[3 * i + c];
+  }
   double rm2 = 0;
   for (Index i = 0; i < 3 * np; ++i) {
     if (fixed_[i]) R[i] = 0.0;
@@ -1214,6 +1270,20 @@ void FluidModel::account_energy() {
   }
   gravity_work_ += gw;
   dissipation_ += diss;
+  // Work of the moving walls and ghosts on the fluid: the mean of the step's start and end forces times
+  // the step's displacement (their indices are stable: walls, then ghosts, come first in the cloud).
+  const Index nb = std::min<Index>(static_cast<Index>(boundary_force_.size() / 2), n_boundary_particles());
+  if (boundary_force_prev_.size() != boundary_force_.size()) boundary_force_prev_ = boundary_force_;
+  for (Index i = 0; i < nb; ++i)
+    boundary_work_ += 0.5 * (boundary_force_prev_.segment<2>(2 * i) + boundary_force_.segment<2>(2 * i))
+                          .dot(x_.segment<2>(2 * i) - state_.x.segment<2>(2 * i));
+  boundary_force_prev_ = boundary_force_;
+}
+
+Index FluidModel::n_boundary_particles() const {
+  Index nb = 0;
+  while (nb < n() && kind_[nb] != ParticleKind::Fluid) ++nb;
+  return nb;
 }
 
 void FluidModel::keep_inside_walls(const Vec& x_start) {
@@ -1272,10 +1342,27 @@ void FluidModel::keep_inside_walls(const Vec& x_start) {
 }
 
 Json FluidModel::summary() const {
+  const char* detection = detection_ == meshing::DomainDetection::Alpha      ? "alpha"
+                          : detection_ == meshing::DomainDetection::Advected ? "advected"
+                                                                             : "level_set";
   return {{"fluid_area", {{"initial", area_initial_}, {"final", area_end_}, {"left_domain", area_left_},
                           {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}}},
           {"wall_crossings", wall_crossings_},
-          {"inverted_elements_kept", inverted_kept_}};
+          {"inverted_elements_kept", inverted_kept_},
+          {"particles", {{"initial", n_initial_}, {"final", n()}}},
+          {"remeshing",
+           {{"domain_detection", remesh_ ? detection : "none (fixed connectivity)"},
+            {"area_added", remesh_area_added_},
+            {"area_removed", remesh_area_removed_},
+            {"kinetic_energy_change", remesh_ke_total_},
+            {"potential_energy_change", remesh_pe_total_},
+            {"volume_correction_energy", correction_energy_},
+            {"particles_merged", merged_},
+            {"edges_split", split_},
+            {"particles_inserted", inserted_},
+            {"particles_removed_at_walls", wall_removed_},
+            {"elements_added_outside", added_outside_},
+            {"elements_separated", separated_}}}};
 }
 
 void FluidModel::finalize_step() {
@@ -1348,10 +1435,12 @@ void FluidModel::write_output(double t) {
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
                                           "kinetic_energy", "potential_energy", "gravity_work",
-                                          "viscous_dissipation", "volume_correction_energy"});
+                                          "viscous_dissipation", "volume_correction_energy", "total_energy",
+                                          "boundary_work", "max_speed"});
   // The work of gravity and the dissipation are summed over the run only when a probe asks for them (an
   // extra element loop per step).
-  if (t == "gravity_work" || t == "viscous_dissipation") energy_probes_ = true;
+  if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work")
+    energy_probes_ = true;
   return std::make_unique<FluidProbe>(*this, p.string("name"), t, p);
 }
 
@@ -1422,6 +1511,14 @@ std::vector<double> FluidProbe::sample() const {
   if (type_ == "gravity_work") return {m_.gravity_work()};
   if (type_ == "viscous_dissipation") return {m_.viscous_dissipation()};
   if (type_ == "volume_correction_energy") return {m_.correction_energy()};
+  if (type_ == "total_energy") return {m_.total_energy()};
+  if (type_ == "boundary_work") return {m_.boundary_work()};
+  if (type_ == "max_speed") {
+    double v = 0;
+    for (Index i = 0; i < n; ++i)
+      if (m_.is_fluid(i)) v = std::max(v, m_.vel(i).norm());
+    return {v};
+  }
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
     const Vec2 d = b_ - a_;

@@ -9,6 +9,7 @@
 #include <lagfsi/fluid_element.hpp>
 #include <lagfsi/interface.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/meshing/previous_domain.hpp>
 #include <lagfsi/meshing/primitives.hpp>
 #include <lagfsi/meshing/remesh.hpp>
 #include <lagfsi/time_function.hpp>
@@ -108,13 +109,51 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// Potential energy put into the fluid by the "surface" volume correction's moves, -sum m_i g . dx_i.
   double correction_energy() const { return correction_energy_; }
   double area_end() const { return area_end_; }
+  /// Work done on the fluid by moving walls and by the structure's ghost particles since the start,
+  /// sum over steps of F . dx at the prescribed particles (F the reaction the boundary applies, the mean of
+  /// the step's start and end values; summed when an energy probe asks for it).
+  double boundary_work() const { return boundary_work_; }
+  /// The energy balance: KE + PE + viscous dissipation - boundary work. Constant for an exact discretization;
+  /// its drift is the numerical energy (remeshing, time integration).
+  double total_energy() const { return kinetic_energy() + potential_energy() + dissipation_ - boundary_work_; }
+  double remesh_area_change() const override { return remesh_dA_; }
+  double remesh_kinetic_energy_change() const override { return remesh_dKE_; }
 
  private:
   void build_particles(Params b);
-  void remesh_now();
+  /// Delaunay + domain detection of the present cloud: the alpha shape, or (advected / level set) the
+  /// previous domain `previous` as predicate; then the meniscus, flat-element and structure-crossing filters.
+  void remesh_now(const meshing::PreviousDomain* previous = nullptr);
+  /// The whole remesh of a step: particles leaving the domain box, particle management, the new mesh, the
+  /// volume correction; measures what it changed (remesh_dA_, remesh_dKE_).
+  void remesh_step();
+  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain.
+  meshing::PreviousDomain advected_domain() const;
+  /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
+  /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long
+  /// free-surface edges are split at their midpoints and large elements get a particle at their centroid
+  /// (state interpolated on the mesh). Keeps tri_ consistent with the cloud. Returns true if it changed it.
+  /// `meshed` and `boundary_edges` receive the previous mesh's topology in the new numbering (the particles
+  /// it used, inserted ones included; its boundary edges, through merges and splits).
+  bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges);
+  /// The boundary of the mesh tri_ as chains: next[i] / prev[i] the particle after / before i along a
+  /// boundary edge (directed as in its element), -1 if none; pinched where two boundary edges leave one
+  /// particle (two surfaces touching at it).
+  struct BoundaryChains {
+    std::vector<Index> next, prev;
+    std::vector<char> pinched;
+  };
+  BoundaryChains boundary_chains() const;
+  double mesh_area() const;
+  /// Walls, then ghosts, come first in the cloud: the number of those leading non-fluid particles.
+  Index n_boundary_particles() const;
   bool remove_close_particles();
-  /// Removes the flagged particles (fluid only), compacting every per-particle array.
+  /// Removes the flagged particles (fluid only), compacting every per-particle array; the elements of tri_
+  /// that use a removed particle go, the others are renumbered.
   bool drop_particles(const std::vector<char>& drop);
+  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
+  /// Appends a fluid particle with the given state (an inserted particle: X0 = x).
+  void append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h);
   /// Removes the fluid particles outside the domain box; throws SolverError when none is left.
   bool drop_outside_domain();
   /// free_ and connected_ from tri_: particles of edges used by one element, unless both ends are on a wall
@@ -187,6 +226,18 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::string tau_type_ = "automatic";
   double tau_U_ = 1.0;
   std::string volume_correction_ = "surface";  // surface | source | none
+  meshing::DomainDetection detection_ = meshing::DomainDetection::Alpha;
+  double separation_alpha_ = 2.5;  // advected / level set: an inside element is torn off when R > this h
+  double level_set_band_ = 0.25;   // level set: outside elements within this h of the previous boundary
+  double split_factor_ = 1.6;      // advected / level set: split free-surface edges longer than this h
+  // Remeshing's effect per step (log.csv) and over the run (summary.json).
+  double remesh_dA_ = 0, remesh_dKE_ = 0;
+  double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
+  long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0;
+  double boundary_work_ = 0;
+  std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
+  Index n_initial_ = 0;
+  Vec boundary_force_, boundary_force_prev_;  // per non-fluid particle (walls, ghosts: stable indices), 2 each
   double relax_time_ = 0.1;      // s: the "source" correction closes an area error over this time
   double tol_ = 1e-4;
   int refactor_every_ = 0;       // 0: one factorization per step (the matrix barely changes within a

@@ -269,6 +269,25 @@ IterationReport FluidModel::fractional_step() {
           force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
     }
   }
+  if (energy_probes_) {
+    // The force each wall or ghost particle applies to the fluid (the boundary work of the energy balance):
+    // m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor).
+    const Index nb = n_boundary_particles();
+    Vec Ku = Vec::Zero(2 * nb);
+    if (implicit)
+      for (Index e = 0; e < ne; ++e) {
+        const auto& t = tri_[e];
+        if (inviscid_element(e) || !(t[0] < nb || t[1] < nb || t[2] < nb)) continue;
+        for (int a = 0; a < 3; ++a)
+          if (t[a] < nb)
+            for (int b = 0; b < 3; ++b)
+              Ku.segment<2>(2 * t[a]) += mu_ * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+      }
+    boundary_force_.resize(2 * nb);
+    for (Index i = 0; i < nb; ++i)
+      boundary_force_.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
+                                          force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
+  }
   for (Index i = 0; i < np; ++i)
     if (kind_[i] == ParticleKind::Fluid) x_.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
   for (const auto& [i, c] : slip_) x_[2 * i + c] = x[2 * i + c];

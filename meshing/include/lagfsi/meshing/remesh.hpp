@@ -10,10 +10,12 @@
 /// measured 6-20x slower than the triangulation itself).
 ///
 /// CGAL types do not appear here; see meshing/src/remesh.cpp.
+#include <lagfsi/meshing/previous_domain.hpp>
 #include <lagfsi/types.hpp>
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace lagfsi::meshing {
@@ -21,8 +23,27 @@ namespace lagfsi::meshing {
 /// What a particle is. Walls and ghosts are boundary particles whose positions are prescribed.
 enum class ParticleKind : std::uint8_t { Fluid = 0, Wall = 1, Ghost = 2 };
 
+/// How the new elements that are fluid are chosen among the Delaunay triangles.
+///  - Alpha: the classic alpha shape (an element is kept if R <= alpha h_e); the domain is re-detected from
+///    the particles alone at every remesh, so elements along the free surface appear and disappear, and the
+///    fluid's area (its mass) changes with them.
+///  - Advected: an element whose centroid lies in the previous domain (PreviousDomain) is kept unless it is
+///    a sliver beyond the separation test (R > separation_alpha h_e: a film tearing, a jet breaking up); one
+///    outside it is added only if it passes the alpha test and has at most one wall or ghost particle (two
+///    free surfaces, or a surface and a wall, meeting). Where the topology does not change the domain does
+///    not change.
+///  - LevelSet: as Advected, but an element outside the previous domain is added when its centroid lies
+///    within level_set_band h_e of the previous boundary (the signed-distance filter), whatever its shape.
+enum class DomainDetection : std::uint8_t { Alpha = 0, Advected = 1, LevelSet = 2 };
+
 struct RemeshSettings {
   double alpha = 1.2;   ///< delete an element if R > alpha * h_e
+  DomainDetection detection = DomainDetection::Alpha;
+  const PreviousDomain* previous = nullptr;   ///< required (non-empty) unless detection is Alpha
+  double separation_alpha = 2.5;              ///< Advected / LevelSet: inside elements kept while R <= this h_e
+  double level_set_band = 0.25;               ///< LevelSet: outside elements within this h_e of the boundary
+  double wetting_distance = 0.5;              ///< Advected / LevelSet: a dry wall particle joins the domain
+                                              ///< when a fluid particle comes within this h_e of it
 };
 
 struct RemeshResult {
@@ -32,10 +53,13 @@ struct RemeshResult {
   double area = 0;                              ///< total area of the kept elements
   int removed_alpha = 0;                        ///< elements deleted by the alpha test
   int removed_boundary_only = 0;                ///< elements deleted because all their particles are walls/ghosts
+  int added_outside = 0;                        ///< Advected / LevelSet: kept elements outside the previous domain
+  int separated_inside = 0;                     ///< Advected / LevelSet: elements inside it deleted (separation)
 };
 
 /// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its
-/// index), then keeps an element if (1) its circumradius R <= alpha * (h_a + h_b + h_c)/3 and (2) at least
+/// index), then keeps an element if (1) the domain detection of `settings` accepts it (Alpha: its
+/// circumradius R <= alpha * (h_a + h_b + h_c)/3; see DomainDetection for the others) and (2) at least
 /// one of its particles is Fluid. Free-surface particles: Fluid particles on an edge used by exactly one
 /// kept element. Duplicate points (closer than 1e-12 of the bounding box) are an error
 /// (std::invalid_argument), as are sizes that do not match or fewer than 3 points (then the result is empty
@@ -58,6 +82,14 @@ std::vector<std::array<Index, 3>> delaunay_triangles(const std::vector<Vec2>& po
 std::vector<Index> close_fluid_particles(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
                                          const std::vector<double>& h,
                                          const std::vector<std::array<Index, 3>>& triangles, double fraction);
+
+/// Like close_fluid_particles, as pairs (kept, removed): the caller merges the removed particle into the
+/// kept one. Same order and choice.
+std::vector<std::pair<Index, Index>> close_fluid_pairs(const std::vector<Vec2>& points,
+                                                       const std::vector<ParticleKind>& kind,
+                                                       const std::vector<double>& h,
+                                                       const std::vector<std::array<Index, 3>>& triangles,
+                                                       double fraction);
 
 /// Kept elements whose area exceeds `factor * h_e^2` (h_e as in remesh): candidates for inserting a
 /// particle at their centroid (the caller interpolates the particle's state).

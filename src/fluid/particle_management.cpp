@@ -1,0 +1,256 @@
+// PFEM remeshing that keeps the fluid and its energy: the remesh step of a flow, the advected previous
+// domain that decides the new mesh, and particle management that moves neither area nor momentum.
+//
+// The classic PFEM remesh (Idelsohn, Oñate & Del Pin 2004) re-detects the domain from the particles alone
+// with the alpha shape; along a moving free surface elements appear and disappear from step to step, so the
+// area (the mass: the particles' masses are their shares of the elements) changes, and a global correction
+// that pushes it back pumps energy into the flow (cases/sloshing_free). Here, following Leyssens,
+// Lambrechts & Remacle (UCLouvain; arXiv:2403.18416, 2024, and arXiv:2512.20347, 2025):
+//  1. the last step's mesh, carried by the particles to their present positions, is the predicate of the
+//     new domain (meshing::PreviousDomain): where the topology does not change, the domain does not change;
+//     the alpha test only adds elements where two surfaces, or a surface and a wall, meet, and a separation
+//     test tears off slivers (meshing/remesh.hpp, DomainDetection);
+//  2. particles are managed on the advected mesh, before the new Delaunay triangulation:
+//     - a fluid pair closer than remove_close_fraction h is merged into one particle carrying the pair's
+//       mass-weighted velocity, acceleration and pressure (masses: the lumped areas sum_e A_e / 3, so
+//       momentum is kept); inside the fluid it sits at the pair's centre of mass, on the free surface at
+//       the position that keeps the area of the boundary polygon p-a-b-q (p, q the neighbours of the pair
+//       along the boundary), and a pair with one surface particle keeps the surface particle's position;
+//     - a free-surface edge longer than split_edge_factor h gets a particle at its midpoint, and an element
+//       larger than insert_area_factor h^2 one at its centroid, with the P1 interpolation of the state;
+//       both lie on or inside the advected domain, which they therefore do not change.
+//  3. what the remesh still changed is measured: the area and the kinetic energy of the same velocities on
+//     the new mesh against the old (log.csv remesh_dA, remesh_dKE; totals in summary.json).
+#include "fluid_model.hpp"
+
+namespace lagfsi::fluid_detail {
+
+namespace {
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+}  // namespace
+
+double FluidModel::mesh_area() const {
+  double a = 0;
+  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) a += element_area(state_.x, e);
+  return a;
+}
+
+FluidModel::BoundaryChains FluidModel::boundary_chains() const {
+  // Boundary edges: used by one element, directed as in that element (counter-clockwise when it was made).
+  const Index np = n();
+  BoundaryChains b;
+  b.next.assign(np, -1);
+  b.prev.assign(np, -1);
+  b.pinched.assign(np, 0);
+  std::vector<std::array<Index, 3>> edges;  // (min, max, directed from)
+  edges.reserve(3 * tri_.size());
+  for (const auto& t : tri_)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], c = t[(k + 1) % 3];
+      edges.push_back({std::min(a, c), std::max(a, c), a});
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t k = 0; k < edges.size();) {
+    size_t m = k + 1;
+    while (m < edges.size() && edges[m][0] == edges[k][0] && edges[m][1] == edges[k][1]) ++m;
+    if (m == k + 1) {
+      const Index from = edges[k][2], to = from == edges[k][0] ? edges[k][1] : edges[k][0];
+      if (b.next[from] >= 0) b.pinched[from] = 1;
+      if (b.prev[to] >= 0) b.pinched[to] = 1;
+      b.next[from] = to;
+      b.prev[to] = from;
+    }
+    k = m;
+  }
+  return b;
+}
+
+meshing::PreviousDomain FluidModel::advected_domain() const {
+  std::vector<std::array<Vec2, 3>> triangles;
+  triangles.reserve(tri_.size());
+  for (const auto& t : tri_)
+    triangles.push_back({pos(t[0]), pos(t[1]), pos(t[2])});
+  const BoundaryChains b = boundary_chains();
+  std::vector<std::array<Vec2, 2>> boundary;
+  for (Index i = 0; i < n(); ++i)
+    if (b.next[i] >= 0) boundary.push_back({pos(i), pos(b.next[i])});
+  return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
+}
+
+bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
+                                  std::vector<std::pair<Index, Index>>& boundary_edges) {
+  const Index np = n();
+  std::vector<Vec2> pts(np);
+  for (Index i = 0; i < np; ++i) pts[i] = pos(i);
+  std::vector<double> lumped(np, 0.0);
+  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e)
+    for (Index i : tri_[e]) lumped[i] += std::abs(element_area(state_.x, e)) / 3.0;
+  const BoundaryChains chain = boundary_chains();
+  const auto on_boundary = [&](Index i) { return chain.next[i] >= 0 || chain.prev[i] >= 0; };
+
+  std::vector<char> drop(np, 0), touched(np, 0);
+  std::vector<Index> alias(np);   // a merged particle's survivor (itself otherwise)
+  for (Index i = 0; i < np; ++i) alias[i] = i;
+  // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
+  const auto merge = [&](Index i, Index j) {
+    const double wi = lumped[i], wj = lumped[j], w = wi + wj;
+    const double si = w > 0 ? wi / w : 0.5, sj = 1.0 - si;
+    Vec2 x = si * pts[i] + sj * pts[j];
+    const bool bi = on_boundary(i), bj = on_boundary(j);
+    if (bi && !bj) {
+      x = pts[i];
+    } else if (bj && !bi) {
+      x = pts[j];
+    } else if (bi && bj) {
+      // Along the boundary p -> a -> b -> q: m on the perpendicular of q - p through the midpoint, where the
+      // polygon p-m-q has the area of p-a-b-q (cross(m, q - p) = cross(p, a) + cross(a, b) + cross(b, q)).
+      Index a = -1, c = -1;
+      if (chain.next[i] == j) a = i, c = j;
+      if (chain.next[j] == i) a = j, c = i;
+      x = 0.5 * (pts[i] + pts[j]);
+      if (a >= 0 && !chain.pinched[a] && !chain.pinched[c]) {
+        const Index p = chain.prev[a], q = chain.next[c];
+        if (p >= 0 && q >= 0 && p != c && q != a && p != q) {
+          const Vec2 d = pts[q] - pts[p];
+          const double dn = d.norm();
+          if (dn > 1e-12 * h_) {
+            const double target = cross(pts[p], pts[a]) + cross(pts[a], pts[c]) + cross(pts[c], pts[q]);
+            const double s = (target - cross(x, d)) / (-dn);
+            if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * h_) x += s * Vec2(-d.y(), d.x()) / dn;
+          }
+        }
+      }
+    }
+    state_.x.segment<2>(2 * i) = x;
+    state_.v.segment<2>(2 * i) = si * state_.v.segment<2>(2 * i) + sj * state_.v.segment<2>(2 * j);
+    state_.a.segment<2>(2 * i) = si * state_.a.segment<2>(2 * i) + sj * state_.a.segment<2>(2 * j);
+    p_[i] = si * p_[i] + sj * p_[j];
+    drop[j] = touched[i] = touched[j] = 1;
+    alias[j] = i;
+    ++merged_;
+  };
+  if (close_fraction_ > 0) {
+    // A fluid particle pressed against a wall particle: inside the fluid it goes (the wall stands for it;
+    // the domain does not change); on the free surface (where the surface meets the wall) it is merged with
+    // its fluid neighbour along the surface, which keeps the boundary's area.
+    for (const auto& t : tri_)
+      for (int k = 0; k < 3; ++k) {
+        const Index a = t[k], c = t[(k + 1) % 3];
+        const bool fa = kind_[a] == ParticleKind::Fluid, fc = kind_[c] == ParticleKind::Fluid;
+        if (fa == fc) continue;
+        const Index f = fa ? a : c;
+        if (touched[f] || !((pts[a] - pts[c]).norm() < close_fraction_ * h_)) continue;
+        Index partner = -1;
+        if (on_boundary(f))
+          for (Index q : {chain.next[f], chain.prev[f]})
+            if (partner < 0 && q >= 0 && kind_[q] == ParticleKind::Fluid && !touched[q]) partner = q;
+        if (partner >= 0) {
+          merge(partner, f);
+        } else {
+          drop[f] = touched[f] = 1;
+        }
+        ++wall_removed_;
+      }
+    for (const auto& [i, j] : meshing::close_fluid_pairs(pts, kind_, hvec_, tri_, close_fraction_))
+      if (!touched[i] && !touched[j]) merge(i, j);
+  }
+
+  // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
+  // its elements are gone).
+  struct NewParticle {
+    Vec2 x, v, a;
+    double p, h;
+  };
+  std::vector<NewParticle> fresh;
+  std::vector<Index> split_at(np, -1);   // boundary edge from a (to chain.next[a]) split by new particle k
+  const auto between = [&](const std::vector<Index>& ids, const std::vector<double>& w) {
+    NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
+    for (size_t k = 0; k < ids.size(); ++k) {
+      q.x += w[k] * pts[ids[k]];
+      q.v += w[k] * state_.v.segment<2>(2 * ids[k]);
+      q.a += w[k] * state_.a.segment<2>(2 * ids[k]);
+      q.p += w[k] * p_[ids[k]];
+      q.h += w[k] * hvec_[ids[k]];
+    }
+    return q;
+  };
+  if (split_factor_ > 0)
+    for (Index a = 0; a < np; ++a) {
+      const Index c = chain.next[a];
+      if (c < 0 || touched[a] || touched[c]) continue;
+      if (kind_[a] != ParticleKind::Fluid && kind_[c] != ParticleKind::Fluid) continue;
+      const double he = 0.5 * (hvec_[a] + hvec_[c]);
+      if ((pts[a] - pts[c]).norm() > split_factor_ * he) {
+        split_at[a] = np + static_cast<Index>(fresh.size());
+        fresh.push_back(between({a, c}, {0.5, 0.5}));
+        ++split_;
+      }
+    }
+  if (insert_factor_ > 0)
+    for (Index e : meshing::oversized_elements(pts, hvec_, tri_, insert_factor_)) {
+      const auto& t = tri_[e];
+      if (touched[t[0]] || touched[t[1]] || touched[t[2]] || !(element_area(state_.x, e) > 0)) continue;
+      fresh.push_back(between({t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3}));
+      ++inserted_;
+    }
+  // The previous mesh's topology through the changes: boundary edges follow merges (to the survivor) and
+  // splits (two halves); those of a removed particle go.
+  std::vector<std::uint8_t> used(np + fresh.size(), 0);
+  for (const auto& t : tri_)
+    for (Index i : t) used[i] = 1;
+  std::vector<std::pair<Index, Index>> edges;
+  for (Index a = 0; a < np; ++a) {
+    const Index c = chain.next[a];
+    if (c < 0 || (drop[a] && alias[a] == a) || (drop[c] && alias[c] == c)) continue;
+    const Index a2 = alias[a], c2 = alias[c];
+    if (a2 == c2) continue;
+    if (split_at[a] >= 0) {
+      edges.emplace_back(a2, split_at[a]);
+      edges.emplace_back(split_at[a], c2);
+    } else {
+      edges.emplace_back(a2, c2);
+    }
+  }
+  for (const auto& q : fresh) append_particle(q.x, q.v, q.a, q.p, q.h);
+  drop.resize(static_cast<size_t>(n()), 0);
+  const bool dropped = drop_particles(drop);
+  const auto to_new = [&](Index i) { return dropped ? renumber_[i] : i; };
+  meshed.assign(static_cast<size_t>(n()), 0);
+  for (Index i = 0; i < static_cast<Index>(used.size()); ++i) {
+    const Index k = to_new(i);
+    if (k >= 0) meshed[k] = used[i] || kind_[k] == ParticleKind::Fluid;
+  }
+  boundary_edges.clear();
+  for (const auto& [a, c] : edges)
+    if (to_new(a) >= 0 && to_new(c) >= 0) boundary_edges.emplace_back(to_new(a), to_new(c));
+  return dropped || !fresh.empty();
+}
+
+void FluidModel::remesh_step() {
+  drop_outside_domain();
+  // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
+  // domain box is counted apart, area_left_) against the new one.
+  const double area0 = mesh_area(), ke0 = kinetic_energy(), pe0 = potential_energy();
+  if (detection_ == meshing::DomainDetection::Alpha) {
+    remesh_now();
+    const bool removed = remove_close_particles();
+    if (removed) remesh_now();
+    if (insert_particles()) remesh_now();
+  } else {
+    meshing::PreviousDomain previous = advected_domain();
+    std::vector<std::uint8_t> meshed;
+    std::vector<std::pair<Index, Index>> edges;
+    manage_particles(meshed, edges);
+    previous.set_topology(std::move(meshed), std::move(edges));
+    remesh_now(&previous);
+  }
+  const double area1 = mesh_area();
+  remesh_dA_ = area1 - area0;
+  remesh_dKE_ = kinetic_energy() - ke0;
+  (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
+  remesh_ke_total_ += remesh_dKE_;
+  remesh_pe_total_ += potential_energy() - pe0;
+  if (volume_correction_ == "surface") restore_area();
+}
+
+}  // namespace lagfsi::fluid_detail

@@ -1,0 +1,50 @@
+// Still water stays still under remeshing (issue #16, item 5): a tank at rest, remeshed every step for 20 s;
+// the largest particle speed stays below 1e-4 sqrt(g H). Run with each domain detection: the alpha shape
+// with its surface volume correction (the default) and the advected previous domain without correction.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "case_runner.hpp"
+
+namespace {
+
+using namespace lagfsi::testing;
+
+std::string still_tank(const std::string& detection, const std::string& correction) {
+  return R"({
+    "name": "still_water",
+    "analysis": {"type": "dynamic", "dt": 0.01, "end_time": 20.0},
+    "gravity": [0.0, -9.81],
+    "bodies": [{
+      "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
+      "domain_detection": ")" + detection + R"(",
+      "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.4, 0.2]}],
+      "walls": [{"name": "tank", "points": [[0, 0.3], [0, 0], [0.4, 0], [0.4, 0.3]]}],
+      "initial_pressure": {"type": "hydrostatic", "level": 0.2},
+      "scheme": {"volume_correction": ")" + correction + R"("}
+    }],
+    "probes": [{"name": "max_speed", "type": "max_speed", "body": "water"},
+               {"name": "area", "type": "fluid_area", "body": "water"}],
+    "output": {"every": 100000, "vtk": false}
+  })";
+}
+
+void expect_still(const std::string& detection, const std::string& correction) {
+  const RunResult r = run_case_text(fresh_dir("still_water_" + detection), still_tank(detection, correction));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const double limit = 1e-4 * std::sqrt(9.81 * 0.2);
+  const auto& v = p["max_speed"];
+  ASSERT_GT(v.size(), 1999u);
+  EXPECT_LT(*std::max_element(v.begin(), v.end()), limit) << detection;
+  const auto& a = p["area"];
+  EXPECT_NEAR(a.back(), a.front(), 1e-6 * a.front()) << detection;
+}
+
+TEST(StillWater, AlphaShapeWithSurfaceCorrectionStaysStill) { expect_still("alpha", "surface"); }
+TEST(StillWater, AdvectedDomainStaysStill) { expect_still("advected", "none"); }
+
+}  // namespace

@@ -1,0 +1,174 @@
+// Unit tests of the conservative PFEM domain detections (meshing/previous_domain.hpp, remesh.hpp
+// DomainDetection) on hand-made clouds whose expected domains are known in closed form: an L-shaped lattice
+// (its notch is a concave corner the alpha shape fills with a large alpha), two blocks a gap apart (merged
+// only when the gap closes), a dent of one surface (never filled), and a dry wall particle (wetted only by
+// fluid that reaches it).
+#include <lagfsi/meshing/previous_domain.hpp>
+#include <lagfsi/meshing/remesh.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using lagfsi::Index;
+using lagfsi::Vec2;
+using lagfsi::meshing::DomainDetection;
+using lagfsi::meshing::ParticleKind;
+using lagfsi::meshing::PreviousDomain;
+using lagfsi::meshing::remesh;
+using lagfsi::meshing::RemeshSettings;
+
+struct Cloud {
+  std::vector<Vec2> p;
+  std::vector<ParticleKind> kind;
+  std::vector<double> h;
+  void add(double x, double y, ParticleKind k = ParticleKind::Fluid) {
+    p.emplace_back(x, y);
+    kind.push_back(k);
+    h.push_back(1.0);
+  }
+};
+
+/// The unit squares [i, i+1] x [j, j+1] with `cell(i, j)` true, as two triangles each.
+template <class Cell>
+PreviousDomain squares(int nx, int ny, Cell cell) {
+  std::vector<std::array<Vec2, 3>> tris;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (cell(i, j)) {
+        const Vec2 a(i, j), b(i + 1, j), c(i + 1, j + 1), d(i, j + 1);
+        tris.push_back({a, b, c});
+        tris.push_back({a, c, d});
+      }
+  return PreviousDomain(std::move(tris), {});
+}
+
+double kept_area(const Cloud& c, const RemeshSettings& s) {
+  return remesh(c.p, c.kind, c.h, s).area;
+}
+
+TEST(PreviousDomain, LocatesPointsAndMeasuresTheBoundaryDistance) {
+  // The unit square as two triangles, its four sides as the boundary.
+  const Vec2 a(0, 0), b(1, 0), c(1, 1), d(0, 1);
+  PreviousDomain dom({{a, b, c}, {a, c, d}}, {{a, b}, {b, c}, {c, d}, {d, a}});
+  EXPECT_TRUE(dom.contains(Vec2(0.5, 0.5)));
+  EXPECT_TRUE(dom.contains(Vec2(0.25, 0.75)));
+  EXPECT_TRUE(dom.contains(Vec2(1.0, 0.5))) << "the border counts as inside";
+  EXPECT_FALSE(dom.contains(Vec2(1.01, 0.5)));
+  EXPECT_FALSE(dom.contains(Vec2(-3.0, 7.0)));
+  EXPECT_NEAR(dom.boundary_distance(Vec2(0.5, 0.4), 1.0), 0.4, 1e-14);
+  EXPECT_NEAR(dom.boundary_distance(Vec2(1.3, 1.4), 1.0), 0.5, 1e-14) << "to the corner (1, 1)";
+  EXPECT_DOUBLE_EQ(dom.boundary_distance(Vec2(5.0, 5.0), 0.25), 0.25) << "capped at the limit";
+  EXPECT_NEAR(dom.area(), 1.0, 1e-15);
+}
+
+TEST(DomainDetection, AdvectedKeepsTheConcaveCornerOfAnLShapeThatTheAlphaShapeFills) {
+  // Lattice points of an L: [0,4]x[0,2] plus [0,2]x[2,4] (area 12). The alpha shape (alpha = 1.2) also takes
+  // the element (2,2)-(3,2)-(2,3) in the concave corner (circumradius 0.71): area 12.5. The advected
+  // predicate keeps the L: that element has two edges on the previous boundary (a dent, not a contact).
+  Cloud c;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i)
+      if (j <= 2 || i <= 2) c.add(i, j);
+  const auto in_l = [](int i, int j) { return j < 2 || i < 2; };
+  PreviousDomain prev = squares(4, 4, in_l);
+  // Its boundary edges (unit lattice edges with the L on one side only), in the cloud's numbering.
+  const auto index = [&](int i, int j) {
+    for (Index k = 0; k < static_cast<Index>(c.p.size()); ++k)
+      if (c.p[k] == Vec2(i, j)) return k;
+    return Index(-1);
+  };
+  const auto cell = [&](int i, int j) { return i >= 0 && j >= 0 && i < 4 && j < 4 && in_l(i, j); };
+  std::vector<std::pair<Index, Index>> boundary;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) {
+      if (i < 4 && cell(i, j) != cell(i, j - 1)) boundary.emplace_back(index(i, j), index(i + 1, j));
+      if (j < 4 && cell(i, j) != cell(i - 1, j)) boundary.emplace_back(index(i, j), index(i, j + 1));
+    }
+  ASSERT_EQ(boundary.size(), 16u);
+  prev.set_topology({}, boundary);
+  RemeshSettings alpha;
+  alpha.alpha = 1.2;
+  EXPECT_NEAR(kept_area(c, alpha), 12.5, 1e-12);
+  RemeshSettings adv = alpha;
+  adv.detection = DomainDetection::Advected;
+  adv.previous = &prev;
+  EXPECT_NEAR(kept_area(c, adv), 12.0, 1e-12);
+  RemeshSettings ls = adv;
+  ls.detection = DomainDetection::LevelSet;
+  ls.level_set_band = 0.1;   // the corner element's centroid is 1/3 from the L
+  EXPECT_NEAR(kept_area(c, ls), 12.0, 1e-12);
+}
+
+TEST(DomainDetection, TwoBlocksMergeOnlyWhenTheGapCloses) {
+  // Two 2x2 lattice blocks, the second shifted by `gap` in x; the previous domain is the two blocks.
+  const auto run = [](double gap) {
+    Cloud c;
+    std::vector<std::array<Vec2, 3>> tris;
+    for (int b = 0; b < 2; ++b) {
+      const double x0 = b * (2.0 + gap);
+      for (int j = 0; j <= 2; ++j)
+        for (int i = 0; i <= 2; ++i) c.add(x0 + i, j);
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const Vec2 a(x0 + i, j), bb(x0 + i + 1, j), cc(x0 + i + 1, j + 1), d(x0 + i, j + 1);
+          tris.push_back({a, bb, cc});
+          tris.push_back({a, cc, d});
+        }
+    }
+    const PreviousDomain prev(std::move(tris), {});
+    RemeshSettings s;
+    s.alpha = 1.2;
+    s.detection = DomainDetection::Advected;
+    s.previous = &prev;
+    return remesh(c.p, c.kind, c.h, s);
+  };
+  const auto apart = run(3.0);   // gap elements of circumradius >= 1.58: not added
+  EXPECT_NEAR(apart.area, 8.0, 1e-12);
+  EXPECT_EQ(apart.added_outside, 0);
+  const auto touching = run(0.6);  // gap 0.6: elements of circumradius ~0.58 close it
+  EXPECT_NEAR(touching.area, 8.0 + 2 * 0.6, 1e-12);
+  EXPECT_GT(touching.added_outside, 0);
+}
+
+TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluidThatReachesIt) {
+  // A flat row of surface particles y = 1 over a row y = 0, the middle one sunk to y = 0.45: the element over
+  // the dent (its two edges on the previous boundary) passes alpha = 1.2 but is not added.
+  Cloud c;
+  for (int i = 0; i <= 4; ++i) c.add(i, 0);
+  for (int i = 0; i <= 4; ++i) c.add(i, i == 2 ? 0.45 : 1.0);   // the dent's element: R = 1.184
+  std::vector<std::array<Vec2, 3>> tris;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 a(i, 0), b(i + 1, 0), cc = c.p[5 + i + 1], d = c.p[5 + i];
+    tris.push_back({a, b, cc});
+    tris.push_back({a, cc, d});
+  }
+  PreviousDomain prev(tris, {});
+  std::vector<std::pair<Index, Index>> surface;
+  for (Index i = 5; i < 9; ++i) surface.emplace_back(i, i + 1);
+  prev.set_topology({}, surface);
+  RemeshSettings s;
+  s.alpha = 1.2;
+  s.detection = DomainDetection::Advected;
+  s.previous = &prev;
+  const double area = prev.area();
+  EXPECT_NEAR(kept_area(c, s), area, 1e-12);
+  // A dry wall particle 0.8 above the surface particle (4, 1) with a fluid neighbour at (3, 1): it joins only
+  // once a fluid particle comes within wetting_distance h of it.
+  c.add(4.0, 1.8, lagfsi::meshing::ParticleKind::Wall);
+  std::vector<std::uint8_t> meshed(c.p.size(), 1);
+  meshed.back() = 0;
+  prev.set_topology(meshed, surface);
+  s.wetting_distance = 0.5;
+  EXPECT_NEAR(kept_area(c, s), area, 1e-12) << "0.8 h away: stays dry";
+  s.wetting_distance = 1.0;
+  EXPECT_GT(kept_area(c, s), area + 0.1) << "within h: wetted";
+}
+
+}  // namespace

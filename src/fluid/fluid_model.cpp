@@ -830,7 +830,6 @@ void FluidModel::initialize() {
     // the separation test), none outside (a level set of zero band). The alpha shape would cut the corners
     // where the surface meets a wall, which the advected domain would then keep filling and emptying.
     meshing::PreviousDomain regions(std::move(region_triangles_), {});
-    region_triangles_.clear();
     const auto keep = detection_;
     const double band = level_set_band_;
     detection_ = meshing::DomainDetection::LevelSet;
@@ -847,6 +846,7 @@ void FluidModel::initialize() {
     for (const auto& [i, c] : slip_) on_wall[i] = 1;
     mark_free_surface(on_wall);
   }
+  std::vector<std::array<Vec2, 3>>().swap(region_triangles_);   // only the initial domain needs them
   area_ref_ = 0;
   for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
   area_remesh_ = area_end_ = area_initial_ = area_ref_;

@@ -1,0 +1,134 @@
+// Explicit single-phase MPM (mpm_scheme.hpp), after Sulsky, Chen & Schreyer (1994) and the "modified
+// Lagrangian" (MUSL) algorithm of the seed (Ludeña 2016, ch. 3; Al-Kafaji 2013); one sub-step:
+//
+//   particles -> grid:  m_I, (m v)_I, f_I (mpm_transfer.cpp)
+//   grid update:        (m v)_I += dt f_I (fixed components zeroed; local damping f -= alpha |f| sign(v))
+//   grid -> particles:  v_p += dt sum_I N_Ip f_I / m_I (FLIP),  x_p += dt sum_I N_Ip v_I
+//   stress update:      L_p = sum_I v_I (x) grad N_Ip, F_p = (I + dt L_p) F_p, V_p = det F_p V_p0,
+//                       sigma_p += C : dt sym(L_p) (small strain rate; the material's return mapping)
+//
+// with the grid velocity of the stress update taken, as chosen by "update":
+//  - "musl": re-mapped from the updated particle velocities (the seed's algorithm; the most robust);
+//  - "usl":  the grid velocity of the grid update;
+//  - "usf":  the stress is updated first, from the grid velocity of the mapped momentum.
+// Damping: Cundall local and Rayleigh (mass-proportional on the grid, stiffness-proportional as a viscous
+// stress); the grid forces also take the particle loads and the absorbing and free-field boundaries.
+#include "mpm_scheme.hpp"
+
+#include <lagfsi/mpm/mpm_transfer.hpp>
+
+#include <cmath>
+
+namespace lagfsi::mpm {
+
+namespace {
+
+class ExplicitSinglePhase final : public ExplicitScheme {
+ public:
+  explicit ExplicitSinglePhase(StressUpdate update) : update_(update) {}
+  double wave_speed(const MpmBody& b) const override { return b.material->p_wave_speed(); }
+
+ protected:
+  void substep(MpmBody& b, double dt) override;
+
+ private:
+  /// Stress update of every particle from the nodal velocities vgrid (and F, volume, strain, strain rate).
+  void stress_update(MpmBody& b, double dt, const std::vector<Vec2>& vgrid) const;
+
+  StressUpdate update_;
+  ScatterBuffers buffers_;  // per-thread grid copies of the scatter
+};
+
+void ExplicitSinglePhase::stress_update(MpmBody& b, double dt, const std::vector<Vec2>& vgrid) const {
+  Particles& P = b.particles;
+  const MpmMaterial& mat = *b.material;
+  const bool plastic = mat.plastic();
+  const Index np = static_cast<Index>(P.size());
+#pragma omp parallel for schedule(static) if (np >= 20000)
+  for (Index p = 0; p < np; ++p) {
+    const Support& s = b.support[p];
+    const Mat2 L = velocity_gradient(vgrid, s);
+    P.F[p] = (Mat2::Identity() + dt * L) * P.F[p];
+    const Mat2& F = P.F[p];
+    P.volume[p] = (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0)) * P.volume0[p];
+    const double dxx = dt * L(0, 0), dyy = dt * L(1, 1), dxy = 0.5 * dt * (L(0, 1) + L(1, 0));
+    P.strain_rate[p] = {L(0, 0), L(1, 1), 0.5 * (L(0, 1) + L(1, 0))};  // for the stiffness-proportional damping
+    // Jaumann rate: the stress turns with the spin W = (L - L^T)/2, w = W_xy dt.
+    const double w = 0.5 * dt * (L(0, 1) - L(1, 0));
+    mat.elastic_trial(P.stress[p], {dxx, dyy, dxy, w});
+    if (plastic) P.plastic_multiplier[p] += mat.return_mapping(P.stress[p]);
+    auto& e = P.strain[p];
+    e[0] += dxx;
+    e[1] += dyy;
+    e[2] += dxy;
+  }
+}
+
+void ExplicitSinglePhase::substep(MpmBody& b, double dt) {
+  Particles& P = b.particles;
+  Grid& grid = b.grid;
+  const GridBoundaries& bc = b.boundaries;
+  const Damping& damping = b.damping;
+  const Index np = static_cast<Index>(P.size());
+  const size_t nn = grid.mass.size();
+  b.locate_particles();
+  const Vec2 g = b.gravity();
+  const StiffnessDamping viscous{damping.stiffness, b.material.get()};
+  if (update_ == StressUpdate::Usf) {
+    particles_to_grid(P, b.support, true, false, g, viscous, grid, buffers_);
+    bc.apply_fixed(grid.momentum);
+    velocities_from_momentum(grid);
+    stress_update(b, dt, grid.velocity);
+    particles_to_grid(P, b.support, false, true, g, viscous, grid, buffers_);
+  } else {
+    particles_to_grid(P, b.support, true, true, g, viscous, grid, buffers_);
+    bc.apply_fixed(grid.momentum);
+  }
+  add_particle_loads(b.loads, b.support, b.t, grid.force);
+  // Grid update; local (Cundall) damping opposes the node's motion with a share of its unbalanced force;
+  // Rayleigh mass-proportional damping is the force -alpha m_I v_I.
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(grid.mass[i] > 0)) continue;
+    if (damping.mass > 0) grid.force[i] -= damping.mass * grid.momentum[i];
+  }
+  b.boundaries.add_free_field_tractions(grid, b.t, *b.material, damping.stiffness);
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(grid.mass[i] > 0)) continue;
+    if (damping.local > 0 && b.t < damping.local_until) {
+      const Vec2 v = grid.momentum[i] / grid.mass[i];
+      for (int c = 0; c < 2; ++c)
+        if (v[c] != 0.0) grid.force[i][c] -= damping.local * std::abs(grid.force[i][c]) * (v[c] > 0 ? 1.0 : -1.0);
+    }
+  }
+  bc.apply_fixed(grid.force);
+  b.boundaries.add_dashpot_forces(grid, b.t, dt, *b.material);
+  b.boundaries.step_free_fields(b.t, dt, *b.material, damping.mass, damping.stiffness);
+  bc.apply_fixed(grid.force);
+  for (size_t i = 0; i < nn; ++i) {
+    if (!(grid.mass[i] > 0)) continue;
+    grid.momentum[i] += dt * grid.force[i];
+    grid.velocity[i] = grid.momentum[i] / grid.mass[i];
+  }
+  bc.apply_fixed(grid.velocity);
+  // Prescribed motion: the node's velocity at the end of the sub-step; its force is what that takes.
+  bc.impose_motion(grid, b.t + dt, dt);
+  // Grid to particles: FLIP velocity, positions with the grid velocity.
+  b.gravity_work += grid_to_particles(grid, b.support, dt, b.flip, g, P);
+  if (update_ == StressUpdate::Musl) {
+    particles_to_grid(P, b.support, true, false, g, viscous, grid, buffers_);
+    velocities_from_momentum(grid);
+    bc.apply_fixed(grid.velocity);
+    for (const auto& m : bc.moving) grid.velocity[m.node][m.comp] = m.velocity(b.t + dt);
+  }
+  if (update_ != StressUpdate::Usf) stress_update(b, dt, grid.velocity);
+  for (Index p = 0; p < np; ++p)
+    if (!(P.volume[p] > 0) || !std::isfinite(P.stress[p][1])) throw b.particle_error(p, "inverted or non-finite");
+}
+
+}  // namespace
+
+std::unique_ptr<ExplicitScheme> make_explicit_scheme(StressUpdate update) {
+  return std::make_unique<ExplicitSinglePhase>(update);
+}
+
+}  // namespace lagfsi::mpm

@@ -847,8 +847,7 @@ void FluidModel::initialize() {
     mark_free_surface(on_wall);
   }
   std::vector<std::array<Vec2, 3>>().swap(region_triangles_);   // only the initial domain needs them
-  area_ref_ = 0;
-  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_ref_ += element_area(state_.x, e);
+  area_ref_ = mesh_area();
   area_remesh_ = area_end_ = area_initial_ = area_ref_;
   n_initial_ = np;
   double ymin = 1e300, ymax = -1e300;
@@ -918,8 +917,7 @@ void FluidModel::predict(double t_new, double dt) {
     if (viscous_implicit()) viscous_ = poisson_;
   }
   set_dirichlet();
-  area_remesh_ = 0;
-  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_remesh_ += element_area(state_.x, e);
+  area_remesh_ = mesh_area();
   // Volume correction "source": a uniform source in the continuity equation, div v = -(A - A_ref)/(A_ref T),
   // that closes the area error of remeshing (alpha shape, inserted/removed particles) over the relaxation
   // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt;
@@ -1381,8 +1379,7 @@ void FluidModel::finalize_step() {
     state_.x = x_;
   }
   keep_inside_walls(x_start);
-  area_end_ = 0;
-  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) area_end_ += element_area(state_.x, e);
+  area_end_ = mesh_area();
   p_scale_ = std::max(p_scale_, p_.cwiseAbs().maxCoeff());
 }
 

@@ -8,6 +8,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 from lagfsi_post import read_csv, out_dir_from_argv, save, shell_vs_continuum
+from claims_record import record
 
 out = out_dir_from_argv("out/cantilever_step_load_shell")
 t10 = sys.argv[2] if len(sys.argv) > 2 else "out/cantilever_step_load"
@@ -15,6 +16,8 @@ ref = read_csv(os.path.join(os.path.dirname(__file__), "reference", "analytic.cs
 static = ref["value"][ref["quantity"].index("tip_uy_static_timoshenko")]
 p = read_csv(os.path.join(out, "probes.csv"))
 peak = min(p["tip_uy_axis"])
+# Energy balance (E_kin + E_strain - W_ext, probe energy_balance) relative to the largest total energy.
+record("energy_balance", max(abs(b) for b in p["energy_balance"]) / max(abs(e) for e in p["energy_total"]))
 fig, lines = shell_vs_continuum(out, t10, ["tip_uy_axis"], "", scale=1.0, unit="m")
 lines.insert(0, "peak %.5f m = %.4f x the Timoshenko static deflection %.5f m" % (peak, peak / static, static))
 ax = fig.axes[0]

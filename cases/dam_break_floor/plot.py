@@ -14,6 +14,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 a, g = 0.05715, 9.81
@@ -71,6 +72,14 @@ for o in outs:
     best = min(delays)
     a0 = p["fluid_area"][0]
     drift = [100 * (x / a0 - 1) for x in p["fluid_area"]]
+    if o == out:
+        record("front_rms", rz)
+        record("height_rms", rh)
+        record("front_rms_delayed", best[0])
+        record("best_delay", 1e-3 * best[1])
+        record("area_drift_end", drift[-1] / 100)
+        record("area_drift_max", max(abs(d) for d in drift) / 100)
+        record("t_end", p["time"][-1])
     print("%s: front RMS with the computed front delayed by the best-fitting release delay: %.3f at %d ms"
           % (o, best[0], best[1]))
     print("%s (%s): ran to t = %.4f s (T = %.2f); front RMS in Z for T <= 3: %.3f (%d of %d points); "

@@ -9,6 +9,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, read_particle_snapshots, plot_particle_snapshots
 
 out = out_dir_from_argv("out/dam_break_obstacle")
@@ -20,6 +21,11 @@ wet = next((tt for tt, x in zip(t, p["p_right_wall"]) if x != 0.0), float("nan")
 a0 = p["fluid_area"][0]
 drift = [100 * (x / a0 - 1) for x in p["fluid_area"]]
 i03 = next(i for i, tt in enumerate(t) if tt >= min(0.3, t[-1]))
+record("t_end", t[-1])
+record("jet_at_wall", hit)
+record("wall_wet", wet)
+record("area_drift_end", drift[-1] / 100)
+record("area_drift_max", max(abs(d) for d in drift) / 100)
 print("ran to t = %.3f s; jet reaches the right wall (largest x >= W - 1.5 h) at %.4f s; right-wall pressure "
       "first non-zero at %.4f s (issue: 0.30-0.35 s); area drift at 0.3 s %+.2f %%, at the end %+.2f %%, "
       "max |drift| %.2f %%" % (t[-1], hit, wet, drift[i03], drift[-1], max(abs(d) for d in drift)))

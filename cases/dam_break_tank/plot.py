@@ -8,6 +8,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/dam_break_tank")
@@ -48,6 +49,13 @@ best = min(((rms_shifted(ref["T"], ref["Z"], 1e-3 * k), 1e-3 * k) for k in range
 best2 = min(((rms_shifted(dsph["T_nondim"], dsph["x_tip_over_L"], 1e-3 * k), 1e-3 * k) for k in range(0, 51)))
 a0 = p["fluid_area"][0]
 drift = [100 * (a / a0 - 1) for a in p["fluid_area"]]
+record("front_rms_pysph", rms)
+record("front_rms_dualsphysics", rms2)
+record("impact", impact)
+record("front_rms_delayed_pysph", best[0])
+record("best_delay_pysph", best[1])
+record("area_drift_end", drift[-1] / 100)
+record("area_drift_max", max(abs(d) for d in drift) / 100)
 print("front RMS against the DualSPHysics transcription %.3f" % rms2)
 print("front RMS with the computed front delayed by the best-fitting release delay: %.3f at %.0f ms (pysph), "
       "%.3f at %.0f ms (DualSPHysics)" % (best[0], 1e3 * best[1], best2[0], 1e3 * best2[1]))

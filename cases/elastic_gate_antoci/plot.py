@@ -10,6 +10,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, coupling_lines, rms_against, antoci_solutions, ANTOCI_SOLUTIONS
 
 out = out_dir_from_argv("out/elastic_gate_antoci")
@@ -27,12 +28,15 @@ RIGHT = {"x": "tip_right_ux", "y": "tip_right_uy"}
 for comp, col in (("x", "tip_ux"), ("y", "tip_uy")):
     pts = [(tr, ur) for c, tr, ur in zip(ref["component"], ref["time"], ref["displacement"]) if c == comp and tr <= t[-1]]
     series[comp] = pts
+    record(col + "_rms_experiment", rms_against(t, p[col], pts))
     lines.append("%s: RMS error %.1f mm over %d experimental points (largest measured %.1f mm)" %
                  (col, 1e3 * rms_against(t, p[col], pts), len(pts), 1e3 * max(abs(u) for _, u in pts)))
     ncol = RIGHT[comp] if RIGHT[comp] in p else col
     if ncol != col:
         lines.append("%s (downstream corner): RMS error %.1f mm over the experimental points" %
                      (ncol, 1e3 * rms_against(t, p[ncol], pts)))
+    for src, _ in ANTOCI_SOLUTIONS:
+        record("%s_rms_%s" % (ncol, src), rms_against(t, p[ncol], numerical[(src, comp)]))
     errs = ["%s %.1f" % (src, 1e3 * rms_against(t, p[ncol], numerical[(src, comp)])) for src, _ in ANTOCI_SOLUTIONS]
     lines.append("%s: RMS difference from the published solutions [mm]: %s" % (ncol, ", ".join(errs)))
 lines += coupling_lines(out)

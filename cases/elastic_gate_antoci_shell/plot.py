@@ -9,6 +9,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
+from claims_record import record
 from lagfsi_post import (read_csv, out_dir_from_argv, save, shell_vs_continuum, coupling_lines, rms_against,
                          antoci_solutions, ANTOCI_SOLUTIONS)
 
@@ -21,9 +22,12 @@ numerical = antoci_solutions(here, p["time"][-1])
 fig, lines = shell_vs_continuum(out, t10, ["tip_ux", "tip_uy"], "")
 for ax, comp, col in zip(fig.axes, ("x", "y"), ("tip_ux", "tip_uy")):
     pts = [(tr, ur) for c, tr, ur in zip(ref["component"], ref["time"], ref["displacement"]) if c == comp and tr <= p["time"][-1]]
+    record(col + "_rms_experiment", rms_against(p["time"], p[col], pts))
     lines.append("%s: RMS error against the experiment %.1f mm over %d points" %
                  (col, 1e3 * rms_against(p["time"], p[col], pts), len(pts)))
     ncol = col.replace("tip_", "tip_right_") if col.replace("tip_", "tip_right_") in p else col
+    for src, _ in ANTOCI_SOLUTIONS:
+        record("%s_rms_%s" % (ncol, src), rms_against(p["time"], p[ncol], numerical[(src, comp)]))
     errs = ["%s %.1f" % (src, 1e3 * rms_against(p["time"], p[ncol], numerical[(src, comp)])) for src, _ in ANTOCI_SOLUTIONS]
     lines.append("%s: RMS difference from the published solutions [mm]: %s" % (ncol, ", ".join(errs)))
     ax.plot([a for a, _ in pts], [1e3 * b for _, b in pts], "ko", ms=4, label="Antoci et al. 2007 (experiment)")

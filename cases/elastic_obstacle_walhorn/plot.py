@@ -12,6 +12,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, coupling_lines, peak, interp
 
 out = out_dir_from_argv("out/elastic_obstacle_walhorn")
@@ -35,12 +36,15 @@ def rms(pts, tt, uu, t_max):
 tp, up = peak(t, ux)
 trp, urp = peak(ref["time"], ref["tip_ux"])
 e_all, t_end = rms(SOURCES[0][2], t, ux, t[-1])
+record("peak", up)
+record("peak_time", tp)
 lines = ["tip_ux: RMS difference to Idelsohn et al. 2008 %.1f mm over 0-%.2f s; peak %.1f mm at %.3f s "
          "(reference %.1f mm at %.3f s)" % (1e3 * e_all, t_end, 1e3 * up, tp, 1e3 * urp, trp)]
 for t_max in (0.45, t[-1]):
     diffs = []
     for src, _, pts in SOURCES:
         e, t_last = rms(pts, t, ux, t_max)
+        record("rms_%s_%s" % (src, "045" if t_max == 0.45 else "end"), e)
         diffs.append("%s %.1f (to %.2f s)" % (src, 1e3 * e, t_last))
     lines.append("tip_ux: RMS difference to each published solution [mm]: %s" % ", ".join(diffs))
 # The published solutions among themselves: each against the mean of the others on a common grid.

@@ -10,6 +10,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, coupling_lines, peak
 
 out = out_dir_from_argv("out/flexible_tank")
@@ -29,6 +30,11 @@ after = [(ti, ui) for ti, ui in zip(t, ux) if ti >= 0.2]
 mean = sum(u for _, u in after) / len(after) if after else float("nan")
 lines.append("tip_ux: first peak %.2f mm at %.3f s; mean over 0.2-%.1f s %.2f mm (static beam theory, water "
              "load only: %.2f mm)" % (1e3 * up, tp, t[-1], 1e3 * mean, 1e3 * w_static))
+record("first_peak", up)
+record("first_peak_time", tp)
+record("mean_after_0.2", mean)
+record("mean_over_beam_theory", mean / w_static)
+record("peak_over_beam_theory", up / w_static)
 trough = min(((ti, ui) for ti, ui in zip(t, ux) if tp < ti <= tp + 0.3), key=lambda x: x[1], default=None)
 if trough:
     lines.append("first trough after the peak: %.2f mm at %.3f s" % (1e3 * trough[1], trough[0]))

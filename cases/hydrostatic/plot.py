@@ -7,12 +7,16 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/hydrostatic")
 p = read_csv(os.path.join(out, "probes.csv"))
 pref = 1000 * 9.81 * 0.2
 a0 = p["fluid_area"][0]
+record("p_bottom_end", p["p_bottom"][-1])
+record("kinetic_energy_max", max(p["kinetic_energy"]))
+record("area_drift", p["fluid_area"][-1] / a0 - 1)
 print("bottom pressure at the end %.2f Pa (rho g H = %.2f, %+.3f %%); max kinetic energy %.3e J; area drift %+.4f %%"
       % (p["p_bottom"][-1], pref, 100 * (p["p_bottom"][-1] / pref - 1), max(p["kinetic_energy"]),
          100 * (p["fluid_area"][-1] / a0 - 1)))

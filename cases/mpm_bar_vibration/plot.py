@@ -10,6 +10,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/mpm_bar_vibration")
@@ -23,6 +24,8 @@ ups = [t[i - 1] + (t[i] - t[i - 1]) * (-u[i - 1]) / (u[i] - u[i - 1]) for i in r
 period = (ups[-1] - ups[0]) / (len(ups) - 1) if len(ups) > 1 else float("nan")
 e0 = p["total"][0]
 dev = max((abs(e / e0 - 1) for e in p["total"]))
+record("period", period)
+record("energy_deviation", dev)
 lines = ["period %.4f s (analytic %.4f s, %+.3f %%); total energy within %.3f %% of its initial value "
          "%.5f J/m (analytic rho v0^2 L/4 x height = %.5f)" %
          (period, 2 * math.pi / omega, 100 * (period * omega / (2 * math.pi) - 1), 100 * dev, e0,

@@ -9,6 +9,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/mpm_column_selfweight")
@@ -20,6 +21,9 @@ ua = [-(rho * g / E) * (H * z - z * z / 2) for z in Z]
 sa = [-rho * g * (H - z) for z in Z]
 top = max(range(len(Z)), key=lambda i: Z[i])
 s_err = max(abs(s - a) for s, a in zip(c["syy"], sa)) / (rho * g * H)
+record("settlement", u[top])
+record("settlement_analytic", ua[top])
+record("stress_error", s_err)
 lines = ["top particle settlement %.4e m (analytic %.4e m, %+.3f %%); largest stress error %.2f %% of rho g H" %
          (u[top], ua[top], 100 * (u[top] / ua[top] - 1), 100 * s_err)]
 print("\n".join(lines))

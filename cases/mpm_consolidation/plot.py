@@ -9,6 +9,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, interp
 
 out = out_dir_from_argv("out/mpm_consolidation")
@@ -22,6 +23,7 @@ U = [1 - pm / p0 for pm in p["p_mean"]]
 lines = []
 for T in (0.05, 0.197, 0.5, 0.848):
     u, ua = interp(T, tv, U), interp(T, ref["Tv"], ref["U_avg"])
+    record("U_%g" % T, u)
     lines.append("Tv = %.3f: U = %.4f (Terzaghi %.4f, %+.2f %%)" % (T, u, ua, 100 * (u / ua - 1)))
 print("\n".join(lines))
 fig, ax = plt.subplots(figsize=(8, 5))

@@ -11,6 +11,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, interp
 
 out = out_dir_from_argv("out/mpm_dam_earthquake")
@@ -29,6 +30,11 @@ def mean_over(values, a, b):
 # mean over the free vibration (80-90 s) minus the mean over the end of the static phase (15-20 s).
 perm = {col: mean_over(rel(col), t_eq_end, t[-1]) - mean_over(rel(col), t_static - 5, t_static)
         for col in ("crest_ux", "slope_h34_ux", "slope_h12_ux", "slope_h14_ux")}
+record("static_settlement", -interp(t_static, t, p["crest_uy"]))
+record("amplification", max(abs(a) for a in p["crest_ax"]) / max(abs(a) for a in p["base_ax"]))
+record("peak_crest_acceleration", max(abs(a) for a in p["crest_ax"]))
+for col in perm:
+    record("permanent_" + col, perm[col])
 lines.append("static crest settlement %.2f m; peak base acceleration %.2f m/s^2, peak crest acceleration %.2f m/s^2 "
              "(amplification %.2f)" % (-interp(t_static, t, p["crest_uy"]), max(abs(a) for a in p["base_ax"]),
                                       max(abs(a) for a in p["crest_ax"]),

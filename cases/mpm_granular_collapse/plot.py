@@ -13,6 +13,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/mpm_granular_collapse")
@@ -37,6 +38,9 @@ exp_end = next(x0 + (x1 - x0) * (z0 - 0.005) / (z0 - z1)
                for x0, z0, x1, z1 in zip(ref["x_m"], ref["z_m"], ref["x_m"][1:], ref["z_m"][1:]) if z0 >= 0.005 > z1)
 with open(os.path.join(out, "summary.json")) as f:
     s = json.load(f)
+record("surface_rms", rms)
+record("deposit_end", max(thick) + 0.005)
+record("last_particle", max(x))
 lines = ["final free surface RMS error %.2f mm over %d experimental points; deposit >= 5 mm thick to x = %.3f m "
          "(experiment: %.3f m); last particle at %.3f m; %.1f s (%d threads)" %
          (1e3 * rms, len(sim), max(thick) + 0.005, exp_end, max(x), s["wall_time"], s["threads"])]

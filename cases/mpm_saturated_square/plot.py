@@ -10,6 +10,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/mpm_saturated_square")
@@ -24,6 +25,9 @@ pc = [sum(rows[r]) / len(rows[r]) for r in centres]
 yc = [(r + 0.5) * h for r in centres]
 err = max(abs(a - gw * (H - y)) for a, y in zip(pc, yc)) / (gw * H)
 base = pc[0] + (pc[0] - pc[1]) / 2
+record("cell_centre_error", err)
+record("base_extrapolated", base)
+record("base_particle", p["p_base"][-1])
 lines = ["cell-centre pore pressure within %.2f %% of gamma_w H of hydrostatic; base (extrapolated) %.0f Pa "
          "(hydrostatic %.0f Pa); base control particle (second row) %.0f Pa" % (100 * err, base, gw * H, p["p_base"][-1])]
 print("\n".join(lines))

@@ -9,6 +9,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
 
 out = out_dir_from_argv("out/sloshing_forced")
@@ -40,9 +41,12 @@ lines = []
 for col in ("eta_left", "eta_right"):
     r3, pk3 = rel_rms(col, min(3.0, t_end))
     ra, pka = rel_rms(col, t_end)
+    record(col + "_rms_3s", r3)
+    record(col + "_rms_end", ra)
     lines.append("%s: RMS error / linear peak %.3f over 0-3 s (peak %.1f mm), %.3f over 0-%.1f s" %
                  (col, r3, 1e3 * pk3, ra, t_end))
 a0 = p["fluid_area"][0]
+record("area_drift_max", max(abs(a / a0 - 1) for a in p["fluid_area"]))
 lines.append("area drift at the end %+.3f %% (max |drift| %.3f %%)" %
              (100 * (p["fluid_area"][-1] / a0 - 1), max(abs(100 * (a / a0 - 1)) for a in p["fluid_area"])))
 print("\n".join(lines))

@@ -8,6 +8,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, last_period_stats
 
 out = out_dir_from_argv("out/sloshing_free")
@@ -16,6 +17,9 @@ T1 = 2 * math.pi / math.sqrt(g * math.pi / L * math.tanh(math.pi / L * d))
 p = read_csv(os.path.join(out, "probes.csv"))
 s = last_period_stats(p["time"], p["eta_left"])
 a0 = p["eta_left"][0] - d
+record("period", 1 / s["frequency"])
+record("amplitude_ratio", s["amplitude"] / a0)
+record("periods", s["periods"])
 print("period %.5f s (linear theory %.5f s, %+.2f %%); amplitude after %d periods %.5f m (initial %.5f m, %+.2f %%)"
       % (1 / s["frequency"], T1, 100 * (1 / s["frequency"] / T1 - 1), s["periods"], s["amplitude"], a0,
          100 * (s["amplitude"] / a0 - 1)))

@@ -10,6 +10,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, read_particle_snapshots, plot_particle_snapshots
 
 out = out_dir_from_argv("out/sloshing_viscous")
@@ -26,6 +27,11 @@ try:
         wall, status = s["wall_time"], s["status"]
 except (OSError, KeyError, ValueError):
     status = "?"
+record("t_end", t[-1])
+record("area_drift_max", max(abs(d) for d in drift) / 100)
+record("kinetic_energy_peak", kmax)
+record("kinetic_energy_final", ke[-1])
+record("eta_left_end", p["eta_left"][-1])
 tail = [k for tt, k in zip(t, ke) if tt >= t[-1] - 0.5]
 print("%s to t = %.3f s in %.0f s of wall time; area drift at the end %+.3f %%, max |drift| %.3f %%; kinetic "
       "energy: peak %.3f J, mean over the last 0.5 s %.3e J (%.1e of the peak), final %.3e J; elevation left/right "
@@ -46,6 +52,7 @@ for i in range(1, len(e) - 1):
             continue
         peaks.append(t[i])
 period = (peaks[-1] - peaks[0]) / (len(peaks) - 1) if len(peaks) > 1 else float("nan")
+record("period", period)
 print("first-mode period from %d left-wall maxima: %.3f s; linear theory %.3f s (%+.1f %%)"
       % (len(peaks), period, T_lin, 100 * (period / T_lin - 1)))
 

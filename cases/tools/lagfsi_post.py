@@ -6,6 +6,8 @@ import os
 import re
 import sys
 
+from claims_record import record
+
 
 def read_csv(path):
     """Reads a CSV with a header row (lines starting with '#' skipped) into a dict of float lists."""
@@ -113,9 +115,13 @@ def coupling_lines(out_dir):
              (s["case"], s["steps"], c.get("coupled_steps", 0), c.get("iterations_mean", 0.0),
               c.get("iterations_max", 0), c.get("residual_max", 0.0), c.get("restarts", 0), s["wall_time"],
               s["threads"])]
+    record("fsi_iterations_mean", c.get("iterations_mean", 0.0))
+    record("fsi_iterations_max", c.get("iterations_max", 0))
     log = read_csv(os.path.join(out_dir, "log.csv"))
     area = log["fluid_area"]
     if area and area[0] > 0:
+        record("area_drift_end", area[-1] / area[0] - 1)
+        record("area_drift_max", max((a / area[0] - 1 for a in area), key=abs))
         lines.append("fluid area drift: %+.2f %% at the end, largest %+.2f %%" %
                      (100 * (area[-1] / area[0] - 1), max((100 * (a / area[0] - 1) for a in area), key=abs)))
     return lines
@@ -192,6 +198,9 @@ def shell_vs_continuum(out_shell, out_t10, columns, title, scale=1e3, unit="mm",
             pk = max(abs(v) for _, _, v in pairs)
             worst = max(pairs, key=lambda x: abs(x[1] - x[2]))
             rms = math.sqrt(sum((u - v) ** 2 for _, u, v in pairs) / len(pairs))
+            record(col + "_max_diff", abs(worst[1] - worst[2]) / pk)
+            record(col + "_rms_diff", rms / pk)
+            record(col + "_t10_peak", pk)
             lines.append("%s: T10 peak %.4g %s; max |shell - T10| = %.2f %% of the peak (at t = %.4g s), RMS %.2f %%%s" %
                          (col, scale * pk, unit, 100 * abs(worst[1] - worst[2]) / pk, worst[0], 100 * rms / pk,
                           "" if t_max is None else " (t <= %g s)" % t_max))

@@ -7,6 +7,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tools"))
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, last_period_stats
 
 out = out_dir_from_argv("out/turek_csm3")
@@ -22,6 +23,8 @@ for ax, key, q in zip(axes, ("tip_ux", "tip_uy"), ("ux_A", "uy_A")):
     ax.axhline(m, color="k", ls="--", lw=0.8, label="Turek & Hron mean")
     ax.axhspan(m - a, m + a, color="gray", alpha=0.15, label="Turek & Hron mean +- amplitude")
     if s:
+        for k in ("mean", "amplitude", "frequency"):
+            record("%s_%s" % (q, k), s[k])
         print("%s: mean %.4e (ref %.4e, %+.2f %%), amplitude %.4e (ref %.4e, %+.2f %%), frequency %.4f Hz (ref %.4f, %+.2f %%)"
               % (q, s["mean"], m, 100 * (s["mean"] / m - 1), s["amplitude"], a, 100 * (s["amplitude"] / a - 1),
                  s["frequency"], f, 100 * (s["frequency"] / f - 1)))

@@ -98,12 +98,17 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
       peak = c["tip_ux"][i];
       t_peak = c["time"][i];
     }
-  EXPECT_NEAR(peak, 0.0483, 0.1 * 0.0483);
-  EXPECT_NEAR(t_peak, 0.260, 0.04);
-  EXPECT_LE(rms_against(c, "tip_ux", ref, 0.45), 0.008);
+  // Bounds (issue #17): the published solutions' own spread, as the README and expected.json state it: peaks
+  // 45.0-48.3 mm at 0.217-0.260 s (the peak within 2.5 % above the largest), and 3.5-5.3 mm RMS among
+  // themselves over 0-0.45 s.
+  EXPECT_GE(peak, 0.045);
+  EXPECT_LE(peak, 0.0495);
+  EXPECT_GE(t_peak, 0.217);
+  EXPECT_LE(t_peak, 0.260);
+  EXPECT_LE(rms_against(c, "tip_ux", ref, 0.45), 0.0053);
   const std::string others = "cases/elastic_obstacle_walhorn/reference/walhorn_numerical_tip_ux.csv";
   for (const std::string src : {"bogaers_2016", "liu_2013", "sun_2019"})
-    EXPECT_LE(rms_against(c, "tip_ux", reference(others, "time", "tip_ux", "", src), 0.45), 0.006) << src;
+    EXPECT_LE(rms_against(c, "tip_ux", reference(others, "time", "tip_ux", "", src), 0.45), 0.0053) << src;
   EXPECT_LE(check_coupling(r, 250), 5.0) << "IQN-IMVJ iterations per coupled step";
 }
 

@@ -22,11 +22,13 @@ double cantilever_timoshenko() {
   return P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * 0.5 * E * A);
 }
 
-TEST(CantileverStepLoad, StaticWithinTwoPercentOfTimoshenko) {
+// Bounds are the agreements the case READMEs state (cases/<case>/expected.json, issue #17); where this file runs a
+// reduced size, the full size is checked by the `cases` tier (ctest -L cases).
+TEST(CantileverStepLoad, StaticWithinHalfAPercentOfTimoshenko) {
   const Csv c = probes_of(run_case_file("cases/cantilever_step_load/case.json", "cantilever_static",
                                         {"analysis.type=static", "analysis.load_steps=1"}));
   const double tip = -c["tip_uy_axis"].back();
-  EXPECT_LT(rel_err(tip, cantilever_timoshenko()), 0.02) << "tip " << tip;
+  EXPECT_LT(rel_err(tip, cantilever_timoshenko()), 0.005) << "tip " << tip;  // README: +0.3 %, within 0.5 %
   // Equilibrium: the reaction at the clamp balances the load.
   EXPECT_NEAR(c["reaction_y"].back(), 5e6, 5e6 * 1e-6);
 }
@@ -36,7 +38,7 @@ TEST(CantileverStepLoad, UndampedPeakIsTwiceStatic) {
                                         {"analysis.end_time=0.0125"}));
   const auto& u = c["tip_uy_axis"];
   const double peak = -*std::min_element(u.begin(), u.end());
-  EXPECT_LT(rel_err(peak, 2 * cantilever_timoshenko()), 0.05) << "peak " << peak;
+  EXPECT_LT(rel_err(peak, 2 * cantilever_timoshenko()), 0.005) << "peak " << peak;  // README: within 0.5 %
   // Energy: Newmark (1/4, 1/2) conserves E_kin + E_strain - W_ext for this step load.
   double emax = 0, bmax = 0;
   for (size_t i = 0; i < c.rows(); ++i) {
@@ -61,24 +63,24 @@ TEST(ClampedBeamNonlinear, LinearStaticMatchesBeamTheory) {
                                          "bodies.0.loads.0.value=[0,-0.64]"}));
   const double expected = P * L * L * L / (192 * E * I);
   EXPECT_NEAR(expected, 5.4613e-3, 1e-6);  // the seed's number, scaled by 1/1000
-  EXPECT_LT(rel_err(-c["mid_uy"].back(), expected), 0.02) << c["mid_uy"].back();
+  EXPECT_LT(rel_err(-c["mid_uy"].back(), expected), 0.002) << c["mid_uy"].back();  // README: within 0.2 %
 }
 
 TEST(ClampedBeamNonlinear, NonlinearAmplitudeAboutSevenPercentOfLinear) {
   // First peak (about 1.1 ms): the seed reports the nonlinear amplitude is about 7 % of the linear one
-  // (linear dynamic peak = 2 x 5.4613 in). Accept 6-8 %.
+  // (linear dynamic peak = 2 x 5.4613 in). The README states 7.0 %, within 5 % of the seed's 7 %.
   const Csv c = probes_of(run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_nonlinear",
                                         {"analysis.end_time=1.5e-3"}));
   const auto& u = c["mid_uy"];
   const double ratio = -*std::min_element(u.begin(), u.end()) / (2 * 5.4613);
-  EXPECT_GT(ratio, 0.06);
-  EXPECT_LT(ratio, 0.08);
+  EXPECT_GT(ratio, 0.07 * 0.95);
+  EXPECT_LT(ratio, 0.07 * 1.05);
 }
 
 // ---------------------------------------------------------------- elastica_mattiasson
-TEST(ElasticaMattiasson, TipWithinOnePercentOfTable) {
+TEST(ElasticaMattiasson, TipWithinThreeHundredthsOfAPercentOfTable) {
   expect_tip_matches_mattiasson(probes_of(run_case_file("cases/elastica_mattiasson/case.json", "elastica")),
-                                "cases/elastica_mattiasson", 0.01);
+                                "cases/elastica_mattiasson", 3e-4);  // README: within 0.03 %
 }
 
 // ---------------------------------------------------------------- Turek & Hron CSM1 / CSM3
@@ -99,14 +101,17 @@ TurekRef turek(const std::string& case_name, const std::string& quantity) {
   throw std::runtime_error("no reference for " + case_name + " " + quantity);
 }
 
-TEST(TurekCsm1, StaticTipWithinOnePercent) {
+TEST(TurekCsm1, StaticTipWithinFiveHundredthsOfAPercent) {
   const Csv c = probes_of(run_case_file("cases/turek_csm1/case.json", "csm1"));
-  EXPECT_LT(rel_err(c["tip_ux"].back(), turek("CSM1", "ux_A").mean), 0.01) << c["tip_ux"].back();
-  EXPECT_LT(rel_err(c["tip_uy"].back(), turek("CSM1", "uy_A").mean), 0.01) << c["tip_uy"].back();
+  // README: within 0.05 % (-0.03 %, -0.02 %).
+  EXPECT_LT(rel_err(c["tip_ux"].back(), turek("CSM1", "ux_A").mean), 5e-4) << c["tip_ux"].back();
+  EXPECT_LT(rel_err(c["tip_uy"].back(), turek("CSM1", "uy_A").mean), 5e-4) << c["tip_uy"].back();
 }
 
 TEST(TurekCsm3, MeanAmplitudeFrequency) {
-  // CI size: dt = 0.01 s over 5 s (about 5 periods); the full case uses dt = 0.005 s over 10 s.
+  // CI size: dt = 0.01 s over 5 s (about 5 periods); the full case uses dt = 0.005 s over 10 s, and the `cases` tier
+  // checks it against the README's agreement (0.05 % on mean and amplitude, 0.6 % on the frequency). At this size
+  // the bounds are the issue's (2 %, 1 %): the coarser step lengthens the period.
   const Csv c = probes_of(run_case_file("cases/turek_csm3/case.json", "csm3",
                                         {"analysis.dt=0.01", "analysis.end_time=5.0"}));
   for (const auto& [col, q] : {std::pair{"tip_ux", "ux_A"}, std::pair{"tip_uy", "uy_A"}}) {

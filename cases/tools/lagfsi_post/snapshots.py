@@ -319,7 +319,7 @@ class Scene:
                 kind = d.point_data.get("kind", np.zeros(d.n_points))
                 tris = linear_triangles(d)
                 h = spacing(b, d, tris)
-                size = max((0.8 * h * pts_per_unit) ** 2, 0.5)
+                size = max(0.8 * h * pts_per_unit, 1.5 * 72.0 / ax.figure.dpi) ** 2
                 wall = kind == 1
                 if wall.any() and not any(o.role == "walls" and o.name == b.name + "_walls" for o in self.bodies):
                     arts.append(ax.scatter(x[wall], y[wall], s=size, c=WALL_GREY, lw=0, zorder=1))
@@ -382,7 +382,7 @@ class Scene:
                 arts.append(ax.add_collection(ec))
             else:  # MPM and other particle series
                 h = spacing(b, d)
-                size = max((0.9 * h * pts_per_unit) ** 2, 0.3)
+                size = max(1.25 * h * pts_per_unit, 1.5 * 72.0 / ax.figure.dpi) ** 2  # overlapping, >= 1.5 px
                 if v is not None:
                     arts.append(ax.scatter(x, y, s=size, c=v, cmap=self.cmap, norm=self.norm, lw=0, marker="s",
                                            zorder=6))
@@ -394,6 +394,7 @@ class Scene:
 def _points_per_unit(ax):
     """Typographic points per data unit along x of an axes whose limits and size are set."""
     fig = ax.figure
+    ax.apply_aspect()
     w_in = ax.get_position().width * fig.get_figwidth()
     x0, x1 = ax.get_xlim()
     return 72.0 * w_in / max(x1 - x0, 1e-30)
@@ -421,7 +422,10 @@ def bounds(bodies, walls, times):
             p = d.points[np.all(np.isfinite(d.points), axis=1)]
             if len(p) == 0:
                 continue
-            ext = p.min(axis=0), p.max(axis=0)
+            if b.role in ("fluid", "mpm", "dem") and len(p) >= 400:  # a few flying drops do not set the frame
+                ext = np.percentile(p, 0.25, axis=0), np.percentile(p, 99.75, axis=0)
+            else:
+                ext = p.min(axis=0), p.max(axis=0)
             if b.role == "dem" and "radius" in d.point_data:
                 r = float(np.max(d.point_data["radius"]))
                 ext = ext[0] - r, ext[1] + r
@@ -430,32 +434,52 @@ def bounds(bodies, walls, times):
         raise UserError("nothing to draw: every series is empty")
     size = np.maximum(hi - lo, 1e-9)
     m = 0.03 * max(size)
-    return [lo[0] - m, hi[0] + m, lo[1] - m, hi[1] + m]
+    box = [lo[0] - m, hi[0] + m, lo[1] - m, hi[1] + m]
+    # a very tall or very flat picture is widened (or heightened) about its centre to an aspect of 1:3 (3:1)
+    w, h = box[1] - box[0], box[3] - box[2]
+    if w < h / 3:
+        c = 0.5 * (box[0] + box[1])
+        box[0], box[1] = c - h / 6, c + h / 6
+    elif h < w / 6:
+        c = 0.5 * (box[2] + box[3])
+        box[2], box[3] = c - w / 12, c + w / 12
+    return box
 
 
 def colour_range(bodies, field, times, given):
-    """(vmin, vmax): --range, else the 0.5-99.5 percentiles of the values drawn at `times` (from 0 when all the
-    values are non-negative magnitudes)."""
-    if given:
-        return given
-    vals = []
-    for b in bodies:
-        for t in times:
+    """(vmin, vmax, extend): --range, else per frame the 0.5 and 99.5 percentiles of the values drawn at `times`,
+    then the 10th percentile of the lows and the 90th of the highs over the frames (a frame with a pressure spike
+    over the whole fluid does not set the scale); from 0 for magnitudes and non-negative fields. `extend` tells
+    the colour bar whether values lie beyond the range ("neither", "min", "max", "both")."""
+    lows, highs, dmin, dmax = [], [], np.inf, -np.inf
+    for t in times:
+        vals = []
+        for b in bodies:
             d = b.at(t)
             if d is None:
                 continue
             v = field_values(b, d, field)
             if v is not None and len(v):
                 vals.append(v[np.isfinite(v)])
-    if not vals or not sum(len(v) for v in vals):
-        return 0.0, 1.0
-    v = np.concatenate(vals)
-    lo, hi = np.percentile(v, [0.5, 99.5])
-    if lo >= 0 and (field in ("velocity", "displacement", "acceleration", "von_mises") or v.min() >= 0):
-        lo = 0.0
-    if hi <= lo:
-        hi = lo + max(abs(lo) * 1e-3, 1e-12)
-    return float(lo), float(hi)
+        v = np.concatenate(vals) if vals else np.zeros(0)
+        if len(v):
+            lo, hi = np.percentile(v, [0.5, 99.5])
+            lows.append(lo)
+            highs.append(hi)
+            dmin, dmax = min(dmin, v.min()), max(dmax, v.max())
+    if given:
+        lo, hi = given
+    elif not lows:
+        lo, hi = 0.0, 1.0
+    else:
+        lo, hi = float(np.percentile(lows, 10)), float(np.percentile(highs, 90))
+        if lo >= 0 and (field in ("velocity", "displacement", "acceleration", "von_mises") or dmin >= 0):
+            lo = 0.0
+        if hi <= lo:
+            hi = lo + max(abs(lo) * 1e-3, 1e-12)
+    below, above = bool(dmin < lo), bool(dmax > hi)
+    extend = "both" if below and above else "min" if below else "max" if above else "neither"
+    return float(lo), float(hi), extend
 
 
 def pick_times(all_times, requested, count):
@@ -490,7 +514,7 @@ def strip_layout(n, aspect):
         if rows > 1 and (rows - 1) * cols >= n:
             continue
         ratio = cols * aspect / rows
-        score = abs(np.log(ratio / 3.5)) + 0.05 * (rows * cols - n)
+        score = abs(np.log(ratio / 3.5)) + 0.3 * (rows * cols - n)
         if best is None or score < best[0]:
             best = (score, rows, cols)
     return best[1], best[2]
@@ -666,7 +690,8 @@ def run(argv):
     anim_t = [] if a.no_animation else frame_times(all_times, a.frames)
     every_t = sorted(set(snap_t) | set(anim_t))
     box = bounds(drawn, walls, every_t)
-    vmin, vmax = colour_range(drawn, field, every_t, a.vrange)
+    # the colour scale from up to 60 frames over the whole run, whatever is drawn
+    vmin, vmax, extend = colour_range(drawn, field, sorted(set(snap_t) | set(frame_times(all_times, 60))), a.vrange)
     norm = Normalize(vmin, vmax)
     scene = Scene(drawn, walls, field, norm, cmap, a.fluid)
     name = (case or {}).get("name") or os.path.basename(os.path.abspath(a.out_dir))
@@ -675,16 +700,18 @@ def run(argv):
     say = (lambda *m: None) if a.quiet else (lambda *m: print(*m))
     written = []
 
-    # One figure for the single pictures and the animation frames: about 640 px wide at the default dpi.
-    pw = 6.4 * 90.0 / a.dpi if aspect >= 1 else max(2.5, 4.6 * aspect) * 90.0 / a.dpi
+    # One figure for the single pictures and the animation frames: a plot of at most 6.4 x 5 in (sizes in inches:
+    # margins, plot, gap, colour bar, room for its labels).
+    pw = min(6.4, 5.0 * aspect)
     ph = pw / aspect
-    fig = plt.figure(figsize=(pw + 1.2 * 90.0 / a.dpi, ph + 0.6 * 90.0 / a.dpi), dpi=a.dpi)
-    W, H = fig.get_figwidth(), fig.get_figheight()
-    ax = fig.add_axes([0.45 / W, 0.3 / H * 90 / a.dpi, pw / W * 0.92, ph / H * 0.92])
-    cax = fig.add_axes([(0.45 + pw * 0.92 + 0.15 * 90 / a.dpi) / W, 0.3 / H * 90 / a.dpi,
-                        0.15 * 90 / a.dpi / W, ph / H * 0.92])
+    narrow = pw < 3.5
+    left, bottom, top, right = 0.6, 0.35, 0.65 if narrow else 0.4, 1.0
+    W, H = left + pw + 0.15 + 0.15 + right, bottom + ph + top
+    fig = plt.figure(figsize=(W, H), dpi=a.dpi)
+    ax = fig.add_axes([left / W, bottom / H, pw / W, ph / H])
+    cax = fig.add_axes([(left + pw + 0.15) / W, bottom / H, 0.15 / W, ph / H])
     sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
-    fig.colorbar(sm, cax=cax).set_label(label, fontsize=8)
+    fig.colorbar(sm, cax=cax, extend=extend).set_label(label, fontsize=8)
     cax.tick_params(labelsize=7)
     ax.set_xlim(box[0], box[1])
     ax.set_ylim(box[2], box[3])
@@ -694,7 +721,7 @@ def run(argv):
 
     def render(t):
         arts, shown = scene.draw(ax, t)
-        title.set_text("%s   t = %s s" % (name, _fmt_time(shown)))
+        title.set_text(("%s\nt = %s s" if narrow else "%s   t = %s s") % (name, _fmt_time(shown)))
         return arts, shown
 
     snap_dir = os.path.join(dest, "snapshots")
@@ -722,7 +749,7 @@ def run(argv):
     # The strip.
     n = len(snap_t)
     rows, cols = strip_layout(n, aspect)
-    panel_w = min(3.2, 13.0 / cols) if aspect >= 1 else min(2.4, 11.0 / cols)
+    panel_w = min(3.2, 13.0 / cols, 3.0 * aspect)
     panel_h = panel_w / aspect
     sfig, axes = plt.subplots(rows, cols, figsize=(cols * panel_w + 0.9, rows * (panel_h + 0.35) + 0.45),
                               squeeze=False, dpi=a.dpi)
@@ -749,11 +776,12 @@ def run(argv):
     top = axes.flat[0].get_position().y1
     bottom = axes.flat[(rows - 1) * cols].get_position().y0
     cb_ax = sfig.add_axes([1 - 0.75 / sfig.get_figwidth(), bottom, 0.12 / sfig.get_figwidth(), top - bottom])
-    sfig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), cax=cb_ax).set_label(label, fontsize=7)
+    sfig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), cax=cb_ax, extend=extend).set_label(
+        label, fontsize=7)
     cb_ax.tick_params(labelsize=6)
     sfig.suptitle("%s: %s" % (name, label), fontsize=9)
     strip = os.path.join(dest, "snapshots.png")
-    sfig.savefig(strip, dpi=a.dpi)
+    sfig.savefig(strip, dpi=a.dpi, bbox_inches="tight", pad_inches=0.08)
     plt.close(sfig)
     written.insert(0, strip)
 

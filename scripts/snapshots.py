@@ -3,6 +3,7 @@
 
 usage: scripts/snapshots.py OUTDIR [--field pressure|velocity|von_mises|damage|displacement|...]
                                    [--times T1,T2,...] [--count N] [--frames N] [--range VMIN,VMAX]
+                                   [--box XMIN,XMAX,YMIN,YMAX]
                                    [--fluid mesh|particles] [--cmap NAME] [--dpi D] [--out DIR]
                                    [--no-animation] [--no-mp4] [--no-state] [--quiet]
 

@@ -1,7 +1,8 @@
 """Pictures of a lagfsi output folder without ParaView: snapshots, a strip, an animation and a ParaView state.
 
 usage: scripts/snapshots.py OUTDIR [--field FIELD] [--times T1,T2,...] [--count N] [--frames N]
-                                   [--range VMIN,VMAX] [--fluid mesh|particles] [--cmap NAME] [--dpi D]
+                                   [--range VMIN,VMAX] [--box XMIN,XMAX,YMIN,YMAX] [--fluid mesh|particles]
+                                   [--cmap NAME] [--dpi D]
                                    [--out DIR] [--no-animation] [--no-mp4] [--no-state] [--quiet]
 
 Reads every <body>.pvd series of OUTDIR (lagfsi_post.vtkxml: no VTK module needed) and draws each body coloured
@@ -632,6 +633,8 @@ def parse_args(argv):
     p.add_argument("--count", type=int, default=5, help="number of snapshots evenly spaced over the run (default 5)")
     p.add_argument("--frames", type=int, default=60, help="largest number of animation frames (default 60)")
     p.add_argument("--range", dest="vrange", help="colour range VMIN,VMAX (default: 0.5-99.5 percentiles)")
+    p.add_argument("--box", help="drawn region XMIN,XMAX,YMIN,YMAX (default: everything drawn, a few flying drops "
+                   "excepted)")
     p.add_argument("--fluid", choices=("mesh", "particles"), default="mesh", help="fluid drawn as (default mesh)")
     p.add_argument("--cmap", default="viridis", help="matplotlib colour map (default viridis)")
     p.add_argument("--dpi", type=int, default=90, help="resolution of the pictures (default 90)")
@@ -645,6 +648,9 @@ def parse_args(argv):
         raise UserError("--count and --frames must be at least 1, --dpi at least 10")
     a.times = _floats(a.times, "--times") if a.times is not None else None
     a.vrange = tuple(_floats(a.vrange, "--range", 2)) if a.vrange is not None else None
+    a.box = _floats(a.box, "--box", 4) if a.box is not None else None
+    if a.box and (a.box[1] <= a.box[0] or a.box[3] <= a.box[2]):
+        raise UserError("--box: XMAX must be larger than XMIN and YMAX than YMIN")
     if a.vrange and a.vrange[1] <= a.vrange[0]:
         raise UserError("--range: VMAX must be larger than VMIN")
     return a
@@ -689,7 +695,7 @@ def run(argv):
     snap_t = pick_times(all_times, a.times, a.count)
     anim_t = [] if a.no_animation else frame_times(all_times, a.frames)
     every_t = sorted(set(snap_t) | set(anim_t))
-    box = bounds(drawn, walls, every_t)
+    box = a.box or bounds(drawn, walls, every_t)
     # the colour scale from up to 60 frames over the whole run, whatever is drawn
     vmin, vmax, extend = colour_range(drawn, field, sorted(set(snap_t) | set(frame_times(all_times, 60))), a.vrange)
     norm = Normalize(vmin, vmax)
@@ -749,7 +755,7 @@ def run(argv):
     # The strip.
     n = len(snap_t)
     rows, cols = strip_layout(n, aspect)
-    panel_w = min(3.2, 13.0 / cols, 3.0 * aspect)
+    panel_w = min(12.0 / cols, 3.0 * aspect, 6.0)
     panel_h = panel_w / aspect
     sfig, axes = plt.subplots(rows, cols, figsize=(cols * panel_w + 0.9, rows * (panel_h + 0.35) + 0.45),
                               squeeze=False, dpi=a.dpi)

@@ -508,14 +508,14 @@ def _fmt_time(t):
 
 
 def strip_layout(n, aspect):
-    """(rows, cols) for n panels of width/height `aspect`, aiming at a strip about 3.5 times as wide as high."""
+    """(rows, cols) for n panels of width/height `aspect`, aiming at a strip about 5 times as wide as high."""
     best = None
     for cols in range(1, n + 1):
         rows = -(-n // cols)
         if rows > 1 and (rows - 1) * cols >= n:
             continue
         ratio = cols * aspect / rows
-        score = abs(np.log(ratio / 3.5)) + 0.3 * (rows * cols - n)
+        score = abs(np.log(ratio / 5.0)) + 0.3 * (rows * cols - n)
         if best is None or score < best[0]:
             best = (score, rows, cols)
     return best[1], best[2]

@@ -8,13 +8,17 @@ usage: scripts/snapshots.py OUTDIR [--field FIELD] [--times T1,T2,...] [--count 
 Reads every <body>.pvd series of OUTDIR (lagfsi_post.vtkxml: no VTK module needed) and draws each body coloured
 by FIELD with one colour bar and equal axes: the fluid as its mesh (or its particles), solids as meshes with
 their outline, shells as lines, MPM particles as dots, DEM discs (.vtp with a `radius` field) as circles; walls
-(<fluid>_walls series, wall particles, MPM boundary segments) in grey. Vector fields are drawn by magnitude; the
-colour range is shared by all pictures (0.5-99.5 percentiles of the drawn frames unless --range is given).
+(<fluid>_walls series, wall particles, fluid walls and MPM boundary segments of resolved_case.json) in grey.
+Vector fields are drawn by magnitude. The colour range is shared by all pictures: --range, else from up to 60
+frames over the run (per frame the 0.5-99.5 percentiles; the 10th percentile of the lows, the 90th of the highs,
+so that one frame's spike does not set it; arrows on the colour bar when values lie beyond). The frame holds
+everything drawn (a few flying drops excepted) unless --box is given. Fast on long runs: only the chosen
+times and at most --frames animation frames are read.
 
 FIELD: pressure (fluid; MPM: mean stress, or pore pressure when saturated), velocity, displacement, von_mises
-(solids; MPM from the stress), damage (when a body writes it), or any other point field of a body; default:
-pressure when a fluid is present, else von_mises when a solid is, else velocity. Bodies without FIELD are drawn
-in a plain colour.
+(solids; MPM from the stress), damage (when a body writes it), or any other point field of a body. Default:
+pressure with a fluid, else von_mises with a solid, else displacement with a shell, else velocity. Bodies without
+FIELD are drawn in a plain colour.
 
 Writes into OUTDIR (or --out):
   snapshots/<field>_<k>_t<time>.png   one picture per chosen time (--times, else --count evenly spaced, default 5)
@@ -195,6 +199,8 @@ def default_field(bodies):
         return "pressure"
     if "solid" in roles:
         return "von_mises"
+    if "shell" in roles:
+        return "displacement"
     return "velocity"
 
 
@@ -625,16 +631,18 @@ def _floats(text, what, n=None):
 
 
 def parse_args(argv):
-    p = _Parser(prog=PROG, description=__doc__.split("\n\n")[0], add_help=True)
+    p = _Parser(prog=PROG, description=__doc__.split("\n\n", 2)[2], usage=__doc__.split("\n\n")[1][7:],
+                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("out_dir", metavar="OUTDIR", help="a lagfsi output folder (with <body>.pvd series)")
     p.add_argument("--field", help="colouring field (default: pressure with a fluid, else von_mises with a solid, "
-                   "else velocity)")
+                   "else displacement with a shell, else velocity)")
     p.add_argument("--times", help="comma-separated times of the snapshots (nearest outputs)")
     p.add_argument("--count", type=int, default=5, help="number of snapshots evenly spaced over the run (default 5)")
     p.add_argument("--frames", type=int, default=60, help="largest number of animation frames (default 60)")
-    p.add_argument("--range", dest="vrange", help="colour range VMIN,VMAX (default: 0.5-99.5 percentiles)")
-    p.add_argument("--box", help="drawn region XMIN,XMAX,YMIN,YMAX (default: everything drawn, a few flying drops "
-                   "excepted)")
+    p.add_argument("--range", dest="vrange", help="colour range VMIN,VMAX (default: from the values, see above); "
+                   "negative values as --range=-1,1")
+    p.add_argument("--box", help="drawn region XMIN,XMAX,YMIN,YMAX, negative values as --box=-0.1,1,0,1 "
+                   "(default: everything drawn, a few flying drops excepted)")
     p.add_argument("--fluid", choices=("mesh", "particles"), default="mesh", help="fluid drawn as (default mesh)")
     p.add_argument("--cmap", default="viridis", help="matplotlib colour map (default viridis)")
     p.add_argument("--dpi", type=int, default=90, help="resolution of the pictures (default 90)")

@@ -11,7 +11,7 @@ PKGS=(
   nlohmann-json3-dev
   libgtest-dev googletest
   libomp-dev
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy python3-pil
 )
 missing=()
 for p in "${PKGS[@]}"; do

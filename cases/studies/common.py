@@ -9,18 +9,17 @@ writes CSV tables and PNG charts, and takes the same options:
   --cases DIR   the case files (default <repo>/cases)
   --rerun       run again even when a run folder with the same command (and executable time stamp) already
                 holds a finished run
-Post-processing reuses cases/tools/lagfsi_post.py (read_csv, last_period_stats, interp, ...)."""
+Post-processing reuses cases/tools/lagfsi_post (read_csv, last_period_stats, interp, ...; the .pvd/.vtu reader
+lagfsi_post.vtkxml)."""
 import argparse
 import csv
 import json
 import math
 import os
 import shlex
-import struct
 import subprocess
 import sys
 import time
-import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -28,6 +27,7 @@ CASES = os.path.join(REPO, "cases")
 sys.path.insert(0, os.path.join(CASES, "tools"))
 import lagfsi_post  # noqa: E402  (read_csv, last_period_stats, interp, peak, coupling_lines, save)
 from lagfsi_post import read_csv  # noqa: E402
+from lagfsi_post.vtkxml import read_pvd, read_vtk  # noqa: E402  (the VTK XML reader shared with the pictures)
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -378,58 +378,27 @@ def pareto(points):
 # ------------------------------------------------------------------------------------------- VTU files
 
 def read_vtu(path):
-    """Reads a lagfsi .vtu (binary appended raw, zlib-compressed, UInt32 headers, as written by VTK's XML
-    writer) into {"points": [(x, y)], "connectivity": [...], "offsets": [...], point-data name: [...]}."""
-    import re
-    with open(path, "rb") as f:
-        data = f.read()
-    start = data.index(b"<AppendedData")
-    start = data.index(b"_", start) + 1
-    head = data[:start].decode("latin-1")
-    compressed = "vtkZLibDataCompressor" in head
-    out = {}
-    for m in re.finditer(r'<DataArray ([^>]*)>', head):
-        attrs = dict(re.findall(r'(\w+)="([^"]*)"', m.group(1)))
-        if attrs.get("format") != "appended":
-            continue
-        off = start + int(attrs["offset"])
-        typ = attrs["type"]
-        code, size = {"Float64": ("d", 8), "Float32": ("f", 4), "Int64": ("q", 8), "Int32": ("i", 4),
-                      "UInt8": ("B", 1), "UInt32": ("I", 4), "UInt64": ("Q", 8)}[typ]
-        if compressed:
-            nb, bs, last = struct.unpack_from("<III", data, off)
-            sizes = struct.unpack_from("<%dI" % nb, data, off + 12)
-            pos = off + 12 + 4 * nb
-            raw = b""
-            for s in sizes:
-                raw += zlib.decompress(data[pos:pos + s])
-                pos += s
-        else:
-            (nbytes,) = struct.unpack_from("<I", data, off)
-            raw = data[off + 4:off + 4 + nbytes]
-        vals = struct.unpack("<%d%s" % (len(raw) // size, code), raw)
-        name = attrs.get("Name", "")
-        if name == "Points":
-            out["points"] = [(vals[i], vals[i + 1]) for i in range(0, len(vals), 3)]
-        else:
-            out[name] = list(vals)
+    """Reads a lagfsi .vtu (lagfsi_post.vtkxml) into {"points": (n, 2) array, "connectivity": [...],
+    "offsets": [...], point-data name: array}."""
+    d = read_vtk(path)
+    out = {"points": d.points, "connectivity": d.connectivity, "offsets": d.offsets}
+    out.update(d.point_data)
     return out
 
 
 def pvd_files(out_dir, pvd_name):
     """(time, path) of every file of a .pvd series."""
-    import re
-    with open(os.path.join(out_dir, pvd_name)) as f:
-        txt = f.read()
-    return [(float(m.group(1)), os.path.join(out_dir, m.group(2)))
-            for m in re.finditer(r'timestep="([^"]+)"[^>]*file="([^"]+)"', txt)]
+    return read_pvd(os.path.join(out_dir, pvd_name))
 
 
 def detached_fluid_particles(vtu):
     """Fluid particles (kind 0) in no element of the fluid mesh of one .vtu (read_vtu)."""
-    used = set(vtu.get("connectivity", []))
-    kind = vtu.get("kind", [])
-    return sum(1 for i, k in enumerate(kind) if k == 0 and i not in used)
+    import numpy as np
+    kind = np.asarray(vtu.get("kind", []))
+    used = np.zeros(len(kind), dtype=bool)
+    conn = np.asarray(vtu.get("connectivity", []), dtype=np.int64)
+    used[conn[conn < len(kind)]] = True
+    return int(np.count_nonzero((kind == 0) & ~used))
 
 
 def cmdline(run):

@@ -1,9 +1,12 @@
-"""Small post-processing helpers shared by the case plot scripts (run with /usr/bin/python3)."""
+"""Post-processing of lagfsi output shared by the case plot scripts and the studies (run with /usr/bin/python3).
+
+This package: CSV, statistics and comparison helpers (here); the reader of the VTK XML output (.pvd, .vtu, .vtp;
+`lagfsi_post.vtkxml`, numpy only); pictures without ParaView (`lagfsi_post.snapshots`, the command
+scripts/snapshots.py). Scripts put cases/tools on sys.path and `import lagfsi_post`."""
 import csv
 import json
 import math
 import os
-import re
 import sys
 
 from claims_record import record
@@ -66,27 +69,21 @@ def write_generated_case(script, case, name="case.json"):
 
 def read_particle_snapshots(out_dir, pvd_name, times, tolerance):
     """Particle snapshots of a fluid series: for each requested time the output step nearest to it (skipped if
-    farther than `tolerance` or already taken) as (t, x, y, pressure, kind). Empty without the VTK module."""
+    farther than `tolerance` or already taken) as (t, x, y, pressure, kind). Empty when the series is missing."""
+    from .vtkxml import VtkReadError, read_pvd, read_vtk
     snaps = []
     try:
-        import vtk
-        from vtk.util.numpy_support import vtk_to_numpy
-        with open(os.path.join(out_dir, pvd_name)) as f:
-            pvd = f.read()
-        files = [(float(m.group(1)), m.group(2)) for m in re.finditer(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
-        for ts in times:
-            tt, name = min(files, key=lambda x: abs(x[0] - ts))
-            if abs(tt - ts) > tolerance or any(abs(tt - s[0]) < 1e-9 for s in snaps):
-                continue
-            r = vtk.vtkXMLUnstructuredGridReader()
-            r.SetFileName(os.path.join(out_dir, name))
-            r.Update()
-            g = r.GetOutput()
-            X = vtk_to_numpy(g.GetPoints().GetData())
-            snaps.append((tt, X[:, 0], X[:, 1], vtk_to_numpy(g.GetPointData().GetArray("pressure")),
-                          vtk_to_numpy(g.GetPointData().GetArray("kind"))))
-    except (ImportError, OSError):
-        pass
+        files = read_pvd(os.path.join(out_dir, pvd_name))
+    except VtkReadError:
+        return snaps
+    if not files:
+        return snaps
+    for ts in times:
+        tt, path = min(files, key=lambda x: abs(x[0] - ts))
+        if abs(tt - ts) > tolerance or any(abs(tt - s[0]) < 1e-9 for s in snaps):
+            continue
+        d = read_vtk(path)
+        snaps.append((tt, d.points[:, 0], d.points[:, 1], d.point_data["pressure"], d.point_data["kind"]))
     return snaps
 
 

@@ -19,6 +19,15 @@
 
 namespace lagfsi::dem {
 
+/// Where and how the crater is measured (dem_output.hpp, crater_profile).
+struct CraterSettings {
+  bool enabled = false;
+  double surface = 0;  ///< initial ground level (0 in the input: the top of the initial bed)
+  double bin = 0;      ///< bin width (0: 2 d_max)
+  double centre = 0;   ///< x of the crater's centre (default: the charge's x)
+  std::vector<double> offsets = {-0.05, 0.0, 0.05};  ///< where H1, H2, H3 are read (from the centre)
+};
+
 struct DemBody {
   std::string name;
   std::string file;     // case file (errors)
@@ -60,6 +69,9 @@ struct DemBody {
   // blast
   std::optional<Blast> blast;
   std::vector<double> blast_force;  // 2 per disc (current order)
+
+  bool csv = false;
+  CraterSettings crater;  // write <name>_discs.csv with the .vtp
 
   // settling stage: walls removed at its end
   std::vector<std::string> remove_after_settle;

@@ -180,8 +180,7 @@ void DemBody::compute_forces(const Vec& x, const Vec& v, double tt, double h, Ve
     const auto tb = Clock::now();
     blast_force.assign(2 * n, 0.0);
     blast->apply(x.data(), 3, discs.radius.data(), n, tt, blast_force);
-    if (track_energy)
-      for (Index p = 0; p < n; ++p) blast_work += h * (blast_force[2 * p] * v[3 * p] + blast_force[2 * p + 1] * v[3 * p + 1]);
+    for (Index p = 0; p < n; ++p) blast_work += h * (blast_force[2 * p] * v[3 * p] + blast_force[2 * p + 1] * v[3 * p + 1]);
     t_blast += since(tb);
   } else if (!blast_force.empty()) {
     blast_force.clear();

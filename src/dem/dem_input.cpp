@@ -10,6 +10,9 @@
 //   "neighbour": {"skin": 0 (auto: 0.5 r_max), "reorder": true}
 //   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors
 //   "blast": {}                    dem_blast.hpp (empty: none)
+//   "discs_csv": false             also write <name>_discs.csv at each output
+//   "crater": {}                   {"surface": 0 (top of the initial bed), "bin": 0 (2 d_max), "centre": x (default the
+//                                  charge's x), "offsets": [-0.05, 0, 0.05]}: crater.csv at each output (empty: none)
 //   "settle": {}                   {"time": T, "remove_walls": [names]}: settle under gravity for T before t = 0,
 //                                  then remove those walls and start from rest (empty: none)
 #include "dem_body.hpp"
@@ -64,7 +67,9 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   body.validate({{"name", "dem"}, {"type", "dem"}, {"material", nullptr}, {"mass", "disc"}, {"rotation", true},
                  {"contact", nullptr}, {"discs", nullptr}, {"walls", Json::array()}, {"time_step", Json::object()},
                  {"neighbour", Json::object()}, {"overlap_tolerance", 1e-3}, {"blast", Json::object()},
-                 {"settle", Json::object()}});
+                 {"settle", Json::object()}, {"discs_csv", false},
+                 {"crater", Json::object()}});
+  b.csv = body.boolean("discs_csv");
   b.name = body.identifier("name");
   b.file = ctx.case_file.string();
   Params mat = body.at("material");
@@ -153,6 +158,23 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
       bl.fail("position", "the charge (" + fmt(g.x()) + ", " + fmt(g.y()) + ") is inside the bed (discs span x " +
                               fmt(xmin) + " .. " + fmt(xmax) + ", y " + fmt(ymin) + " .. " + fmt(ymax) +
                               "): the blast model needs it above the surface");
+  }
+
+  Params cr = body.at("crater");
+  if (!cr.json().empty()) {
+    cr.validate({{"surface", 0.0}, {"bin", 0.0}, {"centre", b.blast ? b.blast->charge().x() : 0.0},
+                 {"offsets", Json::array({-0.05, 0.0, 0.05})}});
+    b.crater.enabled = true;
+    b.crater.surface = cr.number("surface");
+    if (b.crater.surface == 0) {
+      double top = -1e300;
+      for (Index p = 0; p < n; ++p) top = std::max(top, b.position(p).y() + D.radius[p]);
+      b.crater.surface = top;
+    }
+    b.crater.bin = cr.non_negative("bin");
+    b.crater.centre = cr.number("centre");
+    b.crater.offsets = cr.numbers("offsets");
+    if (b.crater.offsets.empty()) cr.fail("offsets", "at least one offset");
   }
 
   Params st = body.at("settle");

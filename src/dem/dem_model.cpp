@@ -22,7 +22,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 DemModel::DemModel(Params body, const CaseContext& ctx) : ctx_(ctx), body_(std::make_unique<DemBody>()) {
   settle_time_ = read_dem_body(std::move(body), ctx, *body_);
-  writer_ = std::make_unique<DemWriter>(ctx.out_dir);
+  writer_ = std::make_unique<DemWriter>(ctx.out_dir, body_->csv);
   if (!ctx.quiet)
     std::fprintf(stderr, "[%s] %zu discs, critical step %.4g s, sub-step %.4g s\n", body_->name.c_str(), body_->size(),
                  body_->dt_critical, body_->dt);

@@ -11,7 +11,8 @@
 //  - {"type": "ke_near", "at": [x, y], "count": 6}: the mean kinetic energy of the `count` discs nearest `at` at
 //    t = 0 (Sabatucci et al.'s probes at four depths), and a second column <name>_peak_time: the time of its
 //    largest value so far;
-//  - {"type": "front"}: the largest x + r; {"type": "height", "x": x, "band": b}: the largest y + r of the discs
+//  - {"type": "front", "skip": k}: the largest x + r, ignoring the k farthest discs (strays rolling away);
+//    {"type": "height", "x": x, "band": b}: the largest y + r of the discs
 //    whose centre lies within b of x (default b = 2 r_max).
 #include "dem_body.hpp"
 
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -40,6 +42,7 @@ class DemProbe final : public Probe {
   Vec2 at = Vec2::Zero();
   int count = 6;
   double x = 0, band = 0;
+  int skip = 0;
 
  private:
   const DemModel& m_;
@@ -94,6 +97,13 @@ std::vector<double> DemProbe::sample() const {
     }
     return {e, peak_time_};
   }
+  if (type_ == "front") {
+    std::vector<double> f(b.size());
+    for (size_t p = 0; p < b.size(); ++p) f[p] = b.state.x[3 * p] + b.discs.radius[p];
+    const size_t k = std::min<size_t>(skip, f.size() - 1);
+    std::nth_element(f.begin(), f.begin() + k, f.end(), std::greater<double>());
+    return {f[k]};
+  }
   double best = -std::numeric_limits<double>::infinity();
   for (size_t p = 0; p < b.size(); ++p) {
     const Vec2 c = b.position(static_cast<Index>(p));
@@ -117,10 +127,16 @@ std::unique_ptr<Probe> DemModel::make_probe(Params p) {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "kinetic"}});
     const std::string k =
         p.choice("kind", {"kinetic", "rotational", "elastic", "gravity", "dissipated", "blast_work", "balance"});
-    if (k != "kinetic" && k != "rotational" && k != "gravity") b.track_energy = true;
+    if (k == "elastic" || k == "dissipated" || k == "balance") b.track_energy = true;
     return std::make_unique<DemProbe>(*this, name, t, k);
   }
-  if (t == "contacts" || t == "max_contact_force" || t == "front") {
+  if (t == "front") {
+    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"skip", 0}});
+    auto probe = std::make_unique<DemProbe>(*this, name, t, "");
+    probe->skip = p.integer("skip", 0);
+    return probe;
+  }
+  if (t == "contacts" || t == "max_contact_force") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
     return std::make_unique<DemProbe>(*this, name, t, "");
   }

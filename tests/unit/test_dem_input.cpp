@@ -63,9 +63,9 @@ TEST(DemInput, TimeStepAboveCritical) {
   j["bodies"][0]["time_step"] = {{"dt", 1e-2}};
   expect_error("dt", j, "/bodies/0/time_step/dt", "critical");
   j["bodies"][0]["time_step"]["allow_above_critical"] = true;
-  j["analysis"]["end_time"] = 2e-2;
-  const Outcome o = run_json("dt_forced", j);  // forced: it runs (and may blow up, but does not crash)
-  EXPECT_TRUE(o.code == 0 || o.message.find("non-finite") != std::string::npos) << o.message;
+  j["analysis"]["end_time"] = 2e-4;
+  const Outcome o = run_json("dt_forced", j);  // forced: it runs (sub-steps no longer than the driver's 1e-4 s)
+  EXPECT_EQ(o.code, 0) << o.message;
 }
 
 TEST(DemInput, ChargeInsideTheBed) {

@@ -51,6 +51,7 @@ struct DemBody {
   std::vector<double> history;      // tangential spring of each pair
   std::vector<double> pair_force;   // 3 per pair: Fx, Fy on i, -ft (torque per unit radius)
   std::vector<std::uint8_t> pair_rupture;
+  std::vector<double> pair_roll;    // rolling-resistance torque on i (on j: minus it), when the law has one
   std::vector<double> x_build;      // 2 per disc: positions at the last build
   std::vector<Vec2> wall_offset_build;
   double skin = 0, r_max = 0, r_min = 0;

@@ -124,7 +124,7 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     c.validate({{"law", law}, {"kn", nullptr}, {"damping", "ratio"}, {"damping_ratio", 0.0}, {"restitution", 1.0},
                 {"gamma_n", 0.0}, {"kt_ratio", 2.0 / 7.0}, {"tangential_damping_ratio", 0.0}, {"gamma_t", 0.0},
                 {"friction", 0.0}, {"tangential", "coulomb"}, {"haff_werner_gamma", 100.0},
-                {"no_attraction", false}});
+                {"no_attraction", false}, {"rolling_friction", 0.0}});
     const double kn = c.positive("kn");
     const std::string d = c.choice("damping", {"ratio", "restitution", "viscous"});
     double zeta = 0, gamma_n = 0;
@@ -140,17 +140,21 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     }
     const double ztr = c.non_negative("tangential_damping_ratio");
     const double gt = c.non_negative("gamma_t");
-    return std::make_unique<LinearSpringDashpot>(kn, zeta, gamma_n, c.non_negative("kt_ratio"), ztr, gt,
-                                                 read_tangential(c, "coulomb"), c.boolean("no_attraction"));
+    auto law = std::make_unique<LinearSpringDashpot>(kn, zeta, gamma_n, c.non_negative("kt_ratio"), ztr, gt,
+                                                     read_tangential(c, "coulomb"), c.boolean("no_attraction"));
+    law->set_rolling(c.non_negative("rolling_friction"));
+    return law;
   }
   if (law == "hertz_mindlin") {
     c.validate({{"law", law}, {"restitution", 1.0}, {"friction", 0.0}, {"tangential", "coulomb"},
-                {"haff_werner_gamma", 100.0}, {"no_attraction", false}});
+                {"haff_werner_gamma", 100.0}, {"no_attraction", false}, {"rolling_friction", 0.0}});
     const double e = c.number("restitution");
     if (!(e > 0.01 && e <= 1)) c.fail("restitution", "must lie in (0.01, 1]");
     if (!(young > 0)) c.fail("law", "hertz_mindlin needs the body's material.young > 0");
-    return std::make_unique<HertzMindlin>(young, poisson, density, e, read_tangential(c, "coulomb"),
-                                          c.boolean("no_attraction"));
+    auto law = std::make_unique<HertzMindlin>(young, poisson, density, e, read_tangential(c, "coulomb"),
+                                              c.boolean("no_attraction"));
+    law->set_rolling(c.non_negative("rolling_friction"));
+    return law;
   }
   c.validate({{"law", law}, {"kn", nullptr}, {"damping_ratio", 0.01}, {"lambda", 50.0},
               {"bands", Json::array({0.1, 0.7})}, {"rupture", 0.7}, {"continuous", false}, {"friction", 0.2},

@@ -39,9 +39,10 @@ void pair_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
   std::uint8_t* rupt = b.pair_rupture.data();
   double* pe = Energy ? b.pair_elastic.data() : nullptr;
   double* pd = Energy ? b.pair_dissipated.data() : nullptr;
-  double dummy_history = 0;
   const bool history = law.has_history();
-  (void)dummy_history;
+  const bool rolling = law.rolling() > 0;
+  const double* inertia = b.discs.inertia.data();
+  double* roll = rolling ? b.pair_roll.data() : nullptr;
 #pragma omp parallel for schedule(static) if (np >= 4000)
   for (Index k = 0; k < np; ++k) {
     const Index i = pi[k], j = pj[k];
@@ -50,6 +51,7 @@ void pair_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
     if (d2 >= rs * rs) {
       pf[3 * k] = pf[3 * k + 1] = pf[3 * k + 2] = 0.0;
       if (history) hist[k] = 0.0;
+      if (rolling) roll[k] = 0.0;
       if constexpr (Energy) pe[k] = pd[k] = 0.0;
       continue;
     }
@@ -72,6 +74,10 @@ void pair_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
     pf[3 * k + 1] = f.fn * ny + f.ft * nx;
     pf[3 * k + 2] = -f.ft;
     if (f.rupture) rupt[k] = 1;
+    if (rolling) {
+      const double ii = inertia[i], ij = inertia[j];
+      roll[k] = law.rolling_torque(v[3 * i + 2] - v[3 * j + 2], f.fn, c.r_eff, ii * ij / (ii + ij), h);
+    }
     if constexpr (Energy) {
       pe[k] = f.elastic;
       pd[k] = f.dissipated;
@@ -93,6 +99,8 @@ void disc_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
   const bool blast = !b.blast_force.empty();
   const bool walls = !b.segments.empty();
   const bool history = law.has_history();
+  const bool rolling = law.rolling() > 0;
+  const double* roll = rolling ? b.pair_roll.data() : nullptr;
 #pragma omp parallel for schedule(static) if (n >= 2000)
   for (Index p = 0; p < n; ++p) {
     const double m = mass[p], r = rad[p];
@@ -103,6 +111,7 @@ void disc_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
       fx += s * pf[3 * k];
       fy += s * pf[3 * k + 1];
       tq += r * pf[3 * k + 2];
+      if (rolling) tq += s * roll[k];
     }
     if (walls) {
       double el = 0, dis = 0;
@@ -140,6 +149,7 @@ void disc_pass(DemBody& b, const Law& law, const double* x, const double* v, dou
         fx += wx;
         fy += wy;
         tq -= r * cf.ft;
+        if (rolling) tq += law.rolling_torque(v[3 * p + 2], cf.fn, r, b.discs.inertia[p], h);
         if (cf.rupture) b.discs.mark[p] = 1;
         el += cf.elastic;
         dis += cf.dissipated;
@@ -319,6 +329,7 @@ void DemBody::rebuild() {
   history = std::move(hist);
   pair_force.assign(3 * pairs.size(), 0.0);
   pair_rupture.assign(pairs.size(), 0);
+  if (law->rolling() > 0) pair_roll.assign(pairs.size(), 0.0);
   wall_row = std::move(wrow);
   wall_seg = std::move(wseg);
   wall_history = std::move(whist);

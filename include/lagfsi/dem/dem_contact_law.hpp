@@ -31,6 +31,10 @@
 ///    (then xi is reset to the spring length that gives the limit, as LAMMPS gran/*/history does);
 ///  - "haff_werner": ft = -min(mu |fn|, gamma_t m_eff |vt|) sign(vt), no history (Haff & Werner 1986);
 ///  - "none".
+/// Rolling resistance (optional, linear and Hertz-Mindlin laws, "rolling_friction" mu_r > 0; a constant-torque
+/// model, Ai, Chen, Rotter & Ooi 2011 type A): a torque M = -min(mu_r r_eff |fn|, I_eff |w_rel| / (2 dt))
+/// sign(w_rel) on i and -M on j, w_rel = w_i - w_j (w_i on a wall), I_eff = I_i I_j / (I_i + I_j); the cap keeps
+/// the torque from reversing w_rel within one step (no chatter at rest).
 #include <lagfsi/params.hpp>
 
 #include <cmath>
@@ -107,9 +111,19 @@ class ContactLaw {
   virtual double max_frequency(double m, double r, double inertia_factor, bool rotation) const = 0;
   const Tangential& tangential() const { return tangential_; }
   bool has_history() const { return tangential_.has_history(); }
+  /// Rolling friction coefficient mu_r (0: none).
+  double rolling() const { return rolling_; }
+  void set_rolling(double mu_r) { rolling_ = mu_r; }
+  /// The rolling-resistance torque on i for w_rel, normal force fn, effective inertia and step h.
+  inline double rolling_torque(double w_rel, double fn, double r_eff, double i_eff, double h) const {
+    if (w_rel == 0.0 || !(h > 0)) return 0.0;
+    const double m = std::min(rolling_ * r_eff * std::abs(fn), 0.5 * i_eff * std::abs(w_rel) / h);
+    return w_rel > 0 ? -m : m;
+  }
 
  protected:
   Tangential tangential_;
+  double rolling_ = 0;
 };
 
 /// Linear spring-dashpot with a Coulomb tangential spring (or Haff-Werner).

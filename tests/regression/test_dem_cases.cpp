@@ -79,6 +79,31 @@ TEST(DemCases, ParallelSweepIsDeterministic) {
   EXPECT_EQ(probes[0], probes[2]) << "1 and 2 threads differ (the sweep sums each disc's pairs in a fixed order)";
 }
 
+/// A floor moving up at 0.1 m/s (a wall with a velocity) hits a disc at rest, elastically: the disc leaves at
+/// 0.2 m/s (the wall's mass is infinite), and the wall's .vtp series follows the wall.
+TEST(DemCases, MovingWallPushesADisc) {
+  const fs::path dir = fresh_dir("dem_moving_wall");
+  const RunResult r = run_case_text(dir, R"({
+    "name": "dem_moving_wall",
+    "analysis": {"type": "dynamic", "dt": 1e-4, "end_time": 0.02},
+    "bodies": [{
+      "name": "disc", "type": "dem", "material": {"density": 2500},
+      "contact": {"law": "linear", "kn": 1e6, "damping": "restitution", "restitution": 1.0},
+      "discs": [{"type": "list", "discs": [[0.0, 0.0105, 0.01]]}],
+      "walls": [{"name": "piston", "points": [[-0.05, 0.0], [0.05, 0.0]], "velocity": [0.0, 0.1],
+                 "function": {"type": "ramp", "t0": 0.0, "t1": 1e-9}}],
+      "time_step": {"dt": 1e-6}
+    }],
+    "probes": [{"name": "vy", "type": "disc", "body": "disc", "id": 0, "quantity": "vy"}],
+    "output": {"every": 50}
+  })", "--quiet --threads 1");
+  const Csv c = probes_of(r);
+  ASSERT_GT(c.rows(), 10u);
+  std::printf("disc speed after the hit %.6f m/s\n", c["vy"].back());
+  EXPECT_NEAR(c["vy"].back(), 0.2, 0.002);
+  EXPECT_TRUE(fs::exists(r.out_dir / "disc_walls.pvd"));
+}
+
 /// cases/dem_column_collapse at half size (a 0.1 m column of discs r 1.5-2 mm, 0.5 s): the column collapses and
 /// comes to rest with a run-out in the band of the scalings and of the full case.
 TEST(DemCases, ColumnCollapseCi) {

@@ -6,6 +6,7 @@
 #include <lagfsi/dem/dem_contact_law.hpp>
 #include <lagfsi/dem/dem_neighbour_grid.hpp>
 #include <lagfsi/dem/dem_particles.hpp>
+#include <lagfsi/time_integrator.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -251,6 +252,37 @@ TEST(DemBlast, ShadowingLoadsTheNearestDiscOnly) {
   EXPECT_EQ(f[2], 0.0);
   EXPECT_EQ(f[3], 0.0);
   EXPECT_NEAR(f[1], -b.pressure(0.5, t) * b.exposed()[0], 1e-9);
+}
+
+// The non-allocating step of the shared central difference (time_integrator.hpp) that the DEM body uses equals
+// explicit_step() up to rounding, with the half-step velocity handed to the force.
+TEST(DemIntegrator, ExplicitStepIntoMatchesExplicitStep) {
+  const auto cd = make_central_difference();
+  const Vec k = (Vec(3) << 4.0, 9.0, 1.0).finished(), c = (Vec(3) << 0.1, 0.0, 0.2).finished();
+  const Vec inv_mass = (Vec(3) << 1.0, 0.5, 2.0).finished();
+  KinematicState a, b;
+  a.x = b.x = (Vec(3) << 1.0, -0.5, 0.2).finished();
+  a.v = b.v = (Vec(3) << 0.0, 0.3, -1.0).finished();
+  a.a = b.a = inv_mass.cwiseProduct(-k.cwiseProduct(a.x));
+  Vec f;
+  Vec v_seen;
+  for (int n = 0; n < 2000; ++n) {
+    cd->explicit_step([&](const Vec& x, const Vec& v, double) -> Vec { return Vec(-k.cwiseProduct(x) - c.cwiseProduct(v)); },
+                      inv_mass, 1e-3, a);
+    const Vec v_half = b.v + 0.5e-3 * b.a;
+    cd->explicit_step_into(
+        [&](const Vec& x, const Vec& v, double, Vec& out) {
+          v_seen = v;
+          out = -k.cwiseProduct(x) - c.cwiseProduct(v);
+        },
+        inv_mass, 1e-3, b, f);
+    ASSERT_LT((v_seen - v_half).norm(), 1e-14);
+  }
+  EXPECT_LT((a.x - b.x).norm(), 1e-12);
+  EXPECT_LT((a.v - b.v).norm(), 1e-12);
+  EXPECT_NEAR(a.t, b.t, 1e-12);
+  EXPECT_THROW(make_newmark()->explicit_step_into([](const Vec&, const Vec&, double, Vec&) {}, inv_mass, 1e-3, b, f),
+               std::logic_error);
 }
 
 }  // namespace

@@ -22,6 +22,11 @@
 /// form): is_explicit() is true, and the model calls explicit_step() instead:
 ///   x_{n+1} = x_n + dt v_n + dt^2/2 a_n,  a_{n+1} = M_L^{-1} F(x_{n+1}, v_n + dt a_n, t_{n+1}),
 ///   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
+/// explicit_step_into() is the same step without allocation, for particle models that take millions of
+/// small steps (DEM): the caller owns the force vector, the step works in place on the state, and the force
+/// callback receives the half-step velocity v_{n+1/2} = v_n + dt/2 a_n (what a dashpot or a tangential
+/// spring history uses). It equals explicit_step() up to rounding (v_{n+1} is formed as
+/// v_{n+1/2} + dt/2 a_{n+1}); the other integrators and explicit_step() are unchanged.
 ///
 /// References: Newmark (1959); Chung & Hulbert (1993), J. Appl. Mech. 60:371 (generalized-alpha with
 /// am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), gamma = 1/2 - am + af, beta = (1 - am + af)^2 / 4);
@@ -73,6 +78,14 @@ class TimeIntegrator {
   using ForceFunction = std::function<Vec(const Vec& x, const Vec& v, double t)>;
   virtual void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt,
                              KinematicState& s) const;
+
+  /// Explicit integrators only: the non-allocating form of explicit_step(). force(x_{n+1}, v_{n+1/2},
+  /// t_{n+1}, f) writes the out-of-balance force into f (sized like x by the step, reused from call to
+  /// call: no allocation once the size is set). In place: x_{n+1} = x_n + dt v_n + dt^2/2 a_n,
+  /// v_{n+1/2} = v_n + dt/2 a_n, a_{n+1} = inv_mass f, v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}.
+  using ForceIntoFunction = std::function<void(const Vec& x, const Vec& v, double t, Vec& f)>;
+  virtual void explicit_step_into(const ForceIntoFunction& force, const Vec& inv_mass, double dt,
+                                  KinematicState& s, Vec& f) const;
 };
 
 /// Newmark-beta (beta, gamma); beta = 1/4, gamma = 1/2 is the average-acceleration rule.

@@ -9,6 +9,10 @@ void TimeIntegrator::explicit_step(const ForceFunction&, const Vec&, double, Kin
   throw std::logic_error("explicit_step called on the implicit integrator '" + type() + "'");
 }
 
+void TimeIntegrator::explicit_step_into(const ForceIntoFunction&, const Vec&, double, KinematicState&, Vec&) const {
+  throw std::logic_error("explicit_step_into called on the implicit integrator '" + type() + "'");
+}
+
 namespace {
 
 /// Newmark-type family in position form; generalized-alpha adds the intermediate evaluation points.
@@ -93,6 +97,32 @@ class CentralDifference final : public TimeIntegrator {
     s.v += 0.5 * dt * (s.a + a_new);
     s.a = a_new;
     s.x = x_new;
+    s.t += dt;
+  }
+
+  void explicit_step_into(const ForceIntoFunction& force, const Vec& inv_mass, double dt, KinematicState& s,
+                          Vec& f) const override {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be positive and finite");
+    const Eigen::Index n = s.x.size();
+    if (f.size() != n) f.resize(n);
+    const double h = 0.5 * dt, h2 = 0.5 * dt * dt;
+    double* x = s.x.data();
+    double* v = s.v.data();
+    double* a = s.a.data();
+    const double* im = inv_mass.data();
+    // Element-wise loops: the same result for any thread count.
+#pragma omp parallel for schedule(static) if (n >= 60000)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      x[i] = x[i] + dt * v[i] + h2 * a[i];
+      v[i] += h * a[i];  // v_{n+1/2}
+    }
+    force(s.x, s.v, s.t + dt, f);
+    const double* fp = f.data();
+#pragma omp parallel for schedule(static) if (n >= 60000)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      a[i] = im[i] * fp[i];
+      v[i] += h * a[i];
+    }
     s.t += dt;
   }
 

@@ -1,0 +1,86 @@
+#pragma once
+/// @file dem/dem_model.hpp
+/// The Discrete Element Method body ("type": "dem"): 2D discs of unit depth (Cundall & Strack 1979) with
+/// contact laws, rigid polyline walls, gravity and an optional air-blast load, after the seed of Sabatucci et
+/// al. (CILAMCE 2013; shared/spec/004_dem.md).
+///
+/// The module (public headers in include/lagfsi/dem, the rest in src/dem), one concern per file:
+///  - discs and their generators (hex lattice, random pack, lists)    dem_particles.hpp, dem_particles.cpp
+///  - contact laws: linear spring-dashpot, Hertz-Mindlin, Sabatucci   dem_contact_law.hpp, dem_contact_law.cpp
+///  - neighbour search on a cell grid (half Verlet list, skin)        dem_neighbour_grid.hpp, dem_neighbour_grid.cpp
+///  - rigid polyline walls                                            dem_walls.hpp, dem_walls.cpp
+///  - the air-blast load with shadowing                               dem_blast.hpp, dem_blast.cpp
+///  - what the parts work on (discs, dofs, lists, counters)           src/dem/dem_body.hpp
+///  - the force sweep and the list maintenance                        dem_forces.cpp
+///  - reading the body from the case                                  dem_input.cpp
+///  - ParaView output, crater profile                                 dem_output.cpp
+///  - probes                                                          dem_probes.cpp
+///  - the PhysicsModel lifecycle                                      dem_model.cpp
+///
+/// Time: the shared explicit central difference (time_integrator.hpp, explicit_step_into: velocity Verlet,
+/// the damping and the tangential history take the half-step velocity), dofs (x, y, theta) per disc with
+/// inverse masses 1/m, 1/m, 1/I. The driver's step is split into n equal sub-steps no longer than the body's
+/// "time_step.dt" (default: "fraction" x the critical step); the critical step is 2/omega_max with omega_max
+/// = sqrt(k/m) of the stiffest contact of the lightest discs (ContactLaw::max_frequency); a dt above it is
+/// refused unless "allow_above_critical" is true.
+#include <lagfsi/case.hpp>
+#include <lagfsi/model.hpp>
+
+#include <memory>
+#include <string>
+
+namespace lagfsi {
+
+namespace dem {
+
+struct DemBody;
+class DemWriter;
+
+class DemModel final : public PhysicsModel {
+ public:
+  /// Reads the body and builds its discs, law, walls and lists; throws InputError for a bad body.
+  DemModel(Params body, const CaseContext& ctx);
+  ~DemModel() override;
+
+  std::string name() const override;
+  std::string type() const override { return "dem"; }
+  Index num_nodes() const override;     ///< the discs
+  Index num_elements() const override;  ///< the contacts
+  void initialize() override;
+  void predict(double t_new, double dt) override {
+    t_new_ = t_new;
+    dt_ = dt;
+  }
+  /// Advances the body over the driver's step in sub-steps; always converged, inner_iterations = sub-steps.
+  IterationReport solve_iteration() override;
+  void finalize_step() override {}
+  void write_output(double t) override;
+  std::unique_ptr<Probe> make_probe(Params p) override;
+  Json summary() const override;
+
+  const DemBody& body() const { return *body_; }
+  DemBody& body() { return *body_; }
+  /// Advances by one sub-step of length h (rebuilding the lists first when needed).
+  void substep(double h);
+  /// Total energy now minus the initial one and the blast work (0 for an exact, conservative run; the
+  /// dissipated energy counted).
+  double energy_balance() const;
+
+ private:
+  CaseContext ctx_;
+  std::unique_ptr<DemBody> body_;
+  std::unique_ptr<DemWriter> writer_;
+  double t_new_ = 0, dt_ = 0;
+  double settle_time_ = 0;
+  double wall_time_ = 0;
+};
+
+/// Reads a DEM body into `b` (dem_input.cpp). Returns the settling time (0: none).
+double read_dem_body(Params body, const CaseContext& ctx, DemBody& b);
+
+}  // namespace dem
+
+/// The DEM body's builder (registered as "dem" in model_registry(); also declared in case.hpp).
+std::unique_ptr<PhysicsModel> make_dem_model(Params body, const CaseContext& ctx);
+
+}  // namespace lagfsi

@@ -1,0 +1,196 @@
+// Reading a DEM body from the case file (include/lagfsi/dem/dem_model.hpp). Keys and defaults:
+//   "name", "type": "dem",
+//   "material": {"density" (required), "young": 0, "poisson": 0.3}    (young: Hertz-Mindlin only)
+//   "mass": "disc" | "sphere"      m = rho pi r^2 (unit depth), I = m r^2/2 | m = 4/3 rho pi r^3, I = 2/5 m r^2
+//   "rotation": true               integrate theta (false: 1/I = 0)
+//   "contact": {"law": ...}        dem_contact_law.hpp
+//   "discs": [generators]          dem_particles.hpp
+//   "walls": [polylines]           dem_walls.hpp
+//   "time_step": {"dt": 0 (auto), "fraction": 0.2, "allow_above_critical": false}
+//   "neighbour": {"skin": 0 (auto: 0.5 r_max), "reorder": true}
+//   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors
+//   "blast": {}                    dem_blast.hpp (empty: none)
+//   "discs_csv": false             also write <name>_discs.csv at each output
+//   "crater": {}                   {"surface": 0 (top of the initial bed), "bin": 0 (2 d_max), "centre": x (default the
+//                                  charge's x), "offsets": [-0.05, 0, 0.05]}: crater.csv at each output (empty: none)
+//   "settle": {}                   {"time": T, "remove_walls": [names]}: settle under gravity for T before t = 0,
+//                                  then remove those walls and start from rest (empty: none)
+#include "dem_body.hpp"
+
+#include <lagfsi/dem/dem_model.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace lagfsi::dem {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+/// Initial overlaps between discs, and between discs and walls, above tol x the smaller radius.
+void check_overlaps(Params body, DemBody& b, double tol) {
+  const Index n = static_cast<Index>(b.size());
+  NeighbourGrid g;
+  g.bin(b.state.x.data(), 3, n, 2 * b.r_max);
+  PairList l;
+  g.build(b.state.x.data(), 3, b.discs.radius.data(), n, 0.0, l);
+  for (size_t k = 0; k < l.size(); ++k) {
+    const Index i = std::min(l.i[k], l.j[k]), j = std::max(l.i[k], l.j[k]);
+    const double ov = b.discs.radius[i] + b.discs.radius[j] - (b.position(i) - b.position(j)).norm();
+    if (ov > tol * std::min(b.discs.radius[i], b.discs.radius[j]))
+      body.at("discs").at(b.discs.group[j]).fail(
+          "discs " + std::to_string(i) + " at (" + fmt(b.position(i).x()) + ", " + fmt(b.position(i).y()) + ") and " +
+          std::to_string(j) + " at (" + fmt(b.position(j).x()) + ", " + fmt(b.position(j).y()) + ") overlap by " +
+          fmt(ov) + " m, more than overlap_tolerance (" + fmt(tol) + ") times the smaller radius");
+  }
+  for (Index p = 0; p < n; ++p)
+    for (size_t w = 0; w < b.walls.size(); ++w)
+      for (size_t s = 0; s < b.walls[w].segments(); ++s) {
+        const Vec2 c = b.position(p);
+        const double ov = b.discs.radius[p] - (closest_on_segment(b.walls[w].a(s), b.walls[w].b(s), c) - c).norm();
+        if (ov > tol * b.discs.radius[p])
+          body.at("walls").at(w).fail("disc " + std::to_string(p) + " at (" + fmt(c.x()) + ", " + fmt(c.y()) +
+                                      ") overlaps this wall by " + fmt(ov) + " m");
+      }
+}
+
+}  // namespace
+
+double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
+  body.validate({{"name", "dem"}, {"type", "dem"}, {"material", nullptr}, {"mass", "disc"}, {"rotation", true},
+                 {"contact", nullptr}, {"discs", nullptr}, {"walls", Json::array()}, {"time_step", Json::object()},
+                 {"neighbour", Json::object()}, {"overlap_tolerance", 1e-3}, {"blast", Json::object()},
+                 {"settle", Json::object()}, {"discs_csv", false},
+                 {"crater", Json::object()}});
+  b.csv = body.boolean("discs_csv");
+  b.name = body.identifier("name");
+  b.file = ctx.case_file.string();
+  Params mat = body.at("material");
+  mat.validate({{"density", nullptr}, {"young", 0.0}, {"poisson", 0.3}});
+  const double rho = mat.positive("density"), young = mat.non_negative("young"), nu = mat.number("poisson");
+  if (!(nu > -1 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
+  const bool sphere = body.choice("mass", {"disc", "sphere"}) == "sphere";
+  b.rotation = body.boolean("rotation");
+  b.inertia_factor = sphere ? 0.4 : 0.5;
+  b.law = make_contact_law(body.at("contact"), young, nu, rho);
+  b.walls = read_walls(body.at("walls"), ctx.base_dir);
+  for (size_t w = 0; w < b.walls.size(); ++w) {
+    for (size_t s = 0; s < b.walls[w].segments(); ++s) b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
+    for (size_t v = 0; v < w; ++v)
+      if (b.walls[v].name == b.walls[w].name) body.at("walls").at(w).fail("name", "duplicate wall name");
+  }
+  b.gravity = ctx.gravity;
+
+  // discs
+  const auto specs = generate_discs(body.at("discs"));
+  const Index n = static_cast<Index>(specs.size());
+  b.state.x.resize(3 * n);
+  b.state.v.resize(3 * n);
+  b.state.a = Vec::Zero(3 * n);
+  b.inv_mass.resize(3 * n);
+  Discs& D = b.discs;
+  b.r_min = specs[0].r;
+  b.r_max = specs[0].r;
+  for (Index p = 0; p < n; ++p) {
+    const DiscSpec& s = specs[p];
+    const double m = sphere ? 4.0 / 3.0 * std::numbers::pi * rho * s.r * s.r * s.r : std::numbers::pi * rho * s.r * s.r;
+    D.radius.push_back(s.r);
+    D.mass.push_back(m);
+    D.inertia.push_back(b.inertia_factor * m * s.r * s.r);
+    D.id.push_back(p);
+    D.mark.push_back(0);
+    D.group.push_back(s.group);
+    b.state.x.segment<3>(3 * p) << s.x.x(), s.x.y(), 0.0;
+    b.state.v.segment<3>(3 * p) << s.v.x(), s.v.y(), s.w;
+    b.inv_mass.segment<3>(3 * p) << 1.0 / m, 1.0 / m, b.rotation ? 1.0 / D.inertia.back() : 0.0;
+    b.r_min = std::min(b.r_min, s.r);
+    b.r_max = std::max(b.r_max, s.r);
+  }
+  b.where.resize(n);
+  for (Index p = 0; p < n; ++p) b.where[p] = p;
+  check_overlaps(body, b, body.non_negative("overlap_tolerance"));
+
+  // time step
+  Params ts = body.at("time_step");
+  ts.validate({{"dt", 0.0}, {"fraction", 0.2}, {"allow_above_critical", false}});
+  double m_min = D.mass[0];
+  for (double m : D.mass) m_min = std::min(m_min, m);
+  const double omega = b.law->max_frequency(m_min, b.r_min, b.inertia_factor, b.rotation);
+  b.dt_critical = 2.0 / omega;
+  const double dt = ts.non_negative("dt"), fraction = ts.positive("fraction");
+  if (fraction > 1) ts.fail("fraction", "must lie in (0, 1]");
+  b.dt = dt > 0 ? dt : fraction * b.dt_critical;
+  if (b.dt > b.dt_critical && !ts.boolean("allow_above_critical"))
+    ts.fail("dt", "dt = " + fmt(b.dt) + " s is above the critical step 2/omega_max = " + fmt(b.dt_critical) +
+                      " s of the contact law (set allow_above_critical to force it)");
+  const double steps = ctx.analysis.end_time / std::min(b.dt, ctx.analysis.dt);
+  if (!(steps * n <= 2e13)) ts.fail("dt", "the run needs " + fmt(steps) + " steps of " + std::to_string(n) + " discs");
+  b.integrator = make_central_difference();
+
+  Params nb = body.at("neighbour");
+  nb.validate({{"skin", 0.0}, {"reorder", true}});
+  b.skin = nb.non_negative("skin");
+  if (b.skin == 0) b.skin = 0.5 * b.r_max;
+  b.reorder = nb.boolean("reorder");
+
+  Params bl = body.at("blast");
+  if (!bl.json().empty()) {
+    b.blast.emplace(bl);
+    const Vec2 g = b.blast->charge();
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    for (Index p = 0; p < n; ++p) {
+      const Vec2 c = b.position(p);
+      const double r = D.radius[p];
+      if ((c - g).norm() <= r) bl.fail("position", "the charge lies inside disc " + std::to_string(p));
+      xmin = std::min(xmin, c.x() - r);
+      xmax = std::max(xmax, c.x() + r);
+      ymin = std::min(ymin, c.y() - r);
+      ymax = std::max(ymax, c.y() + r);
+    }
+    if (g.x() >= xmin && g.x() <= xmax && g.y() >= ymin && g.y() <= ymax)
+      bl.fail("position", "the charge (" + fmt(g.x()) + ", " + fmt(g.y()) + ") is inside the bed (discs span x " +
+                              fmt(xmin) + " .. " + fmt(xmax) + ", y " + fmt(ymin) + " .. " + fmt(ymax) +
+                              "): the blast model needs it above the surface");
+  }
+
+  Params cr = body.at("crater");
+  if (!cr.json().empty()) {
+    cr.validate({{"surface", 0.0}, {"bin", 0.0}, {"centre", b.blast ? b.blast->charge().x() : 0.0},
+                 {"offsets", Json::array({-0.05, 0.0, 0.05})}});
+    b.crater.enabled = true;
+    b.crater.surface = cr.number("surface");
+    if (b.crater.surface == 0) {
+      double top = -1e300;
+      for (Index p = 0; p < n; ++p) top = std::max(top, b.position(p).y() + D.radius[p]);
+      b.crater.surface = top;
+    }
+    b.crater.bin = cr.non_negative("bin");
+    b.crater.centre = cr.number("centre");
+    b.crater.offsets = cr.numbers("offsets");
+    if (b.crater.offsets.empty()) cr.fail("offsets", "at least one offset");
+  }
+
+  Params st = body.at("settle");
+  double settle = 0;
+  if (!st.json().empty()) {
+    st.validate({{"time", nullptr}, {"remove_walls", Json::array()}});
+    settle = st.positive("time");
+    Params rw = st.at("remove_walls");
+    for (size_t i = 0; i < rw.size(); ++i) {
+      const auto& v = rw.at(i).json();
+      if (!v.is_string() || std::none_of(b.walls.begin(), b.walls.end(), [&](const Wall& w) { return w.name == v.get<std::string>(); }))
+        rw.at(i).fail("no wall of that name");
+      b.remove_after_settle.push_back(v.get<std::string>());
+    }
+  }
+  return settle;
+}
+
+}  // namespace lagfsi::dem

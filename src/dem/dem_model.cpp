@@ -1,0 +1,148 @@
+// The lifecycle of a DEM body (include/lagfsi/dem/dem_model.hpp): sub-steps of the shared central
+// difference (explicit_step_into) with the force sweep of dem_forces.cpp as the force callback.
+#include "dem_body.hpp"
+#include "dem_output.hpp"
+
+#include <lagfsi/dem/dem_model.hpp>
+#include <lagfsi/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace lagfsi {
+
+namespace dem {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+DemModel::DemModel(Params body, const CaseContext& ctx) : ctx_(ctx), body_(std::make_unique<DemBody>()) {
+  settle_time_ = read_dem_body(std::move(body), ctx, *body_);
+  writer_ = std::make_unique<DemWriter>(ctx.out_dir, body_->csv);
+  if (!ctx.quiet)
+    std::fprintf(stderr, "[%s] %zu discs, critical step %.4g s, sub-step %.4g s\n", body_->name.c_str(), body_->size(),
+                 body_->dt_critical, body_->dt);
+}
+
+DemModel::~DemModel() = default;
+
+std::string DemModel::name() const { return body_->name; }
+Index DemModel::num_nodes() const { return static_cast<Index>(body_->size()); }
+Index DemModel::num_elements() const { return body_->contact_count(); }
+
+void DemModel::substep(double h) {
+  DemBody& b = *body_;
+  if (b.needs_rebuild(h)) b.rebuild();
+  b.place_walls(b.state.t + h);
+  b.integrator->explicit_step_into(
+      [&b, h](const Vec& x, const Vec& v, double t, Vec& f) { b.compute_forces(x, v, t, h, f); }, b.inv_mass, h,
+      b.state, b.force);
+  if (dynamic_cast<const Sabatucci*>(b.law.get())) b.apply_marks();
+  ++b.substeps;
+}
+
+void DemModel::initialize() {
+  DemBody& b = *body_;
+  const auto t0 = Clock::now();
+  b.state.t = settle_time_ > 0 ? -settle_time_ : 0.0;
+  b.place_walls(std::max(b.state.t, 0.0));
+  b.rebuild();
+  b.compute_forces(b.state.x, b.state.v, b.state.t, 0.0, b.force);
+  b.state.a = b.inv_mass.cwiseProduct(b.force);
+  if (settle_time_ > 0) {
+    // settling: walls held at their t = 0 place; then remove the named walls and start from rest
+    const long n = std::max(1L, static_cast<long>(std::ceil(settle_time_ / b.dt * (1 - 1e-12))));
+    const double h = settle_time_ / n;
+    std::vector<Wall> saved = b.walls;
+    for (long k = 0; k < n; ++k) substep(h);
+    std::vector<Wall> kept;
+    for (auto& w : b.walls)
+      if (std::find(b.remove_after_settle.begin(), b.remove_after_settle.end(), w.name) == b.remove_after_settle.end())
+        kept.push_back(w);
+    b.walls = kept;
+    b.segments.clear();
+    for (size_t w = 0; w < b.walls.size(); ++w)
+      for (size_t s = 0; s < b.walls[w].segments(); ++s) b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
+    b.wall_row.clear();  // no history to carry: the wall indices changed
+    b.state.v.setZero();
+    b.state.t = 0.0;
+    b.place_walls(0.0);
+    b.rebuild();
+    b.compute_forces(b.state.x, b.state.v, 0.0, 0.0, b.force);
+    b.state.a = b.inv_mass.cwiseProduct(b.force);
+    b.dissipated = 0;
+    b.substeps = 0;
+    if (!ctx_.quiet) std::fprintf(stderr, "[%s] settled for %.4g s (%ld sub-steps)\n", b.name.c_str(), settle_time_, n);
+  }
+  b.blast_work = 0;
+  b.energy0 = b.kinetic_energy() + b.elastic + b.gravity_potential();
+  wall_time_ += seconds_since(t0);
+}
+
+IterationReport DemModel::solve_iteration() {
+  DemBody& b = *body_;
+  const auto t0 = Clock::now();
+  const double t_old = b.state.t;
+  const double span = t_new_ - t_old;
+  const int n = std::max(1, static_cast<int>(std::ceil(span / b.dt * (1 - 1e-12))));
+  const double h = span / n;
+  for (int k = 0; k < n; ++k) substep(h);
+  b.state.t = t_new_;
+  for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
+    if (!std::isfinite(b.state.x[3 * p]) || !std::isfinite(b.state.x[3 * p + 1]) || !std::isfinite(b.state.v[3 * p]))
+      throw SolverError("dem body '" + b.name + "': disc " + std::to_string(b.discs.id[p]) +
+                        " has a non-finite position or velocity at t = " + std::to_string(t_new_) +
+                        " (time step above the stable one?)");
+  const double w = seconds_since(t0);
+  wall_time_ += w;
+  times_.assembly += w;
+  IterationReport r;
+  r.converged = true;
+  r.residual_ref = 1;
+  r.inner_iterations = n;
+  return r;
+}
+
+void DemModel::write_output(double t) {
+  const auto t0 = Clock::now();
+  writer_->write(t, *body_);
+  times_.output += seconds_since(t0);
+}
+
+double DemModel::energy_balance() const {
+  const DemBody& b = *body_;
+  return b.kinetic_energy() + b.elastic + b.gravity_potential() + b.dissipated - b.energy0 - b.blast_work;
+}
+
+Json DemModel::summary() const {
+  const DemBody& b = *body_;
+  int marked = 0;
+  for (auto m : b.discs.mark) marked += m;
+  Json s{{"discs", b.size()},
+         {"contact_law", b.law->type()},
+         {"dt_critical", b.dt_critical},
+         {"dt", b.dt},
+         {"substeps", b.substeps},
+         {"list_rebuilds", b.rebuilds},
+         {"contacts", b.contact_count()},
+         {"marked_discs", marked},
+         {"time_forces", b.t_force},
+         {"time_rebuild", b.t_rebuild},
+         {"time_blast", b.t_blast},
+         {"wall_time", wall_time_},
+         {"particle_steps_per_second", wall_time_ > 0 ? double(b.substeps) * b.size() / wall_time_ : 0.0}};
+  if (settle_time_ > 0) s["settle_time"] = settle_time_;
+  return s;
+}
+
+}  // namespace dem
+
+std::unique_ptr<PhysicsModel> make_dem_model(Params body, const CaseContext& ctx) {
+  return std::make_unique<dem::DemModel>(std::move(body), ctx);
+}
+
+}  // namespace lagfsi

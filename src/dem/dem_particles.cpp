@@ -1,0 +1,199 @@
+// Disc generators of the DEM body (include/lagfsi/dem/dem_particles.hpp): lists, hexagonal lattices and
+// random sequential addition in rectangles and polygons.
+#include <lagfsi/dem/dem_particles.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <unordered_map>
+
+namespace lagfsi::dem {
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec2& u = p[i];
+    const Vec2& w = p[(i + 1) % p.size()];
+    a += u.x() * w.y() - w.x() * u.y();
+  }
+  return 0.5 * std::abs(a);
+}
+
+bool inside_polygon(const std::vector<Vec2>& p, const Vec2& x) {
+  bool in = false;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    if ((p[i].y() > x.y()) != (p[j].y() > x.y()) &&
+        x.x() < (p[j].x() - p[i].x()) * (x.y() - p[i].y()) / (p[j].y() - p[i].y()) + p[i].x())
+      in = !in;
+  }
+  return in;
+}
+
+double distance_to_boundary(const std::vector<Vec2>& p, const Vec2& x) {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec2& a = p[i];
+    const Vec2& b = p[(i + 1) % p.size()];
+    const Vec2 ab = b - a;
+    const double s = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    d = std::min(d, (a + s * ab - x).norm());
+  }
+  return d;
+}
+
+namespace {
+
+bool fits(const std::vector<Vec2>& poly, const Vec2& x, double r) {
+  // a tolerance of 1e-9 r lets a lattice row touch the region's edge exactly
+  return inside_polygon(poly, x) && distance_to_boundary(poly, x) >= r * (1 - 1e-9);
+}
+
+void bounds(const std::vector<Vec2>& poly, Vec2& lo, Vec2& hi) {
+  lo = hi = poly[0];
+  for (const auto& q : poly) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+}
+
+}  // namespace
+
+std::vector<DiscSpec> hex_lattice(const std::vector<Vec2>& poly, double r, double gap) {
+  Vec2 lo, hi;
+  bounds(poly, lo, hi);
+  const double pitch = 2 * r * (1 + gap), dy = pitch * std::sqrt(3.0) / 2;
+  std::vector<DiscSpec> out;
+  for (int row = 0;; ++row) {
+    const double y = lo.y() + r + row * dy;
+    if (y > hi.y() - r * (1 - 1e-9)) break;
+    for (int col = 0;; ++col) {
+      const double x = lo.x() + r + (row % 2 ? 0.5 * pitch : 0.0) + col * pitch;
+      if (x > hi.x() - r * (1 - 1e-9)) break;
+      const Vec2 c(x, y);
+      if (fits(poly, c, r)) out.push_back({c, r, Vec2::Zero(), 0.0, 0});
+    }
+  }
+  return out;
+}
+
+std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, double r_max, double fraction,
+                                  int count, unsigned seed, int attempts) {
+  Vec2 lo, hi;
+  bounds(poly, lo, hi);
+  const double area = polygon_area(poly);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(lo.x(), hi.x()), uy(lo.y(), hi.y()), ur(r_min, r_max);
+  // a hash grid of cell 2 r_max holds the placed discs
+  const double h = 2 * r_max;
+  auto key = [&](long i, long j) { return i * 1000003L + j; };
+  std::unordered_map<long, std::vector<size_t>> cells;
+  std::vector<DiscSpec> out;
+  double filled = 0;
+  int failures = 0;
+  while (failures < attempts && (count <= 0 || static_cast<int>(out.size()) < count) &&
+         (fraction <= 0 || filled < fraction * area)) {
+    const double r = r_max > r_min ? ur(rng) : r_min;
+    const Vec2 c(ux(rng), uy(rng));
+    bool ok = fits(poly, c, r);
+    const long ci = static_cast<long>(std::floor((c.x() - lo.x()) / h)), cj = static_cast<long>(std::floor((c.y() - lo.y()) / h));
+    for (long a = ci - 1; ok && a <= ci + 1; ++a)
+      for (long b = cj - 1; ok && b <= cj + 1; ++b) {
+        auto it = cells.find(key(a, b));
+        if (it == cells.end()) continue;
+        for (size_t q : it->second)
+          if ((out[q].x - c).squaredNorm() < (out[q].r + r) * (out[q].r + r)) {
+            ok = false;
+            break;
+          }
+      }
+    if (!ok) {
+      ++failures;
+      continue;
+    }
+    failures = 0;
+    cells[key(ci, cj)].push_back(out.size());
+    out.push_back({c, r, Vec2::Zero(), 0.0, 0});
+    filled += std::numbers::pi * r * r;
+  }
+  return out;
+}
+
+std::vector<Vec2> read_region(Params region) {
+  if (!region.json().is_object() || !region.has("type")) region.fail("type", "required key is missing");
+  const std::string t = region.choice("type", {"rectangle", "polygon"});
+  if (t == "rectangle") {
+    region.validate({{"type", t}, {"origin", nullptr}, {"size", nullptr}});
+    const Vec2 o = region.vec2("origin"), s = region.vec2("size");
+    if (!(s.x() > 0 && s.y() > 0)) region.fail("size", "must be positive");
+    return {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
+  }
+  region.validate({{"type", t}, {"points", nullptr}});
+  auto p = region.points("points");
+  if (p.size() < 3 || !(polygon_area(p) > 0)) region.fail("points", "a polygon needs at least 3 points and an area");
+  return p;
+}
+
+std::vector<DiscSpec> generate_discs(Params discs) {
+  std::vector<DiscSpec> out;
+  if (discs.size() == 0) discs.fail("at least one generator is needed");
+  for (size_t g = 0; g < discs.size(); ++g) {
+    Params d = discs.at(g);
+    if (!d.json().is_object() || !d.has("type")) d.fail("type", "required key is missing");
+    const std::string t = d.choice("type", {"list", "hex_lattice", "random"});
+    const Json common_v = Json::array({0.0, 0.0});
+    std::vector<DiscSpec> made;
+    if (t == "list") {
+      d.validate({{"type", t}, {"discs", nullptr}, {"velocity", common_v}, {"angular_velocity", 0.0}});
+      Params l = d.at("discs");
+      for (size_t i = 0; i < l.size(); ++i) {
+        const auto v = l.at(i).json();
+        if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+          l.at(i).fail("expected [x, y, r]");
+        const double r = v[2].get<double>();
+        if (!(r > 0) || !std::isfinite(r)) l.at(i).fail("the radius must be positive");
+        made.push_back({Vec2(v[0].get<double>(), v[1].get<double>()), r, Vec2::Zero(), 0.0, 0});
+      }
+    } else if (t == "hex_lattice") {
+      d.validate({{"type", t}, {"region", nullptr}, {"radius", nullptr}, {"gap", 0.0}, {"velocity", common_v},
+                  {"angular_velocity", 0.0}});
+      const double r = d.positive("radius");
+      const auto poly = read_region(d.at("region"));
+      Vec2 lo, hi;
+      bounds(poly, lo, hi);
+      if ((hi - lo).x() * (hi - lo).y() / (r * r) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
+      made = hex_lattice(poly, r, d.non_negative("gap"));
+    } else {
+      d.validate({{"type", t}, {"region", nullptr}, {"radius", nullptr}, {"fraction", 0.5}, {"count", 0},
+                  {"seed", 1}, {"attempts", 20000}, {"velocity", common_v}, {"angular_velocity", 0.0}});
+      double r0, r1;
+      if (d.json().at("radius").is_array()) {
+        const auto rr = d.numbers("radius");
+        if (rr.size() != 2 || !(rr[0] > 0 && rr[1] >= rr[0])) d.fail("radius", "expected [r_min, r_max], 0 < r_min <= r_max");
+        r0 = rr[0];
+        r1 = rr[1];
+      } else {
+        r0 = r1 = d.positive("radius");
+      }
+      const auto poly = read_region(d.at("region"));
+      const double phi = d.non_negative("fraction");
+      if (phi > 0.6) d.fail("fraction", "random sequential addition jams near 0.55: use at most 0.6 (then settle)");
+      if (polygon_area(poly) / (r0 * r0) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
+      made = random_pack(poly, r0, r1, phi, d.integer("count", 0), static_cast<unsigned>(d.integer("seed", 0)),
+                         d.integer("attempts", 1));
+    }
+    if (made.empty()) d.fail("no disc fits in the region");
+    const Vec2 v = d.vec2("velocity");
+    const double w = d.number("angular_velocity");
+    for (auto& s : made) {
+      s.v = v;
+      s.w = w;
+      s.group = static_cast<int>(g);
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace lagfsi::dem

@@ -71,5 +71,6 @@ const std::map<std::string, ModelBuilder>& model_registry();
 std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx);
 std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
 std::unique_ptr<PhysicsModel> make_mpm_model(Params body, const CaseContext& ctx);
+std::unique_ptr<PhysicsModel> make_efg_model(Params body, const CaseContext& ctx);   ///< element-free Galerkin (efg/)
 
 }  // namespace lagfsi

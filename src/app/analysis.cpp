@@ -41,6 +41,7 @@ const std::map<std::string, ModelBuilder>& model_registry() {
       {"shell", make_solid_model},
       {"fluid", make_fluid_model},
       {"mpm", make_mpm_model},
+      {"efg", make_efg_model},
   };
   return r;
 }

@@ -41,9 +41,10 @@ TEST(EfgCases, PlateWithHoleStressConcentration) {
 }
 
 TEST(EfgCases, TensionPlateMazarsPeak) {
-  // CI size: 4 x 4 cells, 6 x 6 Gauss, secant operator.
+  // CI size: 4 x 4 cells, 6 x 6 Gauss, secant operator, CDG initial load factor 0.2 (the peak at step 10).
   const RunResult r = run_case_file("cases/efg_tension_plate/case.json", "efg_tension_plate",
-                                    {"bodies.0.domain.divisions=[4,4]", "bodies.0.efg.gauss=6", "analysis.load_steps=30"});
+                                    {"bodies.0.domain.divisions=[4,4]", "bodies.0.efg.gauss=6", "analysis.load_steps=30",
+                                     "bodies.0.control.increment=0.2"});
   const Csv c = probes_of(r);
   const auto& lam = c["lambda"];
   const double peak = *std::max_element(lam.begin(), lam.end());
@@ -56,7 +57,7 @@ TEST(EfgCases, TensionPlateMazarsPeak) {
 TEST(EfgCases, LPanelCoarse) {
   const RunResult r = run_case_file("cases/efg_L_panel/case.json", "efg_L_panel",
                                     {"bodies.0.domain.divisions=[10,10]", "bodies.0.efg.gauss=3",
-                                     "analysis.load_steps=40"});
+                                     "analysis.load_steps=60", "bodies.0.control.increment=0.05", "output.vtk=false"});
   const Csv c = probes_of(r);
   const auto& load = c["load"];
   const double peak = *std::max_element(load.begin(), load.end());

@@ -68,6 +68,38 @@ TEST(EfgCases, LPanelCoarse) {
   EXPECT_LT(load.back(), peak);
 }
 
+TEST(EfgCases, LPanelPathFollowingMethodsAgreeAndLoadControlFailsAtTheLimit) {
+  // Coarse L-panel: arc length (V form) and displacement control of node A (U form) pass the limit point with the
+  // peak of generalized displacement control; load control cannot pass it: the step is cut back, then the run fails.
+  auto peak_of = [](const std::string& tag, const std::vector<std::string>& extra, int* code) {
+    std::vector<std::string> sets = {"bodies.0.domain.divisions=[10,10]", "bodies.0.efg.gauss=3",
+                                     "analysis.load_steps=60", "output.vtk=false"};
+    sets.insert(sets.end(), extra.begin(), extra.end());
+    const RunResult r = run_case_file("cases/efg_L_panel/case.json", tag, sets);
+    *code = r.exit_code;
+    const Csv c = read_csv(r.out_dir / "probes.csv");
+    const auto& load = c["load"];
+    std::printf("%s: peak %.1f N, last %.1f N, exit %d\n", tag.c_str(), *std::max_element(load.begin(), load.end()),
+                load.back(), r.exit_code);
+    return std::make_pair(*std::max_element(load.begin(), load.end()), load.back());
+  };
+  int code;
+  const auto cdg = peak_of("efg_lp_cdg", {"bodies.0.control.increment=0.05"}, &code);
+  EXPECT_EQ(code, 0);
+  const auto arc = peak_of("efg_lp_arc", {"bodies.0.control.type=arc_length", "bodies.0.control.increment=0.05"}, &code);
+  EXPECT_EQ(code, 0);
+  const auto cdd = peak_of("efg_lp_cdd", {"bodies.0.control.type=displacement", "bodies.0.control.form=U",
+                                          "bodies.0.control.at=[500,500]", "bodies.0.control.increment=0.01"}, &code);
+  EXPECT_EQ(code, 0);
+  EXPECT_NEAR(arc.first / cdg.first, 1.0, 0.01);
+  EXPECT_NEAR(cdd.first / cdg.first, 1.0, 0.01);
+  EXPECT_LT(arc.second, 0.9 * arc.first);
+  EXPECT_LT(cdd.second, 0.9 * cdd.first);
+  const auto lc = peak_of("efg_lp_load", {"bodies.0.control.type=load", "bodies.0.control.increment=0.02"}, &code);
+  EXPECT_EQ(code, 3);   // solver error after the step halvings
+  EXPECT_NEAR(lc.second / cdg.first, 1.0, 0.02);
+}
+
 TEST(EfgCases, BadInputIsOneLineWithThePath) {
   const RunResult r = run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad",
                                     {"bodies.0.efg.basis=cubic"});

@@ -1,5 +1,6 @@
 // Rotating total-strain smeared-crack law with Carreira & Chu (1985) compression and either fracture-energy
-// regularised exponential tension softening (crack band h, fracture energy G_f; the digest's default for the
+// regularised exponential tension softening s = f_t exp[-(e - e0)/e_f], e_f = G_f/(h f_t) - e0/2 so that the area
+// under the curve is G_f/h (crack band h, fracture energy G_f; the digest's default for the
 // Boone et al. 1986 law the thesis takes from Penna 2011) or Carreira & Chu (1986) tension.
 // History: h[0] = largest tensile equivalent uniaxial strain, h[1] = largest compressive one (magnitude),
 // h[2] = tensile damage 1 - E_s/E0. See include/lagfsi/efg/material.hpp.
@@ -20,6 +21,8 @@ class SmearedCrack final : public Material {
     bc_ = 1.0 / (1.0 - fc_ / (ec_ * E_));
     bt_ = cct_ ? 1.0 / (1.0 - ft_ / (et_ * E_)) : 0.0;
     e0_ = ft_ / E_;
+    // Crack band (Bazant & Oh 1983): the whole area under the curve is G_f / h.
+    ef_ = cct_ ? 1.0 : Gf_ / (h_ * ft_) - 0.5 * e0_;
   }
   std::string type() const override { return "smeared_crack"; }
   double strain_scale() const override { return e0_; }
@@ -32,7 +35,7 @@ class SmearedCrack final : public Material {
       return std::max(res_ * ft_, ft_ * bt_ * r / (bt_ - 1 + std::pow(r, bt_)));
     }
     if (k <= e0_) return E_ * k;
-    return std::max(res_ * ft_, ft_ * std::exp(-(ft_ * h_ / Gf_) * (k - e0_)));
+    return std::max(res_ * ft_, ft_ * std::exp(-(k - e0_) / ef_));
   }
   /// Compressive envelope (magnitude) at equivalent strain magnitude k > 0.
   double compression(double k) const {
@@ -85,7 +88,7 @@ class SmearedCrack final : public Material {
   double ft_, fc_, ec_;
   bool cct_;
   double et_, Gf_, h_, res_;
-  double bc_, bt_, e0_;
+  double bc_, bt_, e0_, ef_ = 1;
 };
 
 }  // namespace

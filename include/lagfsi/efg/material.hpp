@@ -18,8 +18,8 @@
 ///  - smeared_crack: rotating total-strain smeared crack; in principal strain directions equivalent uniaxial strains
 ///    eb_i = (eps_i + nu eps_j)/(1 - nu^2) follow uniaxial laws with secant unloading: compression Carreira & Chu
 ///    (1985) s/f_c = b (e/e_c)/(b - 1 + (e/e_c)^b), b = 1/(1 - f_c/(e_c E0)); tension either linear to f_t then
-///    exponential softening s = f_t exp[-(f_t h/G_f)(e - f_t/E0)] (fracture energy G_f over the crack band h; the
-///    digest's default for Boone et al. 1986) or Carreira & Chu (1986) with f_t, e_t; shear modulus from
+///    exponential softening s = f_t exp[-(e - e0)/e_f], e0 = f_t/E0, e_f = G_f/(h f_t) - e0/2 (area under the
+///    curve G_f/h: fracture energy over the crack band h; the digest's default for Boone et al. 1986) or Carreira & Chu (1986) with f_t, e_t; shear modulus from
 ///    coaxiality (s_1 - s_2)/(2 (e_1 - e_2)).
 #include <lagfsi/params.hpp>
 

@@ -107,7 +107,7 @@ TEST(EfgMls, PartitionOfUnityAndReproductionToRoundOff) {
     const MlsShape mls = make(k);
     const Cloud c = grid(6, k.alpha, 0.2, k.shape);
     const int l = mls.basis().size();
-    for (const Vec2 x : {Vec2(0.31, 0.47), Vec2(0.05, 0.93), Vec2(0.77, 0.12), Vec2(0.5, 0.5)}) {
+    for (const Vec2& x : {Vec2(0.31, 0.47), Vec2(0.05, 0.93), Vec2(0.77, 0.12), Vec2(0.5, 0.5)}) {
       ShapeValues s;
       mls.compute(x, c.nodes, c.rho, c.all, s);
       ASSERT_GE(static_cast<int>(s.nodes.size()), l) << label(k);
@@ -187,7 +187,7 @@ TEST(EfgMls, CoupledCorrectionReproducesTheBasisWithTheFeFunctions) {
   InfluenceDomain d;
   const MlsShape mls(b, d);
   const Cloud c = grid(4, 2.0, 0.0, DomainShape::rectangular);
-  for (const Vec2 x : {Vec2(0.31, 0.07), Vec2(0.4, 0.0)}) {
+  for (const Vec2& x : {Vec2(0.31, 0.07), Vec2(0.4, 0.0)}) {
     const double xi = (x.x() - 0.375) / 0.125, eta = (x.y() - 0.125) / 0.125;
     double N[4], dxi[4], deta[4];
     q4_shape(xi, eta, N, dxi, deta);
@@ -222,8 +222,9 @@ TEST(EfgMls, CoupledCorrectionReproducesTheBasisWithTheFeFunctions) {
       EXPECT_NEAR(rx, px[t], 1e-10) << t;
       EXPECT_NEAR(ry, py[t], 1e-10) << t;
     }
-    if (x.y() == 0.0)
+    if (x.y() == 0.0) {
       for (double v : s.N) EXPECT_NEAR(v, 0.0, 1e-13);   // u = FE interpolation of the active nodes on the edge
+    }
   }
 }
 

@@ -72,5 +72,6 @@ std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& c
 std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
 std::unique_ptr<PhysicsModel> make_mpm_model(Params body, const CaseContext& ctx);
 std::unique_ptr<PhysicsModel> make_dem_model(Params body, const CaseContext& ctx);
+std::unique_ptr<PhysicsModel> make_efg_model(Params body, const CaseContext& ctx);   ///< element-free Galerkin (efg/)
 
 }  // namespace lagfsi

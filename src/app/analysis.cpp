@@ -42,6 +42,7 @@ const std::map<std::string, ModelBuilder>& model_registry() {
       {"fluid", make_fluid_model},
       {"mpm", make_mpm_model},
       {"dem", make_dem_model},
+      {"efg", make_efg_model},
   };
   return r;
 }

@@ -1,0 +1,104 @@
+// The EFG body's load steps: predictor and corrector iterations of the path-following control (thesis
+// Algorithms 1 and 6), commit of the material history at convergence. See include/lagfsi/efg/efg_model.hpp.
+#include <lagfsi/efg/efg_model.hpp>
+#include <lagfsi/error.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace lagfsi::efg {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+void EfgModel::initialize() {
+  x0_ = Vec::Zero(nsys_);
+  x_ = x0_;
+  lambda0_ = lambda_ = 0;
+  hist0_.assign(gps_.size(), History{});
+  hist1_ = hist0_;
+  fint0_ = Vec::Zero(nsys_);
+}
+
+void EfgModel::predict(double t_new, double dt) {
+  (void)t_new;
+  x_ = x0_;
+  lambda_ = lambda0_;
+  iter_ = 0;
+  step_scale_ = dt / ctx_.analysis.dt;
+  dx_step_ = Vec::Zero(nsys_);
+}
+
+IterationReport EfgModel::solve_iteration() {
+  IterationReport rep;
+  auto t0 = Clock::now();
+  assemble(x_, fint_, true);
+  Vec Q = lambda_ * P_ - fint_;
+  for (Index d = 0; d < nsys_; ++d)
+    if (is_fixed_[d]) Q[d] = 0.0;
+  rep.residual = Q.norm();
+  rep.residual_ref = std::max({(lambda_ * P_).norm(), fint_.norm(), 1e-300});
+  times_.assembly += since(t0);
+  if (!std::isfinite(rep.residual)) throw SolverError("body '" + name_ + "': non-finite residual");
+  if (iter_ > 0 && rep.residual <= ctx_.analysis.newton.residual_tolerance * rep.residual_ref) {
+    rep.converged = true;
+    return rep;
+  }
+  t0 = Clock::now();
+  factorize();
+  times_.factorization += since(t0);
+  t0 = Clock::now();
+  const Vec dUP = solve(P_, true);
+  Vec dx;
+  double dl;
+  if (iter_ == 0) {  // predictor (the step starts from equilibrium: Q_0 = 0)
+    dl = control_.predictor(to_control(dUP), step_scale_);
+    dx = dl * dUP;
+  } else {
+    const Vec dUQ = solve(Q, false);
+    dl = control_.corrector(to_control(dUP), to_control(dUQ), to_control(dx_step_));
+    dx = dl * dUP + dUQ;
+  }
+  times_.solve += since(t0);
+  if (!std::isfinite(dl) || !dx.allFinite()) throw SolverError("body '" + name_ + "': non-finite load-factor increment");
+  x_ += dx;
+  lambda_ += dl;
+  dx_step_ += dx;
+  rep.increment = dx.head(ndof_).norm();
+  rep.increment_ref = std::max(x_.head(ndof_).norm(), 1e-300);
+  ++iter_;
+  return rep;
+}
+
+void EfgModel::finalize_step() {
+  control_.commit(to_control(dx_step_));
+  x0_ = x_;
+  lambda0_ = lambda_;
+  hist0_ = hist1_;
+  fint0_ = fint_;
+  lambda_peak_ = std::max(lambda_peak_, lambda0_);
+  ++steps_;
+}
+
+Vec EfgModel::nodal_displacements() const {
+  Vec u = Vec::Zero(ndof_);
+  for (Index n = 0; n < mesh_.num_nodes(); ++n)
+    for (const auto& [j, v] : node_eval_[n]) {
+      u[2 * n] += v * x0_[2 * j];
+      u[2 * n + 1] += v * x0_[2 * j + 1];
+    }
+  return u;
+}
+
+Vec EfgModel::reactions() const { return (fint0_ - lambda0_ * Ptr_).head(ndof_); }
+
+}  // namespace lagfsi::efg
+
+namespace lagfsi {
+std::unique_ptr<PhysicsModel> make_efg_model(Params body, const CaseContext& ctx) {
+  return std::make_unique<efg::EfgModel>(body, ctx);
+}
+}  // namespace lagfsi

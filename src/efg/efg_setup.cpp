@@ -1,0 +1,556 @@
+// EFG body input: background cells and nodes, MLS settings, materials and regions, essential conditions
+// (coupling, penalty, Lagrange), loads, path-following control, and the cached integration points.
+// See include/lagfsi/efg/efg_model.hpp.
+#include <lagfsi/efg/efg_model.hpp>
+#include <lagfsi/efg/integration.hpp>
+
+#include <Eigen/Dense>
+#include <lagfsi/error.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+namespace lagfsi::efg {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+Vec2 box_corner(Params p, const std::string& key) { return p.vec2(key); }
+}  // namespace
+
+EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
+  b.validate({{"name", nullptr},
+              {"type", "efg"},
+              {"thickness", 1.0},
+              {"domain", nullptr},
+              {"material", nullptr},
+              {"regions", Json::array()},
+              {"efg", Json::object()},
+              {"essential", Json::object()},
+              {"exact", Json::object()},
+              {"boundary_conditions", Json::array()},
+              {"loads", Json::array()},
+              {"operator", "tangent"},
+              {"control", Json::object()}});
+  name_ = b.identifier("name");
+  thickness_ = b.positive("thickness");
+  if (ctx.analysis.type != "static") b.at("type").fail("an efg body needs a static analysis (analysis.type = \"static\")");
+  material_ = make_material(b.at("material"));
+  Params regions = b.at("regions");
+  for (size_t i = 0; i < regions.size(); ++i) {
+    Params r = regions.at(i);
+    r.validate({{"min", nullptr}, {"max", nullptr}, {"material", nullptr}});
+    region_boxes_.push_back({box_corner(r, "min"), box_corner(r, "max")});
+    region_materials_.push_back(make_material(r.at("material")));
+  }
+  operator_ = b.choice("operator", {"tangent", "secant"}) == "tangent" ? Operator::tangent : Operator::secant;
+  Params ex = b.at("exact");
+  ex.validate({{"type", "none"}, {"P", 0.0}, {"L", 0.0}, {"D", 0.0}, {"sigma0", 0.0}, {"radius", 0.0},
+               {"ux", Json::array({0, 0, 0, 0, 0, 0})}, {"uy", Json::array({0, 0, 0, 0, 0, 0})}});
+  exact_.type = ex.choice("type", {"none", "timoshenko", "kirsch", "polynomial"});
+  if (exact_.type == "polynomial")
+    for (const char* k : {"ux", "uy"}) {
+      const auto c = ex.numbers(k);
+      if (c.size() != 6) ex.fail(k, "expected 6 coefficients (of 1, x, y, x^2, xy, y^2)");
+      for (int i = 0; i < 6; ++i) (k[1] == 'x' ? exact_.cx : exact_.cy)[i] = c[i];
+    }
+  exact_.E = material_->young();
+  exact_.nu = material_->poisson();
+  if (material_->plane_strain()) {  // the formulas are plane stress: E -> E/(1-nu^2), nu -> nu/(1-nu)
+    exact_.E = exact_.E / (1 - exact_.nu * exact_.nu);
+    exact_.nu = exact_.nu / (1 - exact_.nu);
+  }
+  if (exact_.type == "timoshenko") {
+    exact_.P = ex.number("P");
+    exact_.L = ex.positive("L");
+    exact_.D = ex.positive("D");
+  } else if (exact_.type == "kirsch") {
+    exact_.sigma0 = ex.number("sigma0");
+    exact_.a = ex.positive("radius");
+  }
+  read_discretization(b);
+  read_boundary_conditions(b);
+  build_integration_points();
+  read_loads(b);
+  read_control(b);
+  build_pattern();
+  const std::string ls = ctx.analysis.linear_solver;
+  solver_ = make_linear_solver(ls);
+  const bool unsym = (operator_ == Operator::tangent && !material_->linear()) ||
+                     (material_->type() == "smeared_crack");
+  if (solver_->symmetric_only() && (essential_ == "lagrange" || unsym))
+    b.at(essential_ == "lagrange" ? "essential" : "operator")
+        .fail(std::string(essential_ == "lagrange" ? "Lagrange multipliers give an indefinite system"
+                                                   : "this operator is unsymmetric") +
+              ": set analysis.linear_solver.type to umfpack or klu");
+}
+
+void EfgModel::read_discretization(Params b) {
+  Params d = b.at("domain");
+  if (!d.json().is_object() || !d.has("type")) d.fail("type", "required key is missing");
+  const std::string t = d.choice("type", {"rectangle", "plate_with_hole"});
+  try {
+    if (t == "rectangle") {
+      d.validate({{"type", t}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}, {"divisions", nullptr},
+                  {"holes", Json::array()}});
+      const Vec2 size = d.vec2("size");
+      if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
+      const auto div = d.numbers("divisions");
+      if (div.size() != 2 || div[0] < 1 || div[1] < 1 || div[0] != std::floor(div[0]) || div[1] != std::floor(div[1]))
+        d.fail("divisions", "expected [nx, ny], positive integers");
+      std::vector<std::array<Vec2, 2>> holes;
+      Params h = d.at("holes");
+      for (size_t i = 0; i < h.size(); ++i) {
+        Params hi = h.at(i);
+        hi.validate({{"min", nullptr}, {"max", nullptr}});
+        holes.push_back({hi.vec2("min"), hi.vec2("max")});
+      }
+      mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes);
+    } else {
+      d.validate({{"type", t}, {"radius", nullptr}, {"size", nullptr}, {"divisions", nullptr}, {"grading", 1.0}});
+      const auto div = d.numbers("divisions");
+      if (div.size() != 2 || div[0] < 1 || div[1] < 1) d.fail("divisions", "expected [n_arc, n_radial] (each >= 1)");
+      mesh_ = plate_with_hole(d.positive("radius"), d.positive("size"), static_cast<int>(div[0]),
+                              static_cast<int>(div[1]), d.positive("grading"));
+    }
+  } catch (const std::invalid_argument& e) {
+    d.fail(e.what());
+  }
+  Params e = b.at("efg");
+  e.validate({{"basis", "bilinear"}, {"weight", "cubic_spline"}, {"domain", "rectangular"}, {"alpha", 2.0},
+              {"gauss", 5}, {"integration", "gauss"}, {"rcond_min", 1e-12}, {"protected_segments", Json::array()}});
+  consistent_ = e.choice("integration", {"gauss", "consistent"}) == "consistent";
+  Basis basis;
+  basis.type = Basis::parse(e.choice("basis", Basis::names()));
+  InfluenceDomain dom;
+  dom.weight.type = Weight::parse(e.choice("weight", Weight::names()));
+  dom.shape = e.choice("domain", {"rectangular", "circular"}) == "circular" ? DomainShape::circular
+                                                                           : DomainShape::rectangular;
+  const double alpha = e.positive("alpha");
+  gauss_ = e.integer("gauss", 1);
+  if (gauss_ > 12) e.fail("gauss", "at most 12 points per direction");
+  mls_ = MlsShape(basis, dom, e.positive("rcond_min"));
+  Params segs = e.at("protected_segments");
+  for (size_t i = 0; i < segs.size(); ++i) {
+    Params s = segs.at(i);
+    s.validate({{"from", nullptr}, {"to", nullptr}});
+    vis_.segments.push_back({s.vec2("from"), s.vec2("to")});
+  }
+  // rho_j = alpha h_j, h_j the largest width / height of the cells at node j.
+  const Index nn = mesh_.num_nodes();
+  std::vector<Vec2> h(nn, Vec2::Zero());
+  for (const auto& c : mesh_.cells) {
+    Vec2 lo = mesh_.nodes[c[0]], hi = lo;
+    for (Index n : c) {
+      lo = lo.cwiseMin(mesh_.nodes[n]);
+      hi = hi.cwiseMax(mesh_.nodes[n]);
+    }
+    for (Index n : c) h[n] = h[n].cwiseMax(hi - lo);
+  }
+  rho_.resize(nn);
+  for (Index i = 0; i < nn; ++i) {
+    rho_[i] = alpha * h[i];
+    if (dom.shape == DomainShape::circular) rho_[i] = Vec2::Constant(alpha * h[i].maxCoeff());
+    rho_max_ = std::max(rho_max_, rho_[i].maxCoeff());
+  }
+  search_ = NodeSearch(mesh_.nodes, rho_max_);
+  cell_material_.assign(mesh_.num_cells(), -1);
+  for (Index c = 0; c < mesh_.num_cells(); ++c) {
+    Vec2 ctr = Vec2::Zero();
+    for (Index n : mesh_.cells[c]) ctr += 0.25 * mesh_.nodes[n];
+    for (size_t r = 0; r < region_boxes_.size(); ++r)
+      if ((ctr.array() > region_boxes_[r][0].array()).all() && (ctr.array() < region_boxes_[r][1].array()).all())
+        cell_material_[c] = static_cast<int>(r);
+  }
+}
+
+void EfgModel::read_boundary_conditions(Params b) {
+  Params es = b.at("essential");
+  es.validate({{"method", "coupling"}, {"penalty", 1e4}});
+  essential_ = es.choice("method", {"coupling", "penalty", "lagrange"});
+  penalty_ = es.positive("penalty") * material_->young();
+  const Index nn = mesh_.num_nodes();
+  active_.assign(nn, 0);
+  coupling_cell_.assign(mesh_.num_cells(), 0);
+  std::vector<double> value(2 * nn, 0.0);
+  std::vector<char> held(2 * nn, 0);
+  Params bcs = b.at("boundary_conditions");
+  for (size_t i = 0; i < bcs.size(); ++i) {
+    Params c = bcs.at(i);
+    if (!c.json().is_object() || !c.has("type")) c.fail("type", "required key is missing");
+    const std::string t = c.choice("type", {"fixed", "prescribed", "exact"});
+    c.validate({{"type", t}, {"select", nullptr}, {"components", "xy"}, {"value", Json::array({0.0, 0.0})}});
+    const std::string comps = c.choice("components", {"x", "y", "xy"});
+    if (t == "exact" && exact_.type != "timoshenko" && exact_.type != "polynomial")
+      c.fail("type", "\"exact\" displacements need exact.type = timoshenko or polynomial");
+    const Vec2 v = c.vec2("value");
+    for (Index n : select_nodes(c.at("select"), mesh_.nodes)) {
+      const Vec2 u = t == "exact" ? exact_.displacement(mesh_.nodes[n]) : (t == "prescribed" ? v : Vec2::Zero());
+      for (int k = 0; k < 2; ++k)
+        if (comps.find(k == 0 ? 'x' : 'y') != std::string::npos) {
+          held[2 * n + k] = 1;
+          value[2 * n + k] = u[k];
+        }
+      active_[n] = 1;
+    }
+  }
+  for (Index d = 0; d < 2 * nn; ++d)
+    if (held[d]) {
+      fixed_dofs_.push_back(d);
+      fixed_ref_.push_back(value[d]);
+    }
+  if (essential_ == "coupling") {
+    for (Index c = 0; c < mesh_.num_cells(); ++c)
+      for (Index n : mesh_.cells[c])
+        if (active_[n]) coupling_cell_[c] = 1;
+  } else {
+    std::fill(active_.begin(), active_.end(), 0);
+  }
+}
+
+void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool derivatives) const {
+  const auto& cell = mesh_.cells[c];
+  double N[4], dxi[4], deta[4];
+  q4_shape(xi, eta, N, dxi, deta);
+  Vec2 x = Vec2::Zero();
+  Mat2 J = Mat2::Zero();
+  for (int a = 0; a < 4; ++a) {
+    const Vec2& p = mesh_.nodes[cell[a]];
+    x += N[a] * p;
+    J.col(0) += dxi[a] * p;
+    J.col(1) += deta[a] * p;
+  }
+  thread_local std::vector<Index> cand, sup;
+  search_.within(x, rho_max_, cand);
+  sup.clear();
+  for (Index j : cand)
+    if (mls_.domain().contains(x, mesh_.nodes[j], rho_[j]) && (vis_.segments.empty() || vis_.visible(x, mesh_.nodes[j])))
+      sup.push_back(j);
+  FeCorrection fe;
+  const bool coupled = coupling_cell_[c];
+  if (coupled) {
+    const Mat2 Ji = J.inverse();  // dxi/dx = J^-T applied to (dxi, deta)
+    for (int a = 0; a < 4; ++a)
+      if (active_[cell[a]]) {
+        const Vec2 g = Ji.transpose() * Vec2(dxi[a], deta[a]);
+        fe.x[fe.n] = mesh_.nodes[cell[a]];
+        fe.N[fe.n] = N[a];
+        fe.Nx[fe.n] = g.x();
+        fe.Ny[fe.n] = g.y();
+        ++fe.n;
+      }
+  }
+  mls_.compute(x, mesh_.nodes, rho_, sup, out, coupled ? &fe : nullptr, "cell " + std::to_string(c), derivatives);
+  if (coupled) {  // add the FE functions of the active corners
+    int k = 0;
+    for (int a = 0; a < 4; ++a)
+      if (active_[cell[a]]) {
+        const Index n = cell[a];
+        auto it = std::find(out.nodes.begin(), out.nodes.end(), n);
+        size_t pos;
+        if (it == out.nodes.end()) {
+          out.nodes.push_back(n);
+          out.N.push_back(0);
+          out.Nx.push_back(0);
+          out.Ny.push_back(0);
+          pos = out.nodes.size() - 1;
+        } else {
+          pos = static_cast<size_t>(it - out.nodes.begin());
+        }
+        out.N[pos] += fe.N[k];
+        out.Nx[pos] += fe.Nx[k];
+        out.Ny[pos] += fe.Ny[k];
+        ++k;
+      }
+  }
+}
+
+void EfgModel::build_integration_points() {
+  const auto t0 = Clock::now();
+  std::vector<double> gx, gw, ex, ew;
+  gauss_legendre(gauss_, gx, gw);
+  gauss_legendre(std::max(2, gauss_), ex, ew);   // the edge rule of the traction loads
+  const Index nc = mesh_.num_cells();
+  cell_nodes_.assign(nc, {});
+  cell_gp_begin_.assign(nc + 1, 0);
+  gps_.clear();
+  long total_support = 0;
+  static const double cxi[4] = {-1, 1, 1, -1}, ceta[4] = {-1, -1, 1, 1};
+  std::vector<ShapeValues> sg, se;
+  for (Index c = 0; c < nc; ++c) {
+    cell_gp_begin_[c] = static_cast<Index>(gps_.size());
+    std::vector<Vec2> xg, xe, wn;
+    std::vector<double> wg;
+    sg.assign(gauss_ * gauss_, {});
+    std::set<Index> uni;
+    for (int i = 0; i < gauss_; ++i)
+      for (int j = 0; j < gauss_; ++j) {
+        double N[4], dxi[4], deta[4];
+        q4_shape(gx[i], gx[j], N, dxi, deta);
+        Vec2 x = Vec2::Zero();
+        Mat2 J = Mat2::Zero();
+        for (int a = 0; a < 4; ++a) {
+          const Vec2& p = mesh_.nodes[mesh_.cells[c][a]];
+          x += N[a] * p;
+          J.col(0) += dxi[a] * p;
+          J.col(1) += deta[a] * p;
+        }
+        const double det = J.determinant();
+        if (!(det > 0))
+          throw InputError(ctx_.case_file.string(), "/bodies", "background cell " + std::to_string(c) + " is inverted or degenerate");
+        ShapeValues& sh = sg[i * gauss_ + j];
+        shape_at(c, gx[i], gx[j], sh, true);
+        min_rcond_ = std::min(min_rcond_, sh.rcond);
+        xg.push_back(x);
+        wg.push_back(gw[i] * gw[j] * det);
+        uni.insert(sh.nodes.begin(), sh.nodes.end());
+      }
+    if (consistent_) {
+      se.clear();
+      for (int k = 0; k < 4; ++k) {
+        const Vec2 pa = mesh_.nodes[mesh_.cells[c][k]], pb = mesh_.nodes[mesh_.cells[c][(k + 1) % 4]];
+        const Vec2 nrm = Vec2((pb - pa).y(), -(pb - pa).x()).normalized();
+        for (size_t q = 0; q < ex.size(); ++q) {
+          const double s = 0.5 * (1 + ex[q]);
+          se.emplace_back();
+          shape_at(c, cxi[k] + s * (cxi[(k + 1) % 4] - cxi[k]), ceta[k] + s * (ceta[(k + 1) % 4] - ceta[k]), se.back(),
+                   false);
+          uni.insert(se.back().nodes.begin(), se.back().nodes.end());
+          xe.push_back(pa + s * (pb - pa));
+          wn.push_back(ew[q] * 0.5 * (pb - pa).norm() * nrm);
+        }
+      }
+    }
+    cell_nodes_[c].assign(uni.begin(), uni.end());
+    const auto& cn = cell_nodes_[c];
+    const int nu = static_cast<int>(cn.size()), ng = static_cast<int>(sg.size());
+    auto col = [&](Index n) { return static_cast<int>(std::lower_bound(cn.begin(), cn.end(), n) - cn.begin()); };
+    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(ng, nu), Nx = N, Ny = N;
+    for (int g = 0; g < ng; ++g)
+      for (size_t k = 0; k < sg[g].nodes.size(); ++k) {
+        const int j = col(sg[g].nodes[k]);
+        N(g, j) = sg[g].N[k];
+        Nx(g, j) = sg[g].Nx[k];
+        Ny(g, j) = sg[g].Ny[k];
+      }
+    if (consistent_) {
+      Eigen::MatrixXd Ne = Eigen::MatrixXd::Zero(static_cast<int>(se.size()), nu);
+      for (size_t e = 0; e < se.size(); ++e)
+        for (size_t k = 0; k < se[e].nodes.size(); ++k) Ne(static_cast<int>(e), col(se[e].nodes[k])) = se[e].N[k];
+      correct_derivatives(mls_.basis().complete_degree(), xg, wg, N, xe, wn, Ne, Nx, Ny);
+    }
+    for (int g = 0; g < ng; ++g) {
+      GaussPoint gp{xg[g], wg[g] * thickness_, c, static_cast<Index>(gnode_.size()), 0};
+      for (int j = 0; j < nu; ++j) {
+        if (N(g, j) == 0.0 && Nx(g, j) == 0.0 && Ny(g, j) == 0.0) continue;
+        gnode_.push_back(cn[j]);
+        gN_.push_back(N(g, j));
+        gNx_.push_back(Nx(g, j));
+        gNy_.push_back(Ny(g, j));
+        gloc_.push_back(j);
+        ++gp.n;
+      }
+      max_support_ = std::max(max_support_, static_cast<int>(gp.n));
+      total_support += gp.n;
+      gps_.push_back(gp);
+    }
+  }
+  cell_gp_begin_[nc] = static_cast<Index>(gps_.size());
+  mean_support_ = gps_.empty() ? 0 : static_cast<double>(total_support) / gps_.size();
+  // Nodal evaluation U = f(V): the functions at each node, from a cell it is a corner of.
+  const Index nn = mesh_.num_nodes();
+  node_eval_.assign(nn, {});
+  std::vector<char> done(nn, 0);
+  ShapeValues sh;
+  for (Index c = 0; c < nc; ++c)
+    for (int a = 0; a < 4; ++a) {
+      const Index n = mesh_.cells[c][a];
+      if (done[n]) continue;
+      done[n] = 1;
+      shape_at(c, cxi[a], ceta[a], sh, false);
+      for (size_t k = 0; k < sh.nodes.size(); ++k)
+        if (sh.N[k] != 0.0) node_eval_[n].emplace_back(sh.nodes[k], sh.N[k]);
+    }
+  t_shape_ = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void EfgModel::read_loads(Params b) {
+  const Index nn = mesh_.num_nodes();
+  ndof_ = 2 * nn;
+  // Collocation constraints (penalty, Lagrange).
+  if (essential_ != "coupling") {
+    for (size_t i = 0; i < fixed_dofs_.size(); ++i) {
+      const Index n = fixed_dofs_[i] / 2;
+      Constraint c{n, static_cast<int>(fixed_dofs_[i] % 2), fixed_ref_[i], {}};
+      for (const auto& [j, v] : node_eval_[n]) {
+        c.sh.nodes.push_back(j);
+        c.sh.N.push_back(v);
+      }
+      constraints_.push_back(std::move(c));
+    }
+  }
+  nsys_ = ndof_ + (essential_ == "lagrange" ? static_cast<Index>(constraints_.size()) : 0);
+  P_ = Vec::Zero(nsys_);
+  const auto edges = boundary_cell_edges(mesh_);
+  std::vector<double> gx, gw;
+  gauss_legendre(std::max(2, gauss_), gx, gw);
+  Params loads = b.at("loads");
+  ShapeValues sh;
+  for (size_t i = 0; i < loads.size(); ++i) {
+    Params l = loads.at(i);
+    if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
+    const std::string t = l.choice("type", {"traction", "exact_traction", "exact_body_force"});
+    if (t == "exact_body_force") {
+      l.validate({{"type", t}});
+      if (!exact_.available()) l.fail("type", "exact_body_force needs an exact solution (exact.type)");
+      for (const auto& gp : gps_) {
+        const Vec2 bf = exact_.body_force(gp.x);
+        for (Index k = 0; k < gp.n; ++k) {
+          const Index j = gp.begin + k;
+          P_[2 * gnode_[j]] += gN_[j] * bf.x() * gp.w;
+          P_[2 * gnode_[j] + 1] += gN_[j] * bf.y() * gp.w;
+        }
+      }
+      continue;
+    }
+    l.validate({{"type", t}, {"select", nullptr}, {"value", Json::array({0.0, 0.0})}, {"profile", "uniform"}});
+    // (the edge rule is the one of the consistent-integration correction: interior edges cancel, boundary ones match)
+    if (t == "exact_traction" && !exact_.available()) l.fail("type", "exact_traction needs an exact solution (exact.type)");
+    const std::string profile = l.choice("profile", {"uniform", "parabolic", "triangular"});
+    const Vec2 value = l.vec2("value");
+    Params sel = l.at("select");
+    const auto nodes = select_nodes(sel, mesh_.nodes);
+    Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+    if (profile != "uniform") {
+      if (sel.string("type") != "segment") l.fail("profile", "a non-uniform profile needs a segment selection");
+      from = sel.vec2("from");
+      to = sel.vec2("to");
+    }
+    const std::set<Index> in(nodes.begin(), nodes.end());
+    int used = 0;
+    for (const auto& e : edges) {
+      const Index c = e[0];
+      const int k = e[1];
+      const Index a = mesh_.cells[c][k], bnode = mesh_.cells[c][(k + 1) % 4];
+      if (!in.count(a) || !in.count(bnode)) continue;
+      ++used;
+      // Natural coordinates along the edge k: corners (-1,-1), (1,-1), (1,1), (-1,1).
+      static const double cxi[4] = {-1, 1, 1, -1}, ceta[4] = {-1, -1, 1, 1};
+      const Vec2 pa = mesh_.nodes[a], pb = mesh_.nodes[bnode];
+      const Vec2 normal = Vec2((pb - pa).y(), -(pb - pa).x()).normalized();
+      const double half = 0.5 * (pb - pa).norm();
+      for (size_t q = 0; q < gx.size(); ++q) {
+        const double s = 0.5 * (1 + gx[q]);
+        const double xi = cxi[k] + s * (cxi[(k + 1) % 4] - cxi[k]), eta = ceta[k] + s * (ceta[(k + 1) % 4] - ceta[k]);
+        const Vec2 x = pa + s * (pb - pa);
+        Vec2 tr;
+        if (t == "exact_traction") {
+          const Vec3 sg = exact_.stress(x);
+          tr = Vec2(sg[0] * normal.x() + sg[2] * normal.y(), sg[2] * normal.x() + sg[1] * normal.y());
+        } else {
+          double f = 1;
+          if (profile != "uniform") {
+            const Vec2 d = to - from;
+            const double r = std::clamp((x - from).dot(d) / d.squaredNorm(), 0.0, 1.0);
+            f = profile == "parabolic" ? 6 * r * (1 - r) : 2 * r;
+          }
+          tr = f * value;
+        }
+        shape_at(c, xi, eta, sh, false);
+        const double w = gw[q] * half * thickness_;
+        for (size_t m = 0; m < sh.nodes.size(); ++m) {
+          P_[2 * sh.nodes[m]] += sh.N[m] * tr.x() * w;
+          P_[2 * sh.nodes[m] + 1] += sh.N[m] * tr.y() * w;
+        }
+      }
+    }
+    if (used == 0) sel.fail("the selection contains no boundary edge of the background cells");
+  }
+  Ptr_ = P_;
+  // Prescribed values of the collocation constraints, times lambda like the loads.
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const auto& c = constraints_[k];
+    if (essential_ == "lagrange") {
+      P_[ndof_ + static_cast<Index>(k)] = c.value;
+    } else {
+      for (size_t a = 0; a < c.sh.nodes.size(); ++a) P_[2 * c.sh.nodes[a] + c.comp] += penalty_ * c.sh.N[a] * c.value;
+    }
+  }
+}
+
+void EfgModel::read_control(Params b) {
+  Params c = b.at("control");
+  c.validate({{"type", "load"}, {"form", "V"}, {"increment", 0.0}, {"at", Json::array({0.0, 0.0})}, {"component", "y"}});
+  const ControlType t = PathFollowing::parse(
+      c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
+  control_u_form_ = c.choice("form", {"U", "V"}) == "U";
+  double inc = c.number("increment");
+  if (inc == 0.0) {
+    if (t != ControlType::load) c.fail("increment", "required for this control (initial load factor or displacement increment)");
+    inc = ctx_.analysis.dt;  // load control by default follows the driver's load factor (time)
+  }
+  if (t == ControlType::displacement) {
+    Json sel = {{"type", "point"}, {"at", c.json()["at"]}};
+    Params sp(sel, c.file(), c.path());
+    const Index n = select_nodes(sp, mesh_.nodes).front();
+    control_dof_ = 2 * n + (c.choice("component", {"x", "y"}) == "x" ? 0 : 1);
+    if (std::find(fixed_dofs_.begin(), fixed_dofs_.end(), control_dof_) != fixed_dofs_.end())
+      c.fail("at", "the controlled dof is held by a boundary condition");
+  }
+  control_ = PathFollowing(t, inc, control_dof_);
+}
+
+void EfgModel::build_pattern() {
+  const Index nn = mesh_.num_nodes();
+  std::vector<std::vector<Index>> adj(nn);
+  for (const auto& u : cell_nodes_)
+    for (Index a : u) adj[a].insert(adj[a].end(), u.begin(), u.end());
+  for (const auto& c : constraints_)
+    for (Index a : c.sh.nodes) adj[a].insert(adj[a].end(), c.sh.nodes.begin(), c.sh.nodes.end());
+  for (Index a = 0; a < nn; ++a) {
+    adj[a].push_back(a);
+    std::sort(adj[a].begin(), adj[a].end());
+    adj[a].erase(std::unique(adj[a].begin(), adj[a].end()), adj[a].end());
+  }
+  // Multiplier columns / rows (Lagrange).
+  std::vector<std::vector<Index>> extra_rows(ndof_);  // per dof column: multiplier rows
+  std::vector<std::vector<Index>> mult_cols;
+  if (essential_ == "lagrange")
+    for (size_t k = 0; k < constraints_.size(); ++k) {
+      std::vector<Index> rows;
+      for (Index a : constraints_[k].sh.nodes) {
+        const Index d = 2 * a + constraints_[k].comp;
+        rows.push_back(d);
+        extra_rows[d].push_back(ndof_ + static_cast<Index>(k));
+      }
+      std::sort(rows.begin(), rows.end());
+      rows.push_back(ndof_ + static_cast<Index>(k));  // a structural zero diagonal
+      mult_cols.push_back(rows);
+    }
+  K_.resize(nsys_, nsys_);
+  std::vector<int> outer(nsys_ + 1, 0);
+  std::vector<int> inner;
+  for (Index col = 0; col < nsys_; ++col) {
+    outer[col] = static_cast<int>(inner.size());
+    if (col < ndof_) {
+      for (Index a : adj[col / 2]) {
+        inner.push_back(2 * a);
+        inner.push_back(2 * a + 1);
+      }
+      for (Index r : extra_rows[col]) inner.push_back(r);
+    } else {
+      for (Index r : mult_cols[col - ndof_]) inner.push_back(r);
+    }
+  }
+  outer[nsys_] = static_cast<int>(inner.size());
+  std::vector<double> values(inner.size(), 0.0);
+  K_ = Eigen::Map<const SparseMatrix>(nsys_, nsys_, static_cast<Index>(inner.size()), outer.data(), inner.data(),
+                                      values.data());
+  K_.makeCompressed();
+  is_fixed_.assign(nsys_, 0);
+  if (essential_ == "coupling")
+    for (Index d : fixed_dofs_) is_fixed_[d] = 1;
+}
+
+}  // namespace lagfsi::efg

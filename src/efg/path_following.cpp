@@ -1,0 +1,83 @@
+// Load, displacement, generalized displacement control and cylindrical arc length (Yang & Kuo 1994; Crisfield
+// 1981/1983), in the form used by the INSANE EFG thesis. See include/lagfsi/efg/path_following.hpp.
+#include <lagfsi/efg/path_following.hpp>
+#include <lagfsi/error.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lagfsi::efg {
+
+ControlType PathFollowing::parse(const std::string& name) {
+  if (name == "load") return ControlType::load;
+  if (name == "displacement") return ControlType::displacement;
+  if (name == "generalized_displacement") return ControlType::generalized_displacement;
+  if (name == "arc_length") return ControlType::arc_length;
+  throw std::invalid_argument("unknown control '" + name + "'");
+}
+
+double PathFollowing::predictor(const Vec& dUP, double scale) {
+  scale_ = scale;
+  dUP1_cur_ = dUP;
+  switch (type_) {
+    case ControlType::load: return inc_ * scale;
+    case ControlType::displacement: {
+      const double d = dUP[dof_];
+      if (std::abs(d) < 1e-300) throw SolverError("displacement control: the controlled dof does not respond to the load");
+      return inc_ * scale / d;
+    }
+    case ControlType::generalized_displacement: {
+      if (steps_ == 0) {
+        dUP1_first_ = dUP;
+        sign_cur_ = 1;
+        return inc_ * scale;
+      }
+      const double den = dUP1_prev_.dot(dUP);
+      if (std::abs(den) < 1e-300) throw SolverError("generalized displacement control: GSP undefined");
+      const double gsp = dUP1_first_.squaredNorm() / den;
+      sign_cur_ = sign_ * (gsp < 0 ? -1.0 : 1.0);
+      return sign_cur_ * inc_ * scale * std::sqrt(std::abs(gsp));
+    }
+    case ControlType::arc_length: {
+      const double n = dUP.norm();
+      if (!(n > 0)) throw SolverError("arc length: zero tangent response");
+      if (dl_ == 0) dl_ = inc_ * n;
+      double s = 1;
+      if (DU_prev_.size() == dUP.size() && DU_prev_.dot(dUP) < 0) s = -1;
+      return s * dl_ * scale / n;
+    }
+  }
+  return 0;
+}
+
+double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
+  switch (type_) {
+    case ControlType::load: return 0.0;
+    case ControlType::displacement: return -dUQ[dof_] / dUP[dof_];
+    case ControlType::generalized_displacement: {
+      const Vec& r = steps_ == 0 ? dUP1_cur_ : dUP1_prev_;
+      return -r.dot(dUQ) / r.dot(dUP);
+    }
+    case ControlType::arc_length: {
+      const double l = dl_ * scale_;
+      const Vec w = DU + dUQ;
+      const double a = dUP.squaredNorm(), b = 2 * dUP.dot(w), c = w.squaredNorm() - l * l;
+      const double disc = b * b - 4 * a * c;
+      if (disc < 0) throw SolverError("arc length: the constraint has no real root (step too long)");
+      const double r1 = (-b + std::sqrt(disc)) / (2 * a), r2 = (-b - std::sqrt(disc)) / (2 * a);
+      // The root whose new increment makes the smaller angle with the current one.
+      const double c1 = (w + r1 * dUP).dot(DU), c2 = (w + r2 * dUP).dot(DU);
+      return c1 >= c2 ? r1 : r2;
+    }
+  }
+  return 0;
+}
+
+void PathFollowing::commit(const Vec& DU) {
+  dUP1_prev_ = dUP1_cur_;
+  DU_prev_ = DU;
+  sign_ = sign_cur_;
+  ++steps_;
+}
+
+}  // namespace lagfsi::efg

@@ -19,10 +19,18 @@
 // at every particle (one-point quadrature of the linear p is exact and the mass is lumped), so div u* = 0
 // and dp = 0. A step costs one CHOLMOD factorization of a scalar Laplacian (and, with the implicit viscous
 // predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton
-// iterations on (x, y, p).
-#include "fluid_model.hpp"
+// iterations on (x, y, p) (pspg_scheme.cpp).
+#include "fluid_scheme.hpp"
 
-namespace lagfsi::fluid_detail {
+#include <lagfsi/assembly.hpp>
+#include <lagfsi/linear_solver.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace lagfsi::fluid {
 
 namespace {
 /// Element loops run in parallel (OpenMP, above a size where threads pay) and add into shared nodal arrays.
@@ -44,34 +52,85 @@ void constrain(SparseMatrix& A, const Fixed& fixed, const Diag& diag) {
         it.valueRef() += diag(it.row());
     }
 }
-}  // namespace
 
-void FluidModel::factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what) {
+/// The fractional step: the pressure Poisson matrix and the implicit viscous predictor's matrix (both one dof
+/// per particle, one pattern) on the step's mesh, and the step's new velocities.
+class FractionalStep final : public FluidScheme {
+ public:
+  FractionalStep(const FluidParts& f, const FractionalStepSettings& s)
+      : FluidScheme(f), s_(s), solver_(make_linear_solver(s.solver)), viscous_solver_(make_linear_solver(s.solver)) {}
+  void begin_step() override {
+    const Index np = f_.cloud.n();
+    poisson_pattern_ = ElementPattern(f_.mesh.conn, 3, np, 1);
+    poisson_ = poisson_pattern_.pattern();
+    if (viscous_implicit()) viscous_ = poisson_;
+    // A new mesh: new matrices. Re-solves of the step (a coupling pass) keep the factorizations, which
+    // depend on the mesh only.
+    step_factorized_ = false;
+  }
+  /// The whole step.
+  IterationReport iterate() override;
+  void end_step() override {
+    inverted_kept_ += inverted_in_step_;
+    inverted_in_step_ = 0;
+    KinematicState& s = f_.cloud.state();
+    s.a = (v_new_ - s.v) / f_.step.dt;
+    s.v = v_new_;
+    s.x = f_.step.x;
+  }
+  /// v_{n+1}.
+  Vec step_velocity() const override { return v_new_; }
+  long inverted_kept() const override { return inverted_kept_; }
+
+ private:
+  /// The viscous predictor is implicit (the automatic choice: when the explicit one would exceed its
+  /// stability limit dt <= rho h_min^2 / (8 mu), h_min = 0.3 h).
+  bool viscous_implicit() const;
+  /// Factorizes a matrix of the step (time counted as factorization); a failure names the body and `what`.
+  void factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what);
+
+  FractionalStepSettings s_;
+  std::unique_ptr<LinearSolver> solver_, viscous_solver_;
+  ElementPattern poisson_pattern_;
+  SparseMatrix poisson_, viscous_, viscous_stiffness_;
+  Vec v_new_;
+  bool step_factorized_ = false;   // the step's matrices are factorized (reused by re-solves)
+  long inverted_in_step_ = 0, inverted_kept_ = 0;  // inverted elements in the last solve / in the accepted
+                                                   // steps ("inverted_elements": "remesh")
+};
+
+void FractionalStep::factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what) {
   const auto t0 = Clock::now();
   try {
     solver.factorize(A);
   } catch (const SolverError& err) {
-    throw SolverError("body '" + name_ + "': " + what + ": " + err.what());
+    throw SolverError("body '" + f_.c.name + "': " + what + ": " + err.what());
   }
-  times_.factorization += seconds_since(t0);
+  f_.times.factorization += seconds_since(t0);
 }
 
-bool FluidModel::viscous_implicit() const {
-  if (viscous_step_ != "automatic") return viscous_step_ == "implicit";
-  if (mu_ <= 0) return false;
-  const double hmin = 0.3 * h_;
-  const double dt = dt_ > 0 ? dt_ : ctx_.analysis.dt;
-  return dt > rho_ * hmin * hmin / (8.0 * mu_);
+bool FractionalStep::viscous_implicit() const {
+  if (s_.viscous_step != "automatic") return s_.viscous_step == "implicit";
+  if (f_.c.mu <= 0) return false;
+  const double hmin = 0.3 * f_.c.h;
+  const double dt = f_.step.dt > 0 ? f_.step.dt : f_.c.analysis_dt;
+  return dt > f_.c.rho * hmin * hmin / (8.0 * f_.c.mu);
 }
 
-IterationReport FluidModel::fractional_step() {
+IterationReport FractionalStep::iterate() {
   auto t0 = Clock::now();
-  const Index np = n();
-  const Index ne = static_cast<Index>(tri_.size());
-  const double dt = dt_;
-  const Vec2 g = ctx_.gravity;
-  const Vec& x = state_.x;
-  const Vec& v = state_.v;
+  const Index np = f_.cloud.n();
+  const Index ne = f_.mesh.num_elements();
+  const double dt = f_.step.dt;
+  const Vec2 g = f_.c.gravity;
+  const Vec& x = f_.cloud.x();
+  const Vec& v = f_.cloud.v();
+  const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
+  const std::vector<char>& fixed = f_.step.fixed;
+  Vec& pres = f_.cloud.p();
+  Vec& x_new = f_.step.x;  // the step's new positions
+  Vec& ghost_force = f_.ghosts.forces();
 
   // Geometry of the step's mesh and lumped masses.
   std::vector<double> area(ne);
@@ -80,7 +139,7 @@ IterationReport FluidModel::fractional_step() {
   Index inverted = -1;
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri_[e];
+    const auto& t = tri[e];
     const Vec2 a = x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[1]), c = x.segment<2>(2 * t[2]);
     const double A2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     if (!(A2 > 0.0)) {
@@ -94,13 +153,13 @@ IterationReport FluidModel::fractional_step() {
       const Vec2& q = x.segment<2>(2 * t[(k + 2) % 3]);
       grad[e][k] = Vec2(p.y() - q.y(), q.x() - p.x()) / A2;
     }
-    for (Index i : t) atomic_add(mass[i], rho_ * area[e] / 3.0);
+    for (Index i : t) atomic_add(mass[i], f_.c.rho * area[e] / 3.0);
   }
   if (inverted >= 0) {
-    const auto& t = tri_[inverted];
-    throw SolverError("body '" + name_ + "': element " + std::to_string(inverted) + " (particles " +
+    const auto& t = tri[inverted];
+    throw SolverError("body '" + f_.c.name + "': element " + std::to_string(inverted) + " (particles " +
                       std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
-                      ") is inverted at t = " + std::to_string(t_new_ - dt));
+                      ") is inverted at t = " + std::to_string(f_.step.t_new - dt));
   }
 
   // Velocity components that are prescribed: wall particles (the wall's velocity), slip
@@ -108,7 +167,7 @@ IterationReport FluidModel::fractional_step() {
   std::vector<char> vfixed(2 * np, 0);
   Vec ustar = v;
   for (Index i = 0; i < np; ++i) {
-    if (kind_[i] != ParticleKind::Fluid) {
+    if (kind[i] != ParticleKind::Fluid) {
       vfixed[2 * i] = vfixed[2 * i + 1] = 1;
       ustar.segment<2>(2 * i) = Vec2::Zero();
     } else if (!(mass[i] > 0)) {
@@ -116,21 +175,21 @@ IterationReport FluidModel::fractional_step() {
       ustar.segment<2>(2 * i) = v.segment<2>(2 * i) + dt * g;
     }
   }
-  for (const auto& w : walls_)  // moving walls: the prescribed velocity at the end of the step
+  for (const auto& w : f_.walls.all())  // moving walls: the prescribed velocity at the end of the step
     if (w.fn)
-      for (const Vec2 vw = w.velocity_at(t_new_); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
-  for (const auto& [i, c] : slip_) {
+      for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
+  for (const auto& [i, c] : f_.walls.constraints()) {
     vfixed[2 * i + c] = 1;
     ustar[2 * i + c] = 0.0;
   }
-  // Ghost particles: the mean velocity of the structure's boundary over the step, (x_{n+1} - x_n)/dt. The
+  // Ghost particles: the mean velocity of the structure's boundary over the step, (x_new{n+1} - x_n)/dt. The
   // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
   // step's mesh motion consistent with the boundary's; the structure's own v_{n+1} (trapezoidal rule)
   // alternates around it after a sudden load and would pump pressure spikes into the fluid.
-  for (size_t gi = 0; gi < ghost_index_.size() && ghost_x_.size() > 0; ++gi)
-    if (!ghost_merged_[gi]) {
-      const Index i = ghost_index_[gi];
-      ustar.segment<2>(2 * i) = (ghost_x_.segment<2>(2 * gi) - x.segment<2>(2 * i)) / dt;
+  for (size_t gi = 0; gi < f_.ghosts.count() && f_.ghosts.x().size() > 0; ++gi)
+    if (!f_.ghosts.merged(gi)) {
+      const Index i = f_.ghosts.index(gi);
+      ustar.segment<2>(2 * i) = (f_.ghosts.x().segment<2>(2 * gi) - x.segment<2>(2 * i)) / dt;
     }
 
   // 1. Predictor: gravity, the pressure of the last step and the viscous force. Explicit: all of
@@ -141,20 +200,20 @@ IterationReport FluidModel::fractional_step() {
   Vec force = Vec::Zero(2 * np);
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri_[e];
-    const double pbar = (p_[t[0]] + p_[t[1]] + p_[t[2]]) / 3.0;
+    const auto& t = tri[e];
+    const double pbar = (pres[t[0]] + pres[t[1]] + pres[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
-    if (mu_ > 0 && !inviscid_element(e))
+    if (f_.c.mu > 0 && !f_.walls.inviscid(tri[e]))
       for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * grad[e][k].transpose();
     const Mat2 visc = implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
     for (int a = 0; a < 3; ++a) {
-      const Vec2 f = area[e] * (pbar * grad[e][a] - mu_ * visc * grad[e][a]);
+      const Vec2 f = area[e] * (pbar * grad[e][a] - f_.c.mu * visc * grad[e][a]);
       atomic_add(force[2 * t[a]], f.x());
       atomic_add(force[2 * t[a] + 1], f.y());
     }
   }
   for (Index i = 0; i < np; ++i) force.segment<2>(2 * i) += mass[i] * g;
-  times_.assembly += seconds_since(t0);
+  f_.times.assembly += seconds_since(t0);
 
   if (!implicit) {
     for (Index k = 0; k < 2 * np; ++k)
@@ -173,14 +232,14 @@ IterationReport FluidModel::fractional_step() {
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
         for (Index e = 0; e < ne; ++e) {
-          if (inviscid_element(e)) continue;
+          if (f_.walls.inviscid(tri[e])) continue;
           const int* sc = poisson_pattern_.scatter(e);
           for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], mu_ * area[e] * grad[e][a].dot(grad[e][b]));
+            for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]));
         }
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
         constrain(viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; }, [&](Index i) { return mass[i] / dt; });
-        times_.assembly += seconds_since(t0);
+        f_.times.assembly += seconds_since(t0);
         factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
       t0 = Clock::now();
@@ -194,7 +253,7 @@ IterationReport FluidModel::fractional_step() {
       viscous_solver_->solve(rhs, u);
       for (Index i = 0; i < np; ++i)
         if (!vfixed[2 * i + c]) ustar[2 * i + c] = u[i];
-      times_.solve += seconds_since(t0);
+      f_.times.solve += seconds_since(t0);
     }
   }
 
@@ -206,29 +265,29 @@ IterationReport FluidModel::fractional_step() {
   Vec rhs = Vec::Zero(np), comp = Vec::Zero(np);
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri_[e];
-    double div = c_vol_;
+    const auto& t = tri[e];
+    double div = f_.volume.c_vol();
     for (int k = 0; k < 3; ++k) div += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
       atomic_add(rhs[t[a]], -area[e] / 3.0 * div);
       if (!assemble) continue;
-      if (bulk_ > 0) atomic_add(comp[t[a]], area[e] / 3.0 / (bulk_ * dt));
-      for (int b = 0; b < 3; ++b) atomic_add(lv[sc[b * 3 + a]], dt / rho_ * area[e] * grad[e][a].dot(grad[e][b]));
+      if (f_.c.bulk > 0) atomic_add(comp[t[a]], area[e] / 3.0 / (f_.c.bulk * dt));
+      for (int b = 0; b < 3; ++b) atomic_add(lv[sc[b * 3 + a]], dt / f_.c.rho * area[e] * grad[e][a].dot(grad[e][b]));
     }
   }
-  // Unknown pressures: connected particles off the free surface (fixed_ from set_dirichlet); the others
+  // Unknown pressures: connected particles off the free surface (step.fixed from FluidModel::set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
-  if (assemble) constrain(poisson_, [&](Index i) { return fixed_[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
+  if (assemble) constrain(poisson_, [&](Index i) { return fixed[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
   for (Index i = 0; i < np; ++i)
-    if (fixed_[3 * i + 2]) rhs[i] = 0.0;
-  times_.assembly += seconds_since(t0);
+    if (fixed[3 * i + 2]) rhs[i] = 0.0;
+  f_.times.assembly += seconds_since(t0);
   if (assemble) factorize_step_matrix(*solver_, poisson_, "pressure step");
   step_factorized_ = true;
   t0 = Clock::now();
   Vec dp;
   solver_->solve(rhs, dp);
-  times_.solve += seconds_since(t0);
+  f_.times.solve += seconds_since(t0);
 
   // 3. Correction and new positions.
   t0 = Clock::now();
@@ -236,7 +295,7 @@ IterationReport FluidModel::fractional_step() {
   Vec du = Vec::Zero(2 * np);
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)
   for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri_[e];
+    const auto& t = tri[e];
     const double dpbar = (dp[t[0]] + dp[t[1]] + dp[t[2]]) / 3.0;
     for (int a = 0; a < 3; ++a) {
       atomic_add(du[2 * t[a]], area[e] * dpbar * grad[e][a].x());
@@ -245,54 +304,55 @@ IterationReport FluidModel::fractional_step() {
   }
   for (Index k = 0; k < 2 * np; ++k)
     if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
-  p_ += dp;
-  if (!ghost_index_.empty()) {
+  pres += dp;
+  if (f_.ghosts.count() > 0) {
     // Forces on the ghost particles: what the structure must apply to give them the prescribed velocity,
     // F = m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor), sign flipped.
     Vec Ku = Vec::Zero(2 * np);
     if (implicit)
       for (Index e = 0; e < ne; ++e) {
-        const auto& t = tri_[e];
-        if (inviscid_element(e) || !(is_ghost(t[0]) || is_ghost(t[1]) || is_ghost(t[2]))) continue;
+        const auto& t = tri[e];
+        if (f_.walls.inviscid(tri[e]) || !(f_.ghosts.is_ghost(t[0]) || f_.ghosts.is_ghost(t[1]) || f_.ghosts.is_ghost(t[2]))) continue;
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b)
-            Ku.segment<2>(2 * t[a]) += mu_ * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+            Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
       }
-    for (size_t gi = 0; gi < ghost_index_.size(); ++gi) {
-      const Index i = ghost_index_[gi];
-      if (ghost_merged_[gi]) {
-        ghost_force_.segment<2>(2 * gi).setZero();
+    for (size_t gi = 0; gi < f_.ghosts.count(); ++gi) {
+      const Index i = f_.ghosts.index(gi);
+      if (f_.ghosts.merged(gi)) {
+        ghost_force.segment<2>(2 * gi).setZero();
         continue;
       }
       const Vec2 inertia = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt;
-      ghost_force_.segment<2>(2 * gi) =
+      ghost_force.segment<2>(2 * gi) =
           force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
     }
   }
-  if (energy_probes_) {
+  if (f_.step.energy) {
     // The force each wall or ghost particle applies to the fluid (the boundary work of the energy balance):
     // m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor).
-    const Index nb = n_boundary_particles();
+    const Index nb = f_.cloud.n_boundary_particles();
     Vec Ku = Vec::Zero(2 * nb);
     if (implicit)
       for (Index e = 0; e < ne; ++e) {
-        const auto& t = tri_[e];
-        if (inviscid_element(e) || !(t[0] < nb || t[1] < nb || t[2] < nb)) continue;
+        const auto& t = tri[e];
+        if (f_.walls.inviscid(t) || !(t[0] < nb || t[1] < nb || t[2] < nb)) continue;
         for (int a = 0; a < 3; ++a)
           if (t[a] < nb)
             for (int b = 0; b < 3; ++b)
-              Ku.segment<2>(2 * t[a]) += mu_ * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+              Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
       }
-    boundary_force_.resize(2 * nb);
+    Vec& boundary_force = f_.step.boundary_force;
+    boundary_force.resize(2 * nb);
     for (Index i = 0; i < nb; ++i)
-      boundary_force_.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
-                                          force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
+      boundary_force.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
+                                         force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
   }
   for (Index i = 0; i < np; ++i)
-    if (kind_[i] == ParticleKind::Fluid) x_.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
-  for (const auto& [i, c] : slip_) x_[2 * i + c] = x[2 * i + c];
-  if (!x_.allFinite() || !p_.allFinite() || !v_new_.allFinite())
-    throw SolverError("body '" + name_ + "': non-finite solution of the fractional step at t = " + std::to_string(t_new_));
+    if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
+  for (const auto& [i, c] : f_.walls.constraints()) x_new[2 * i + c] = x[2 * i + c];
+  if (!x_new.allFinite() || !pres.allFinite() || !v_new_.allFinite())
+    throw SolverError("body '" + f_.c.name + "': non-finite solution of the fractional step at t = " + std::to_string(f_.step.t_new));
 
   // An element turned inside out within the step: a particle crossed the opposite side of its element
   // (a neighbour at an impact, a wall). With "inverted_elements": "retry" (the default) the step is
@@ -306,23 +366,23 @@ IterationReport FluidModel::fractional_step() {
   // gate's tip over the floor) is never a failure: no time step resolves that, and remeshing removes it.
   inverted_in_step_ = 0;
   for (Index e = 0; e < ne; ++e)
-    if (!(element_area(x_, e) > 0) && !moving_boundary_pair(e)) {
+    if (!(f_.mesh.element_area(x_new, e) > 0) && !f_.ghosts.moving_boundary_pair(tri[e], kind)) {
       ++inverted_in_step_;
-      if (!retry_inverted_) continue;
+      if (!s_.retry_inverted) continue;
       if (std::getenv("LAGFSI_DEBUG_NEWTON"))
-        for (Index i : tri_[e])
+        for (Index i : tri[e])
           std::fprintf(stderr, "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n", int(i),
-                       int(kind_[i]), int(free_[i]), x[2 * i], x[2 * i + 1], x_[2 * i], x_[2 * i + 1], v_new_[2 * i],
+                       int(kind[i]), int(f_.mesh.free[i]), x[2 * i], x[2 * i + 1], x_new[2 * i], x_new[2 * i + 1], v_new_[2 * i],
                        v_new_[2 * i + 1], ustar[2 * i], ustar[2 * i + 1]);
-      throw SolverError("body '" + name_ + "': element " + std::to_string(e) + " turned inside out within the step at t = " +
-                        std::to_string(t_new_));
+      throw SolverError("body '" + f_.c.name + "': element " + std::to_string(e) + " turned inside out within the step at t = " +
+                        std::to_string(f_.step.t_new));
     }
   // Report: the divergence left by the correction, relative to that of the predictor (the part the
   // Laplacian stabilization does not remove).
   double div_star = 0, div_new = 0;
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements) reduction(+ : div_star, div_new)
   for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri_[e];
+    const auto& t = tri[e];
     double d0 = 0, d1 = 0;
     for (int k = 0; k < 3; ++k) {
       d0 += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
@@ -331,14 +391,20 @@ IterationReport FluidModel::fractional_step() {
     div_star += area[e] * d0 * d0;
     div_new += area[e] * d1 * d1;
   }
-  times_.assembly += seconds_since(t0);
+  f_.times.assembly += seconds_since(t0);
   IterationReport rep;
   rep.residual = std::sqrt(div_new);
   rep.residual_ref = std::max({std::sqrt(div_star), std::sqrt(div_new), 1e-300});
   rep.increment = 0;
-  rep.increment_ref = h_;
+  rep.increment_ref = f_.c.h;
   rep.converged = true;
   return rep;
 }
 
-}  // namespace lagfsi::fluid_detail
+}  // namespace
+
+std::unique_ptr<FluidScheme> make_fractional_step(const FluidParts& f, const FractionalStepSettings& s) {
+  return std::make_unique<FractionalStep>(f, s);
+}
+
+}  // namespace lagfsi::fluid

@@ -1,5 +1,7 @@
-// PFEM remeshing that keeps the fluid and its energy: the remesh step of a flow, the advected previous
-// domain that decides the new mesh, and particle management that moves neither area nor momentum.
+// PFEM remeshing that keeps the fluid and its energy (RemeshPipeline, remesh_pipeline.hpp, with
+// "domain_detection": "advected" or "level_set"; the remesh step itself is RemeshPipeline::remesh_step): the
+// advected previous domain that decides the new mesh, and particle management that moves neither area nor
+// momentum.
 //
 // The classic PFEM remesh (Idelsohn, Oñate & Del Pin 2004) re-detects the domain from the particles alone
 // with the alpha shape; along a moving free surface elements appear and disappear from step to step, so the
@@ -21,30 +23,27 @@
 //       both lie on or inside the advected domain, which they therefore do not change.
 //  3. what the remesh still changed is measured: the area and the kinetic energy of the same velocities on
 //     the new mesh against the old (log.csv remesh_dA, remesh_dKE; totals in summary.json).
-#include "fluid_model.hpp"
+#include "remesh_pipeline.hpp"
 
-namespace lagfsi::fluid_detail {
+#include <algorithm>
+#include <cmath>
+
+namespace lagfsi::fluid {
 
 namespace {
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 }  // namespace
 
-double FluidModel::mesh_area() const {
-  double a = 0;
-  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e) a += element_area(state_.x, e);
-  return a;
-}
-
-FluidModel::BoundaryChains FluidModel::boundary_chains() const {
+RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
   // Boundary edges: used by one element, directed as in that element (counter-clockwise when it was made).
-  const Index np = n();
+  const Index np = cloud_.n();
   BoundaryChains b;
   b.next.assign(np, -1);
   b.prev.assign(np, -1);
   b.pinched.assign(np, 0);
   std::vector<std::array<Index, 3>> edges;  // (min, max, directed from)
-  edges.reserve(3 * tri_.size());
-  for (const auto& t : tri_)
+  edges.reserve(3 * mesh_.tri.size());
+  for (const auto& t : mesh_.tri)
     for (int k = 0; k < 3; ++k) {
       const Index a = t[k], c = t[(k + 1) % 3];
       edges.push_back({std::min(a, c), std::max(a, c), a});
@@ -65,26 +64,26 @@ FluidModel::BoundaryChains FluidModel::boundary_chains() const {
   return b;
 }
 
-meshing::PreviousDomain FluidModel::advected_domain() const {
+meshing::PreviousDomain RemeshPipeline::advected_domain() const {
   std::vector<std::array<Vec2, 3>> triangles;
-  triangles.reserve(tri_.size());
-  for (const auto& t : tri_)
-    triangles.push_back({pos(t[0]), pos(t[1]), pos(t[2])});
+  triangles.reserve(mesh_.tri.size());
+  for (const auto& t : mesh_.tri)
+    triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
   const BoundaryChains b = boundary_chains();
   std::vector<std::array<Vec2, 2>> boundary;
-  for (Index i = 0; i < n(); ++i)
-    if (b.next[i] >= 0) boundary.push_back({pos(i), pos(b.next[i])});
+  for (Index i = 0; i < cloud_.n(); ++i)
+    if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});
   return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
 }
 
-bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
+bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
                                   std::vector<std::pair<Index, Index>>& boundary_edges) {
-  const Index np = n();
+  const Index np = cloud_.n();
   std::vector<Vec2> pts(np);
-  for (Index i = 0; i < np; ++i) pts[i] = pos(i);
+  for (Index i = 0; i < np; ++i) pts[i] = cloud_.pos(i);
   std::vector<double> lumped(np, 0.0);
-  for (Index e = 0; e < static_cast<Index>(tri_.size()); ++e)
-    for (Index i : tri_[e]) lumped[i] += std::abs(element_area(state_.x, e)) / 3.0;
+  for (Index e = 0; e < static_cast<Index>(mesh_.tri.size()); ++e)
+    for (Index i : mesh_.tri[e]) lumped[i] += std::abs(mesh_.element_area(cloud_.x(), e)) / 3.0;
   const BoundaryChains chain = boundary_chains();
   const auto on_boundary = [&](Index i) { return chain.next[i] >= 0 || chain.prev[i] >= 0; };
 
@@ -113,37 +112,37 @@ bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
         if (p >= 0 && q >= 0 && p != c && q != a && p != q) {
           const Vec2 d = pts[q] - pts[p];
           const double dn = d.norm();
-          if (dn > 1e-12 * h_) {
+          if (dn > 1e-12 * c_.h) {
             const double target = cross(pts[p], pts[a]) + cross(pts[a], pts[c]) + cross(pts[c], pts[q]);
             const double s = (target - cross(x, d)) / (-dn);
-            if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * h_) x += s * Vec2(-d.y(), d.x()) / dn;
+            if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * c_.h) x += s * Vec2(-d.y(), d.x()) / dn;
           }
         }
       }
     }
-    state_.x.segment<2>(2 * i) = x;
-    state_.v.segment<2>(2 * i) = si * state_.v.segment<2>(2 * i) + sj * state_.v.segment<2>(2 * j);
-    state_.a.segment<2>(2 * i) = si * state_.a.segment<2>(2 * i) + sj * state_.a.segment<2>(2 * j);
-    p_[i] = si * p_[i] + sj * p_[j];
+    cloud_.x().segment<2>(2 * i) = x;
+    cloud_.v().segment<2>(2 * i) = si * cloud_.v().segment<2>(2 * i) + sj * cloud_.v().segment<2>(2 * j);
+    cloud_.a().segment<2>(2 * i) = si * cloud_.a().segment<2>(2 * i) + sj * cloud_.a().segment<2>(2 * j);
+    cloud_.p()[i] = si * cloud_.p()[i] + sj * cloud_.p()[j];
     drop[j] = touched[i] = touched[j] = 1;
     alias[j] = i;
     ++merged_;
   };
-  if (close_fraction_ > 0) {
+  if (s_.close_fraction > 0) {
     // A fluid particle pressed against a wall particle: inside the fluid it goes (the wall stands for it;
     // the domain does not change); on the free surface (where the surface meets the wall) it is merged with
     // its fluid neighbour along the surface, which keeps the boundary's area.
-    for (const auto& t : tri_)
+    for (const auto& t : mesh_.tri)
       for (int k = 0; k < 3; ++k) {
         const Index a = t[k], c = t[(k + 1) % 3];
-        const bool fa = kind_[a] == ParticleKind::Fluid, fc = kind_[c] == ParticleKind::Fluid;
+        const bool fa = cloud_.kind(a) == ParticleKind::Fluid, fc = cloud_.kind(c) == ParticleKind::Fluid;
         if (fa == fc) continue;
         const Index f = fa ? a : c;
-        if (touched[f] || !((pts[a] - pts[c]).norm() < close_fraction_ * h_)) continue;
+        if (touched[f] || !((pts[a] - pts[c]).norm() < s_.close_fraction * c_.h)) continue;
         Index partner = -1;
         if (on_boundary(f))
           for (Index q : {chain.next[f], chain.prev[f]})
-            if (partner < 0 && q >= 0 && kind_[q] == ParticleKind::Fluid && !touched[q]) partner = q;
+            if (partner < 0 && q >= 0 && cloud_.kind(q) == ParticleKind::Fluid && !touched[q]) partner = q;
         if (partner >= 0) {
           merge(partner, f);
         } else {
@@ -151,7 +150,7 @@ bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
         }
         ++wall_removed_;
       }
-    for (const auto& [i, j] : meshing::close_fluid_pairs(pts, kind_, hvec_, tri_, close_fraction_))
+    for (const auto& [i, j] : meshing::close_fluid_pairs(pts, cloud_.kind(), cloud_.h(), mesh_.tri, s_.close_fraction))
       if (!touched[i] && !touched[j]) merge(i, j);
   }
 
@@ -167,36 +166,36 @@ bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
     NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
     for (size_t k = 0; k < ids.size(); ++k) {
       q.x += w[k] * pts[ids[k]];
-      q.v += w[k] * state_.v.segment<2>(2 * ids[k]);
-      q.a += w[k] * state_.a.segment<2>(2 * ids[k]);
-      q.p += w[k] * p_[ids[k]];
-      q.h += w[k] * hvec_[ids[k]];
+      q.v += w[k] * cloud_.v().segment<2>(2 * ids[k]);
+      q.a += w[k] * cloud_.a().segment<2>(2 * ids[k]);
+      q.p += w[k] * cloud_.p()[ids[k]];
+      q.h += w[k] * cloud_.h(ids[k]);
     }
     return q;
   };
-  if (split_factor_ > 0)
+  if (s_.split_factor > 0)
     for (Index a = 0; a < np; ++a) {
       const Index c = chain.next[a];
       if (c < 0 || touched[a] || touched[c]) continue;
-      if (kind_[a] != ParticleKind::Fluid && kind_[c] != ParticleKind::Fluid) continue;
-      const double he = 0.5 * (hvec_[a] + hvec_[c]);
-      if ((pts[a] - pts[c]).norm() > split_factor_ * he) {
+      if (cloud_.kind(a) != ParticleKind::Fluid && cloud_.kind(c) != ParticleKind::Fluid) continue;
+      const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
+      if ((pts[a] - pts[c]).norm() > s_.split_factor * he) {
         split_at[a] = np + static_cast<Index>(fresh.size());
         fresh.push_back(between({a, c}, {0.5, 0.5}));
         ++split_;
       }
     }
-  if (insert_factor_ > 0)
-    for (Index e : meshing::oversized_elements(pts, hvec_, tri_, insert_factor_)) {
-      const auto& t = tri_[e];
-      if (touched[t[0]] || touched[t[1]] || touched[t[2]] || !(element_area(state_.x, e) > 0)) continue;
+  if (s_.insert_factor > 0)
+    for (Index e : meshing::oversized_elements(pts, cloud_.h(), mesh_.tri, s_.insert_factor)) {
+      const auto& t = mesh_.tri[e];
+      if (touched[t[0]] || touched[t[1]] || touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
       fresh.push_back(between({t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3}));
       ++inserted_;
     }
   // The previous mesh's topology through the changes: boundary edges follow merges (to the survivor) and
   // splits (two halves); those of a removed particle go.
   std::vector<std::uint8_t> used(np + fresh.size(), 0);
-  for (const auto& t : tri_)
+  for (const auto& t : mesh_.tri)
     for (Index i : t) used[i] = 1;
   std::vector<std::pair<Index, Index>> edges;
   for (Index a = 0; a < np; ++a) {
@@ -212,13 +211,13 @@ bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
     }
   }
   for (const auto& q : fresh) append_particle(q.x, q.v, q.a, q.p, q.h);
-  drop.resize(static_cast<size_t>(n()), 0);
+  drop.resize(static_cast<size_t>(cloud_.n()), 0);
   const bool dropped = drop_particles(drop);
   const auto to_new = [&](Index i) { return dropped ? renumber_[i] : i; };
-  meshed.assign(static_cast<size_t>(n()), 0);
+  meshed.assign(static_cast<size_t>(cloud_.n()), 0);
   for (Index i = 0; i < static_cast<Index>(used.size()); ++i) {
     const Index k = to_new(i);
-    if (k >= 0) meshed[k] = used[i] || kind_[k] == ParticleKind::Fluid;
+    if (k >= 0) meshed[k] = used[i] || cloud_.kind(k) == ParticleKind::Fluid;
   }
   boundary_edges.clear();
   for (const auto& [a, c] : edges)
@@ -226,31 +225,4 @@ bool FluidModel::manage_particles(std::vector<std::uint8_t>& meshed,
   return dropped || !fresh.empty();
 }
 
-void FluidModel::remesh_step() {
-  drop_outside_domain();
-  // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
-  // domain box is counted apart, area_left_) against the new one.
-  const double area0 = mesh_area(), ke0 = kinetic_energy(), pe0 = potential_energy();
-  if (detection_ == meshing::DomainDetection::Alpha) {
-    remesh_now();
-    const bool removed = remove_close_particles();
-    if (removed) remesh_now();
-    if (insert_particles()) remesh_now();
-  } else {
-    meshing::PreviousDomain previous = advected_domain();
-    std::vector<std::uint8_t> meshed;
-    std::vector<std::pair<Index, Index>> edges;
-    manage_particles(meshed, edges);
-    previous.set_topology(std::move(meshed), std::move(edges));
-    remesh_now(&previous);
-  }
-  const double area1 = mesh_area();
-  remesh_dA_ = area1 - area0;
-  remesh_dKE_ = kinetic_energy() - ke0;
-  (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
-  remesh_ke_total_ += remesh_dKE_;
-  remesh_pe_total_ += potential_energy() - pe0;
-  if (volume_correction_ == "surface") restore_area();
-}
-
-}  // namespace lagfsi::fluid_detail
+}  // namespace lagfsi::fluid

@@ -1,0 +1,80 @@
+#pragma once
+/// @file fluid/particle_cloud.hpp
+/// The fluid's particles: the per-particle parallel arrays (kind, spacing, x, v, a, initial position,
+/// pressure), kept aligned by the only operations that add, remove or reorder particles (compact, append,
+/// rebuild). Implemented in src/fluid/particle_cloud.cpp.
+#include <lagfsi/fluid/fluid_params.hpp>
+
+#include <lagfsi/time_integrator.hpp>
+
+#include <vector>
+
+namespace lagfsi::fluid {
+
+class ParticleCloud {
+ public:
+  /// One particle's data (for append and rebuild).
+  struct Particle {
+    ParticleKind kind = ParticleKind::Fluid;
+    double h = 0;
+    Vec2 x = Vec2::Zero(), v = Vec2::Zero(), a = Vec2::Zero(), X0 = Vec2::Zero();
+    double p = 0;
+  };
+
+  /// The initial cloud: particles at `x` of kinds `kind`, spacing h, at rest, zero pressure, X0 = x.
+  void assign(const std::vector<Vec2>& x, std::vector<ParticleKind> kind, double h);
+
+  Index n() const { return static_cast<Index>(kind_.size()); }
+  const std::vector<ParticleKind>& kind() const { return kind_; }
+  ParticleKind kind(Index i) const { return kind_[i]; }
+  bool is_fluid(Index i) const { return kind_[i] == ParticleKind::Fluid; }
+  /// Walls, then ghosts, come first in the cloud: the number of those leading non-fluid particles.
+  Index n_boundary_particles() const {
+    Index nb = 0;
+    while (nb < n() && kind_[nb] != ParticleKind::Fluid) ++nb;
+    return nb;
+  }
+  /// Per-particle spacing (the alpha test's and the filters' local h).
+  const std::vector<double>& h() const { return hvec_; }
+  double h(Index i) const { return hvec_[i]; }
+
+  /// x, v, a of all particles (2 per particle; t is not used). The arrays' sizes are the cloud's: change
+  /// them only through compact, append and rebuild.
+  KinematicState& state() { return state_; }
+  const KinematicState& state() const { return state_; }
+  Vec& x() { return state_.x; }
+  const Vec& x() const { return state_.x; }
+  Vec& v() { return state_.v; }
+  const Vec& v() const { return state_.v; }
+  Vec& a() { return state_.a; }
+  const Vec& a() const { return state_.a; }
+  /// Initial positions (walls move relative to these).
+  const Vec& X0() const { return X0_; }
+  /// Pressures (one per particle, positive in compression).
+  Vec& p() { return p_; }
+  const Vec& p() const { return p_; }
+
+  Vec2 pos(Index i) const { return state_.x.segment<2>(2 * i); }
+  Vec2 vel(Index i) const { return state_.v.segment<2>(2 * i); }
+  /// The positions as points (for meshing).
+  std::vector<Vec2> positions() const;
+  Particle particle(Index i) const;
+
+  /// Removes the flagged particles (drop[i] != 0), keeping the order of the others; false when none is
+  /// flagged.
+  bool compact(const std::vector<char>& drop);
+  /// Adds particles at the end.
+  void append(const std::vector<Particle>& added);
+  /// The cloud rebuilt in a new order: entry k >= 0 of `order` is the present particle k, entry -1 - j is
+  /// extra[j].
+  void rebuild(const std::vector<Index>& order, const std::vector<Particle>& extra);
+
+ private:
+  std::vector<ParticleKind> kind_;
+  std::vector<double> hvec_;
+  KinematicState state_;  // x, v, a of all particles
+  Vec X0_;
+  Vec p_;
+};
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,67 @@
+// The fluid's energies (fluid_energy.hpp): kinetic and potential energy, work of gravity and dissipation.
+#include "fluid_energy.hpp"
+
+#include <algorithm>
+
+namespace lagfsi::fluid {
+
+double FluidEnergy::kinetic() const {
+  const Vec& x = cloud_.x();
+  const Vec& v = cloud_.v();
+  double e = 0;
+  for (Index k = 0; k < mesh_.num_elements(); ++k) {
+    const double m = c_.rho * mesh_.element_area(x, k) / 3.0;
+    for (Index i : mesh_.tri[k]) e += 0.5 * m * v.segment<2>(2 * i).squaredNorm();
+  }
+  return e;
+}
+
+double FluidEnergy::potential() const {
+  const Vec& x = cloud_.x();
+  double e = 0;
+  for (Index k = 0; k < mesh_.num_elements(); ++k) {
+    Vec2 c = Vec2::Zero();
+    for (Index i : mesh_.tri[k]) c += x.segment<2>(2 * i);
+    e -= c_.rho * mesh_.element_area(x, k) * c_.gravity.dot(c / 3.0);
+  }
+  return e;
+}
+
+void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force) {
+  // On the step's mesh at x_n (lumped masses m_i = sum rho A/3, walls and ghosts included: their share of
+  // the fluid moves with them): work of gravity sum m_i g . (x_{n+1} - x_n) and viscous dissipation
+  // dt sum_e 2 mu A eps(v):eps(v) of the step's velocity (v_{n+1} for the fractional step, the mean of
+  // v_n and v_{n+1} for the trapezoidal rule).
+  const Vec& x = cloud_.x();
+  const Index ne = mesh_.num_elements();
+  double gw = 0, diss = 0;
+  for (Index e = 0; e < ne; ++e) {
+    const auto& t = mesh_.tri[e];
+    const double A = mesh_.element_area(x, e);
+    if (!(A > 0)) continue;
+    Mat2 L = Mat2::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& p = x.segment<2>(2 * t[(k + 1) % 3]);
+      const Vec2& q = x.segment<2>(2 * t[(k + 2) % 3]);
+      const Vec2 grad = Vec2(p.y() - q.y(), q.x() - p.x()) / (2 * A);
+      L += v.segment<2>(2 * t[k]) * grad.transpose();
+      gw += c_.rho * A / 3.0 * c_.gravity.dot(x_new.segment<2>(2 * t[k]) - x.segment<2>(2 * t[k]));
+    }
+    if (c_.mu > 0 && !walls_.inviscid(t)) {
+      const Mat2 eps = 0.5 * (L + L.transpose());
+      diss += dt * 2.0 * c_.mu * A * (eps.array() * eps.array()).sum();
+    }
+  }
+  gravity_work_ += gw;
+  dissipation_ += diss;
+  // Work of the moving walls and ghosts on the fluid: the mean of the step's start and end forces times
+  // the step's displacement (their indices are stable: walls, then ghosts, come first in the cloud).
+  const Index nb = std::min<Index>(static_cast<Index>(boundary_force.size() / 2), cloud_.n_boundary_particles());
+  if (boundary_force_prev_.size() != boundary_force.size()) boundary_force_prev_ = boundary_force;
+  for (Index i = 0; i < nb; ++i)
+    boundary_work_ += 0.5 * (boundary_force_prev_.segment<2>(2 * i) + boundary_force.segment<2>(2 * i))
+                          .dot(x_new.segment<2>(2 * i) - x.segment<2>(2 * i));
+  boundary_force_prev_ = boundary_force;
+}
+
+}  // namespace lagfsi::fluid

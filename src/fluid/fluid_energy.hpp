@@ -1,0 +1,46 @@
+#pragma once
+/// @file fluid_energy.hpp (private to src/fluid)
+/// The fluid's energy balance for the probes: kinetic and potential energy of the present mesh, and the work
+/// of gravity and the viscous dissipation summed over the steps (account).
+#include "fluid_common.hpp"
+#include "fluid_mesh.hpp"
+#include "fluid_walls.hpp"
+#include <lagfsi/fluid/particle_cloud.hpp>
+
+namespace lagfsi::fluid {
+
+class FluidEnergy {
+ public:
+  FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh, const FluidWalls& walls)
+      : c_(c), cloud_(cloud), mesh_(mesh), walls_(walls) {}
+  double kinetic() const;
+  /// Potential energy of gravity over the current mesh, -rho integral of g . x dA (exact on linear triangles:
+  /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
+  /// lumped masses) it depends only on the present fluid: KE + PE is the energy balance of a remeshed flow.
+  double potential() const;
+  /// Adds the step's gravity work, viscous dissipation and boundary work (before the state is updated):
+  /// x_new the step's new positions, v the step's velocity (the scheme's, FluidScheme::step_velocity), dt the
+  /// step, boundary_force the forces of the walls and ghosts on the fluid (FluidStep::boundary_force).
+  void account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force);
+  /// Work of gravity on the fluid and viscous dissipation since the start (summed only when a gravity_work,
+  /// viscous_dissipation, total_energy or boundary_work probe exists: enabled()).
+  double gravity_work() const { return gravity_work_; }
+  double dissipation() const { return dissipation_; }
+  /// Work done on the fluid by moving walls and by the structure's ghost particles since the start,
+  /// sum over steps of F . dx at the prescribed particles (F the reaction the boundary applies, the mean of
+  /// the step's start and end values).
+  double boundary_work() const { return boundary_work_; }
+  bool enabled() const { return enabled_; }
+  void enable() { enabled_ = true; }
+
+ private:
+  const FluidConstants& c_;
+  const ParticleCloud& cloud_;
+  const FluidMesh& mesh_;
+  const FluidWalls& walls_;
+  double gravity_work_ = 0, dissipation_ = 0, boundary_work_ = 0;
+  Vec boundary_force_prev_;  // the boundary forces at the start of the step
+  bool enabled_ = false;  // account() only for runs that probe it
+};
+
+}  // namespace lagfsi::fluid

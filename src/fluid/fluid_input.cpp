@@ -1,0 +1,290 @@
+// The fluid's input (/bodies/i of type "fluid"): its constants, the scheme and its keys, the walls, the
+// particles of the fluid regions (structured or unstructured), the domain box and the initial states.
+#include "fluid_model_impl.hpp"
+#include "point_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+namespace lagfsi::fluid {
+
+FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
+  b.validate({{"name", nullptr},
+              {"type", "fluid"},
+              {"density", nullptr},
+              {"viscosity", nullptr},
+              {"spacing", nullptr},
+              {"alpha", 1.2},
+              {"domain_detection", "alpha"},
+              {"separation_alpha", 2.5},
+              {"level_set_band", 0.25},
+              {"domain_margin", 0.1},
+              {"remesh", true},
+              {"regions", nullptr},
+              {"particles", "structured"},
+              {"walls", Json::array()},
+              {"initial_velocity", Json::array({0.0, 0.0})},
+              {"initial_pressure", Json{{"type", "zero"}}},
+              {"initial_state", Json{{"type", "given"}}},
+              {"scheme", Json::object()}});
+  c_.name = b.identifier("name");
+  c_.gravity = ctx.gravity;
+  c_.analysis_dt = ctx.analysis.dt;
+  if (ctx.analysis.type != "dynamic") b.fail("type", "a fluid needs a dynamic analysis");
+  c_.rho = b.positive("density");
+  c_.mu = b.non_negative("viscosity");
+  c_.h = b.positive("spacing");
+  RemeshPipeline::Settings rs;
+  rs.alpha = b.positive("alpha");
+  if (rs.alpha < 1.0 || rs.alpha > 5.0) b.fail("alpha", "must lie in [1, 5] (the literature uses 1.0-1.5)");
+  c_.remesh = b.boolean("remesh");
+  const std::string detection = b.choice("domain_detection", {"alpha", "advected", "level_set"});
+  rs.detection = detection == "alpha"      ? meshing::DomainDetection::Alpha
+                 : detection == "advected" ? meshing::DomainDetection::Advected
+                                           : meshing::DomainDetection::LevelSet;
+  rs.separation_alpha = b.positive("separation_alpha");
+  if (rs.separation_alpha < rs.alpha)
+    b.fail("separation_alpha", "must be at least alpha (" + std::to_string(rs.alpha) + ")");
+  rs.level_set_band = b.non_negative("level_set_band");
+  rs.domain_margin = b.non_negative("domain_margin");
+
+  Params s = b.at("scheme");
+  if (!s.json().is_object()) s.fail("must be an object");
+  const std::string scheme =
+      s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
+  const bool pspg = scheme == "monolithic_pspg";
+  // Keys common to both schemes (particles, mass conservation), then each scheme's own.
+  Json keys = {{"type", scheme},
+               // The alpha shape changes the area at every remesh and needs the surface correction; the
+               // advected and level-set detections keep it where the topology does not change.
+               {"volume_correction", rs.detection == meshing::DomainDetection::Alpha ? "surface" : "none"},
+               {"split_edge_factor", 1.6},
+               {"volume_relaxation_time", 0.1},
+               {"remove_close_fraction", 0.3},
+               {"insert_area_factor", 1.0},
+               {"bulk_modulus", 2.2e9},
+               {"flat_element_fraction", 0.01}};
+  if (pspg) {
+    keys.update(Json{{"tau", Json{{"type", "automatic"}}},
+                     {"mass", "lumped"},
+                     {"free_surface_pressure", "dirichlet"},
+                     {"tolerance", 1e-4},
+                     {"refactorize_every", 0},
+                     {"linear_solver", "klu"}});
+  } else {
+    keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}, {"inverted_elements", "retry"}});
+  }
+  s.validate(keys);
+  PspgSettings ps;
+  FractionalStepSettings fs;
+  if (pspg) {
+    Params tau = s.at("tau");
+    if (!tau.json().is_object() || !tau.has("type")) tau.fail("type", "required key is missing");
+    const std::string tau_type = tau.choice("type", {"automatic", "velocity_scale"});
+    if (tau_type == "automatic") {
+      tau.validate({{"type", "automatic"}});
+    } else {
+      tau.validate({{"type", "velocity_scale"}, {"U", nullptr}});
+      ps.tau_U = tau.positive("U");
+    }
+    ps.lumped = s.choice("mass", {"lumped", "consistent"}) == "lumped";
+    ps.free_surface_dirichlet = s.choice("free_surface_pressure", {"dirichlet", "natural"}) == "dirichlet";
+    ps.tol = s.positive("tolerance");
+    ps.refactor_every = s.integer("refactorize_every", 0);
+    ps.solver = s.choice("linear_solver", {"umfpack", "klu", "eigen_lu"});
+  } else {
+    // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
+    fs.viscous_step = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
+    fs.solver = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
+    fs.retry_inverted = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
+  }
+  const std::string vc = s.choice("volume_correction", {"surface", "source", "none"});
+  volume_.configure(vc == "surface"  ? VolumeCorrection::Type::surface
+                    : vc == "source" ? VolumeCorrection::Type::source
+                                     : VolumeCorrection::Type::none,
+                    s.positive("volume_relaxation_time"));
+  rs.close_fraction = s.non_negative("remove_close_fraction");
+  c_.bulk = s.non_negative("bulk_modulus");
+  rs.insert_factor = s.non_negative("insert_area_factor");
+  rs.flat_fraction = s.non_negative("flat_element_fraction");
+  rs.split_factor = s.non_negative("split_edge_factor");
+  if (rs.split_factor > 0 && rs.split_factor < 1.0) s.fail("split_edge_factor", "must be 0 (off) or at least 1");
+  if (rs.close_fraction >= 0.9) s.fail("remove_close_fraction", "must be below 0.9");
+  remesh_.configure(rs);
+
+  // The analysis' integrator (read for both schemes; the fractional step does not use it).
+  Params it(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
+  const std::string itype = it.string("type");
+  std::unique_ptr<TimeIntegrator> integrator = itype == "generalized_alpha"
+                                                   ? make_generalized_alpha(it.number("rho_inf"))
+                                                   : make_newmark(it.number("beta"), it.number("gamma"));
+  scheme_ = pspg ? make_pspg_scheme(parts(), ps, std::move(integrator)) : make_fractional_step(parts(), fs);
+  build_particles(b);
+}
+
+void FluidModel::build_particles(Params b) {
+  const double h = c_.h;
+  // Walls first (their particles take precedence over fluid particles at the same place).
+  Params walls = b.at("walls");
+  walls_.read(walls, h, ctx_.base_dir);
+
+  std::vector<Vec2> pts;
+  std::vector<ParticleKind> kind;
+  PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);   // the particles so far, for the proximity tests
+  if (c_.remesh) walls_.place_particles(walls, h, pts, kind, wall_grid);
+  const Index n_wall = static_cast<Index>(pts.size());
+
+  // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay
+  // mesh of size h (unstructured); in PFEM mode, fluid particles closer than h/2 to a wall particle are
+  // dropped (the wall particle stands for them).
+  Params regions = b.at("regions");
+  if (regions.size() == 0) regions.fail("at least one fluid region is needed");
+  const std::string layout = b.choice("particles", {"structured", "unstructured"});
+  std::vector<Index> fixed_conn;  // fixed-connectivity mode: the initial mesh
+  // The walls' bounding box (also the start of the domain box below): a region reaching beyond it by more
+  // than the walls' own extent (on an axis where they have one) is a typing error (a size 1000 times too
+  // large), which would otherwise be meshed into millions of particles before anything else is checked.
+  Vec2 wall_lo, wall_hi;
+  walls_.bounding_box(wall_lo, wall_hi);
+  for (size_t r = 0; r < regions.size(); ++r) {
+    Params g = regions.at(r);
+    if (!walls_.empty() && g.json().is_object() && g.has("type")) {
+      std::vector<Vec2> corners;
+      const std::string rt = g.string("type");
+      if (rt == "rectangle" && g.has("size")) {
+        const Vec2 o = g.has("origin") ? g.vec2("origin") : Vec2::Zero();
+        corners = {o, o + g.vec2("size")};
+      } else if ((rt == "polygon" || rt == "circle_cut") && g.has("points")) {
+        corners = g.points("points");
+      }
+      for (size_t c = 0; c < corners.size(); ++c)
+        for (int axis = 0; axis < 2; ++axis) {
+          const Vec2& q = corners[c];
+          const double extent = wall_hi[axis] - wall_lo[axis];
+          if (extent > 0 && (q[axis] < wall_lo[axis] - extent || q[axis] > wall_hi[axis] + extent)) {
+            std::ostringstream os;
+            const char* xy = axis ? "y" : "x";
+            os << "reaches " << xy << " = " << q[axis] << ", far beyond the walls (" << xy << " from "
+               << wall_lo[axis] << " to " << wall_hi[axis] << ")";
+            g.fail(rt == "rectangle" ? std::string(c == 0 ? "origin" : "size") : "points/" + std::to_string(c),
+                   os.str());
+          }
+        }
+    }
+    TriMesh mesh;
+    Json mesh_params = {{"size", h}, {"order", 1}, {"type", "unstructured"}};
+    if (layout == "structured") {
+      if (!g.has("type") || g.string("type") != "rectangle")
+        g.fail("type", "structured particles need rectangle regions (use \"particles\": \"unstructured\")");
+      g.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      const Vec2 sz = g.vec2("size");
+      if (!(sz.x() >= 0.5 * h && sz.y() >= 0.5 * h))
+        g.fail("size", "each side must be at least half the particle spacing (" + std::to_string(h) + ")");
+      if (!(sz.x() / h * (sz.y() / h) <= 5e6))
+        g.fail("size", "more than 5 million particles at this spacing");
+      mesh_params = {{"size", h},
+                     {"order", 1},
+                     {"type", "structured"},
+                     {"divisions",
+                      {std::max(1, (int)std::lround(sz.x() / h)), std::max(1, (int)std::lround(sz.y() / h))}},
+                     {"pattern", "crossed"}};
+    }
+    mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+    for (size_t e = 0; e + 2 < mesh.conn.size(); e += 3)
+      remesh_.add_region_triangle({mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});
+    std::vector<Index> new_particles;   // this region's, added to the grid after the region
+    std::vector<Index> map(mesh.nodes.size(), -1);
+    for (size_t k = 0; k < mesh.nodes.size(); ++k) {
+      const Vec2& q = mesh.nodes[k];
+      // Within h/2 of a wall particle, or on the shared boundary with an earlier region.
+      const bool near_wall = wall_grid.find(q, 0.5 * h, pts) >= 0;
+      const bool duplicate = r > 0 && fluid_grid.find(q, 1e-9 * h, pts) >= 0;
+      if (near_wall || duplicate) continue;
+      map[k] = static_cast<Index>(pts.size());
+      new_particles.push_back(map[k]);
+      pts.push_back(q);
+      kind.push_back(ParticleKind::Fluid);
+    }
+    for (Index j : new_particles) fluid_grid.add(pts[static_cast<size_t>(j)], j);
+    if (!c_.remesh) {
+      if (regions.size() > 1) regions.fail("fixed connectivity supports one fluid region");
+      fixed_conn = mesh.conn;
+      for (auto& c : fixed_conn) c = map[c];
+    }
+  }
+  if (pts.size() == static_cast<size_t>(n_wall)) regions.fail("the regions contain no fluid particle");
+
+  const Index np = static_cast<Index>(pts.size());
+  if (c_.remesh) remesh_.set_domain(wall_lo, wall_hi, pts);
+  walls_.set_fluid_sides(pts, kind);
+  cloud_.assign(pts, kind, h);
+  Vec& v = cloud_.v();
+  Vec& p = cloud_.p();
+  const Vec2 v0 = b.vec2("initial_velocity");
+  for (Index i = 0; i < np; ++i)
+    if (kind[i] == ParticleKind::Fluid) v.segment<2>(2 * i) = v0;
+
+  Params ip = b.at("initial_pressure");
+  if (!ip.has("type")) ip.fail("type", "required key is missing");
+  const std::string ipt = ip.choice("type", {"zero", "hydrostatic"});
+  if (ipt == "hydrostatic") {
+    ip.validate({{"type", "hydrostatic"}, {"level", nullptr}});
+    const double level = ip.number("level");
+    const double g = c_.gravity.norm();
+    for (Index i = 0; i < np; ++i) p[i] = std::max(0.0, c_.rho * g * (level - pts[i].y()));
+  } else {
+    ip.validate({{"type", "zero"}});
+  }
+
+  // Analytic initial states (they override initial_velocity and initial_pressure).
+  Params is = b.at("initial_state");
+  if (!is.has("type")) is.fail("type", "required key is missing");
+  const std::string ist = is.choice("type", {"given", "solitary_wave", "taylor_green"});
+  if (ist == "taylor_green") {
+    // Divergence-free cellular flow of amplitude U on a square [x0, x0 + L]^2 (a test of energy stability:
+    // without gravity the kinetic energy of a free blob can only decrease):
+    // u = U sin(pi X) cos(pi Y), v = -U cos(pi X) sin(pi Y), X = (x - x0) / L, Y = (y - y0) / L.
+    is.validate({{"type", "taylor_green"}, {"amplitude", nullptr}, {"origin", Json::array({0.0, 0.0})},
+                 {"length", nullptr}});
+    const double U = is.number("amplitude"), Lc = is.positive("length");
+    const Vec2 o = is.vec2("origin");
+    for (Index i = 0; i < np; ++i) {
+      if (kind[i] != ParticleKind::Fluid) continue;
+      const double X = std::numbers::pi * (pts[i].x() - o.x()) / Lc, Y = std::numbers::pi * (pts[i].y() - o.y()) / Lc;
+      v[2 * i] = U * std::sin(X) * std::cos(Y);
+      v[2 * i + 1] = -U * std::cos(X) * std::sin(Y);
+    }
+  } else if (ist == "solitary_wave") {
+    // Laitone (1960) first-order solitary wave of height H on depth d, crest at x0, moving towards +x:
+    // eta = d + H sech^2(k (x - x0)), k = sqrt(3H / (4 d^3)),
+    // u = sqrt(g d) (H/d) sech^2, v = sqrt(3 g d) (H/d)^(3/2) (y/d) sech^2 tanh, p = rho g (eta - y).
+    is.validate({{"type", "solitary_wave"}, {"depth", nullptr}, {"height", nullptr}, {"crest", nullptr}});
+    const double d = is.positive("depth"), H = is.positive("height"), x0 = is.number("crest");
+    const double g = c_.gravity.norm();
+    if (!(g > 0)) is.fail("type", "a solitary wave needs gravity");
+    const double k = std::sqrt(3 * H / (4 * d * d * d));
+    for (Index i = 0; i < np; ++i) {
+      if (kind[i] != ParticleKind::Fluid) continue;
+      const double xi = k * (pts[i].x() - x0), y = pts[i].y();
+      const double sech2 = 1.0 / (std::cosh(xi) * std::cosh(xi));
+      v[2 * i] = std::sqrt(g * d) * (H / d) * sech2;
+      v[2 * i + 1] = std::sqrt(3 * g * d) * std::pow(H / d, 1.5) * (y / d) * sech2 * std::tanh(xi);
+      p[i] = std::max(0.0, c_.rho * g * (d + H * sech2 - y));
+    }
+  } else {
+    is.validate({{"type", "given"}});
+  }
+
+  if (!c_.remesh) {
+    // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them.
+    mesh_.tri.clear();
+    for (size_t e = 0; e + 2 < fixed_conn.size(); e += 3)
+      mesh_.tri.push_back({fixed_conn[e], fixed_conn[e + 1], fixed_conn[e + 2]});
+    walls_.constrain_fixed_mesh(b, pts, h);
+  }
+}
+
+}  // namespace lagfsi::fluid

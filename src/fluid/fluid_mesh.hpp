@@ -1,0 +1,36 @@
+#pragma once
+/// @file fluid_mesh.hpp (private to src/fluid)
+/// The step's mesh of the particles: its triangles (rebuilt by remeshing, remesh_pipeline.hpp, or fixed),
+/// the free-surface and connected flags of the particles, and the geometric queries on it.
+#include "fluid_common.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace lagfsi::fluid {
+
+struct FluidMesh {
+  std::vector<std::array<Index, 3>> tri;        // the step's elements (counter-clockwise)
+  std::vector<Index> conn;                      // tri flattened (flatten(): the matrices' pattern, the output)
+  std::vector<std::uint8_t> free, connected;    // per particle: on the free surface; in an element
+
+  Index num_elements() const { return static_cast<Index>(tri.size()); }
+  /// conn from tri.
+  void flatten();
+  /// Signed area of element e at positions x.
+  double element_area(const Vec& x, Index e) const {
+    const auto& t = tri[e];
+    const Vec2 a = x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[1]), c = x.segment<2>(2 * t[2]);
+    return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  }
+  /// The mesh's area at positions x (the elements' signed areas summed in order).
+  double area(const Vec& x) const;
+  /// Flags (np of them) of the particles of the elements that have a particle i with pred(i).
+  std::vector<char> in_element_with(Index np, const std::function<bool(Index)>& pred) const;
+  /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.
+  std::vector<char> beside_interior_fluid(const std::vector<ParticleKind>& kind) const;
+};
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,114 @@
+#pragma once
+/// @file fluid_model_impl.hpp (private to src/fluid; the public side is include/lagfsi/fluid/fluid_model.hpp)
+/// The PFEM fluid model: a short lifecycle (fluid_model.cpp) over the pieces that own the state: the
+/// particles (particle_cloud.hpp), the step's mesh (fluid_mesh.hpp), the walls (fluid_walls.hpp), the ghost
+/// particles of a coupled structure (ghosts.hpp), the remeshing (remesh_pipeline.hpp), the volume
+/// correction (volume_correction.hpp), the energies (fluid_energy.hpp) and the scheme that solves a step
+/// (fluid_scheme.hpp: monolithic_pspg in pspg_scheme.cpp, fractional_step in fractional_step.cpp). The case
+/// is read by fluid_input.cpp, the probes are in fluid_probes.cpp.
+#include "fluid_common.hpp"
+#include "fluid_energy.hpp"
+#include "fluid_mesh.hpp"
+#include "fluid_scheme.hpp"
+#include "fluid_walls.hpp"
+#include "ghosts.hpp"
+#include <lagfsi/fluid/particle_cloud.hpp>
+#include "remesh_pipeline.hpp"
+#include "volume_correction.hpp"
+
+#include <lagfsi/case.hpp>
+#include <lagfsi/fluid/fluid_model.hpp>
+#include <lagfsi/interface.hpp>
+#include <lagfsi/vtk_output.hpp>
+
+#include <memory>
+
+namespace lagfsi::fluid {
+
+class FluidModel final : public PhysicsModel, public InterfaceFluid {
+ public:
+  FluidModel(Params body, const CaseContext& ctx);
+  std::string name() const override { return c_.name; }
+  std::string type() const override { return "fluid"; }
+  Index num_nodes() const override { return cloud_.n(); }
+  Index num_elements() const override { return mesh_.num_elements(); }
+  double fluid_area() const override { return volume_.area_end(); }
+  double fluid_area_remeshed() const override { return volume_.area_remeshed(); }
+  /// The fluid area (initial mesh, now, of the fluid dropped outside the domain box, and the drift without
+  /// the latter: the scheme's own), the particles put back inside a wall (keep_inside_walls), the particle
+  /// counts and what remeshing changed over the run (RemeshPipeline::summary).
+  Json summary() const override;
+
+  void initialize() override;
+  void predict(double t_new, double dt) override;
+  IterationReport solve_iteration() override;
+  void finalize_step() override;
+  void write_output(double t) override;
+  std::unique_ptr<Probe> make_probe(Params p) override;
+
+  // InterfaceFluid (interface.hpp): ghost particles of a structure's wet boundary (ghosts.hpp).
+  int add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) override;
+  bool in_contact() const override { return ghosts_.in_contact(); }
+  void set_ghost_motion(const Vec& x, const Vec& v, const Vec& a) override;
+  void restart_step() override { start_iterations(); }
+  Vec ghost_forces() const override { return ghosts_.forces(); }
+
+  // Read access for probes.
+  Index n() const { return cloud_.n(); }
+  Vec2 pos(Index i) const { return cloud_.pos(i); }
+  Vec2 vel(Index i) const { return cloud_.vel(i); }
+  double pressure(Index i) const { return cloud_.p()[i]; }
+  bool is_fluid(Index i) const { return cloud_.is_fluid(i); }
+  bool is_connected(Index i) const { return mesh_.connected[i] != 0; }
+  double spacing() const { return c_.h; }
+  const std::vector<std::array<Index, 3>>& triangles() const { return mesh_.tri; }
+  double kinetic_energy() const { return energy_.kinetic(); }
+  /// Potential energy of gravity over the current mesh (FluidEnergy::potential).
+  double potential_energy() const { return energy_.potential(); }
+  /// Work of gravity on the fluid and viscous dissipation since the start (FluidEnergy::account; summed only
+  /// when a gravity_work or viscous_dissipation probe exists).
+  double gravity_work() const { return energy_.gravity_work(); }
+  double viscous_dissipation() const { return energy_.dissipation(); }
+  /// Potential energy put into the fluid by the "surface" volume correction's moves, -sum m_i g . dx_i.
+  double correction_energy() const { return volume_.correction_energy(); }
+  double area_end() const { return volume_.area_end(); }
+  /// Work done on the fluid by moving walls and by the structure's ghost particles (FluidEnergy::boundary_work).
+  double boundary_work() const { return energy_.boundary_work(); }
+  /// The energy balance: KE + PE + viscous dissipation - boundary work. Constant for an exact discretization;
+  /// its drift is the numerical energy (remeshing, time integration).
+  double total_energy() const {
+    return kinetic_energy() + potential_energy() + energy_.dissipation() - energy_.boundary_work();
+  }
+  double remesh_area_change() const override { return remesh_.area_change(); }
+  double remesh_kinetic_energy_change() const override { return remesh_.kinetic_energy_change(); }
+
+ private:
+  /// The particles, the walls and the initial state from the case (fluid_input.cpp).
+  void build_particles(Params b);
+  /// Dirichlet flags of the step (step_.fixed): wall positions, slip constraints, free-surface and
+  /// unconnected pressures.
+  void set_dirichlet();
+  /// The step's first iterate (after remeshing, or again when a coupling re-solves the step): pressures
+  /// of the last step, positions moved with the last velocities, walls and ghosts at their prescribed places.
+  void start_iterations();
+  FluidParts parts() { return {c_, cloud_, mesh_, walls_, ghosts_, volume_, step_, times_}; }
+
+  FluidConstants c_;
+  CaseContext ctx_;
+  ParticleCloud cloud_;
+  FluidMesh mesh_;
+  FluidWalls walls_;
+  Ghosts ghosts_;
+  VolumeCorrection volume_{c_, cloud_, mesh_};
+  RemeshPipeline remesh_{c_, cloud_, mesh_, ghosts_};
+  FluidEnergy energy_{c_, cloud_, mesh_, walls_};
+  FluidStep step_;
+  std::unique_ptr<FluidScheme> scheme_;
+
+  Index n_initial_ = 0;             // particles at the start (summary.json)
+  bool solved_once_ = false;
+  bool step_open_ = false;          // predict called and the step not finalized yet (a retry if predicted again)
+  std::unique_ptr<PvdSeries> series_, wall_series_;
+};
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,145 @@
+// The fluid's probes (fluid_probes.hpp): front, column height, elevation, pressure on a segment, area and
+// energies, sampled from the model's read accessors.
+#include "fluid_probes.hpp"
+
+#include "fluid_model_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lagfsi::fluid {
+namespace {
+
+class FluidProbe final : public Probe {
+ public:
+  FluidProbe(const FluidModel& m, std::string name, std::string type, Params p);
+  std::vector<std::string> columns() const override { return {name_}; }
+  std::vector<double> sample() const override;
+
+ private:
+  const FluidModel& m_;
+  std::string name_, type_;
+  Vec2 a_ = Vec2::Zero(), b_ = Vec2::Zero();
+  double band_ = 0, coord_ = 0;
+  bool mesh_method_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Probe> make_fluid_probe(const FluidModel& m, std::string name, std::string type, Params p) {
+  return std::make_unique<FluidProbe>(m, std::move(name), std::move(type), std::move(p));
+}
+
+FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, Params p)
+    : m_(m), name_(std::move(name)), type_(std::move(type)) {
+  const double h = m.spacing();
+  // Where there is something to measure: the particles' extent (fluid and walls) at the start, plus h. A
+  // probe outside it is a typing error (x of another case, a flipped sign) that would write nan or 0 for ever.
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (Index i = 0; i < m.n(); ++i) {
+    lo = lo.cwiseMin(m.pos(i));
+    hi = hi.cwiseMax(m.pos(i));
+  }
+  lo -= Vec2::Constant(h);
+  hi += Vec2::Constant(h);
+  // A band narrower than a quarter of the spacing sees no particle (a nan for ever).
+  auto read_band = [&] {
+    band_ = p.positive("band");
+    if (band_ < 0.25 * h) p.fail("band", "narrower than a quarter of the particle spacing: it would see no particle");
+  };
+  auto inside = [&](const std::string& key, double v, int axis) {
+    if (!(v >= lo[axis] && v <= hi[axis]))
+      p.fail(key, "lies outside the fluid and its walls (" + std::string(axis ? "y" : "x") + " from " +
+                      std::to_string(lo[axis] + h) + " to " + std::to_string(hi[axis] - h) + ")");
+  };
+  if (type_ == "front") {
+    // largest x of fluid within a band above the floor
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"floor", 0.0}, {"band", 2.0 * h}});
+    coord_ = p.number("floor");
+    inside("floor", coord_, 1);
+    read_band();
+  } else if (type_ == "column_height") {
+    // largest y of fluid within a band next to the left wall
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"wall", 0.0}, {"band", 2.0 * h}});
+    coord_ = p.number("wall");
+    inside("wall", coord_, 0);
+    read_band();
+  } else if (type_ == "elevation") {
+    // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
+    // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
+    // particle noise of the surface, kept for comparison).
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"},
+                {"band", 1.5 * h}});
+    coord_ = p.number("x");
+    inside("x", coord_, 0);
+    read_band();
+    mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
+  } else if (type_ == "pressure") {
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"from", nullptr}, {"to", nullptr},
+                {"tolerance", 0.5 * h}});
+    a_ = p.vec2("from");
+    b_ = p.vec2("to");
+    for (int axis = 0; axis < 2; ++axis) {
+      inside("from", a_[axis], axis);
+      inside("to", b_[axis], axis);
+    }
+    band_ = p.positive("tolerance");
+  } else {
+    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}});
+  }
+}
+
+std::vector<double> FluidProbe::sample() const {
+  const Index n = m_.n();
+  if (type_ == "fluid_area") return {m_.area_end()};
+  if (type_ == "kinetic_energy") return {m_.kinetic_energy()};
+  if (type_ == "potential_energy") return {m_.potential_energy()};
+  if (type_ == "gravity_work") return {m_.gravity_work()};
+  if (type_ == "viscous_dissipation") return {m_.viscous_dissipation()};
+  if (type_ == "volume_correction_energy") return {m_.correction_energy()};
+  if (type_ == "total_energy") return {m_.total_energy()};
+  if (type_ == "boundary_work") return {m_.boundary_work()};
+  if (type_ == "max_speed") {
+    double v = 0;
+    for (Index i = 0; i < n; ++i)
+      if (m_.is_fluid(i)) v = std::max(v, m_.vel(i).norm());
+    return {v};
+  }
+  if (type_ == "pressure") {
+    // mean pressure of the particles on the sensor segment (any kind)
+    const Vec2 d = b_ - a_;
+    double s = 0;
+    int count = 0;
+    for (Index i = 0; i < n; ++i) {
+      const Vec2 q = m_.pos(i);
+      const double t = d.squaredNorm() > 0 ? std::clamp((q - a_).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((q - (a_ + t * d)).norm() <= band_ && m_.is_connected(i)) {
+        s += m_.pressure(i);
+        ++count;
+      }
+    }
+    return {count ? s / count : 0.0};
+  }
+  double best = -std::numeric_limits<double>::infinity();
+  if (type_ == "elevation" && mesh_method_) {
+    for (const auto& t : m_.triangles())
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 a = m_.pos(t[k]), b = m_.pos(t[(k + 1) % 3]);
+        const double da = a.x() - coord_, db = b.x() - coord_;
+        if (da * db > 0) continue;
+        best = std::max(best, da == db ? std::max(a.y(), b.y()) : a.y() + (b.y() - a.y()) * da / (da - db));
+      }
+    return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (!m_.is_fluid(i) || !m_.is_connected(i)) continue;
+    const Vec2 q = m_.pos(i);
+    if (type_ == "front" && q.y() <= coord_ + band_) best = std::max(best, q.x());
+    if (type_ == "column_height" && q.x() <= coord_ + band_) best = std::max(best, q.y());
+    if (type_ == "elevation" && std::abs(q.x() - coord_) <= band_) best = std::max(best, q.y());
+  }
+  return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+}
+
+}  // namespace lagfsi::fluid

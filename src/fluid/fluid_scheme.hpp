@@ -1,0 +1,89 @@
+#pragma once
+/// @file fluid_scheme.hpp (private to src/fluid)
+/// A time-stepping scheme of the PFEM fluid on the step's (remeshed) mesh, chosen once from
+/// /bodies/i/scheme/type: "monolithic_pspg" (pspg_scheme.cpp: Newton on the stabilized position-pressure
+/// system) or "fractional_step" (fractional_step.cpp: a pressure-correction step). Each owns its matrices,
+/// patterns and linear solvers; the model calls, per step, begin_step (a new mesh), restart (the first
+/// iterate, again for each coupling pass), iterate until converged, and end_step.
+#include "fluid_common.hpp"
+#include "fluid_mesh.hpp"
+#include "fluid_walls.hpp"
+#include "ghosts.hpp"
+#include <lagfsi/fluid/particle_cloud.hpp>
+#include "volume_correction.hpp"
+
+#include <lagfsi/fluid_element.hpp>
+#include <lagfsi/model.hpp>
+#include <lagfsi/time_integrator.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lagfsi::fluid {
+
+/// The step's data shared by the model and its scheme.
+struct FluidStep {
+  double t_new = 0, dt = 0;
+  Vec x;                    // iterate of x_{n+1}
+  Vec p_old;                // pressures at the start of the step
+  std::vector<char> fixed;  // per dof (3 per particle: x, y, p): prescribed (FluidModel::set_dirichlet)
+  double p_scale = 1;       // pressure scale of the convergence test
+  bool energy = false;      // an energy probe asks for the boundary work: the schemes set boundary_force
+  Vec boundary_force;       // per non-fluid particle (walls, ghosts: stable indices), 2 each: the force it
+                            // applies to the fluid in the step's solve
+};
+
+/// The pieces of the fluid a scheme works on (owned by the model).
+struct FluidParts {
+  const FluidConstants& c;
+  ParticleCloud& cloud;
+  FluidMesh& mesh;
+  const FluidWalls& walls;
+  Ghosts& ghosts;
+  const VolumeCorrection& volume;
+  FluidStep& step;
+  PhaseTimes& times;
+};
+
+
+
+class FluidScheme {
+ public:
+  virtual ~FluidScheme() = default;
+  /// The free-surface pressure is prescribed (p = 0: FluidModel::set_dirichlet).
+  virtual bool free_surface_dirichlet() const { return true; }
+  /// A new step on a new mesh (predict, after remeshing, the Dirichlet flags set): patterns, matrices and
+  /// the time integrator's start.
+  virtual void begin_step() = 0;
+  /// The step's iterations start (again when a coupling re-solves the step).
+  virtual void restart() {}
+  /// One iteration (the monolithic scheme) or the whole step (the fractional step).
+  virtual IterationReport iterate() = 0;
+  /// The converged step into the particles' state (x, v, a).
+  virtual void end_step() = 0;
+  /// The step's velocity for the viscous dissipation (FluidEnergy::account, before end_step).
+  virtual Vec step_velocity() const = 0;
+  /// Elements inverted within accepted steps (the fractional step with "inverted_elements": "remesh").
+  virtual long inverted_kept() const { return 0; }
+
+  /// The PSPG element kernel's input for element e at positions x (also its geometry), velocities v,
+  /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c (pspg_scheme.cpp). The monolithic
+  /// scheme's tau and mass; the initial acceleration of both schemes uses it (with the defaults for the
+  /// fractional step).
+  PspgElementInput element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m, double c_c) const;
+
+ protected:
+  explicit FluidScheme(const FluidParts& f) : f_(f) {}
+  FluidParts f_;
+  double tau_U_ = 0;    // the PSPG kernel's tau (0: automatic) and mass
+  bool lumped_ = true;
+};
+
+/// The schemes (pspg_scheme.cpp, fractional_step.cpp). The integrator is the analysis' (Newmark or
+/// generalized-alpha); the fractional step does not use one.
+std::unique_ptr<FluidScheme> make_pspg_scheme(const FluidParts& f, const PspgSettings& s,
+                                              std::unique_ptr<TimeIntegrator> integrator);
+std::unique_ptr<FluidScheme> make_fractional_step(const FluidParts& f, const FractionalStepSettings& s);
+
+}  // namespace lagfsi::fluid

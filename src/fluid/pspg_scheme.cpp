@@ -1,0 +1,266 @@
+// PFEM fluid, scheme "monolithic_pspg": the unknowns of a step are the new positions and pressures, solved by
+// Newton on the stabilized (PSPG) position-pressure system of Avancini (2018) ch. 6, in the self-consistent
+// form of the digest (p positive in compression):
+//
+//   R^m_a = sum_e [ M_ab a_b + K_ab v_b - G_ab p_b - f_a ]                    (momentum, 2 per particle)
+//   R^c_a = sum_e [ (A/3) div v + tau A grad N_a . (a_avg - g) + (tau/rho) A grad N_a . grad p
+//                   + (A/3) c_vol ]                                        (continuity, 1 per particle)
+//
+// with P1 shape functions on the current (last iterate) configuration, Newmark (or generalized-alpha)
+// kinematics a(x), v(x) from the shared time integrators, and the tangent at frozen geometry
+// (d/dx of grad N and A neglected; Ryzhakov et al. 2010). c_vol is the optional global volume-correction
+// source ("volume_correction": "source", volume_correction.hpp); the default correction ("surface") is
+// geometric, see VolumeCorrection::restore_area.
+#include "fluid_scheme.hpp"
+
+#include <lagfsi/assembly.hpp>
+#include <lagfsi/linear_solver.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace lagfsi::fluid {
+
+PspgElementInput FluidScheme::element_input(Index e, const Vec& x, const Vec& v, const Vec& a, double c_m,
+                                            double c_c) const {
+  PspgElementInput in;
+  const auto& t = f_.mesh.tri[e];
+  const Vec& p = f_.cloud.p();
+  const Vec& p_old = f_.step.p_old;
+  for (int k = 0; k < 3; ++k) {
+    in.x[k] = x.segment<2>(2 * t[k]);
+    in.v[k] = v.segment<2>(2 * t[k]);
+    in.a[k] = a.segment<2>(2 * t[k]);
+    in.p[k] = p[t[k]];
+    in.p_old[k] = p_old.size() == p.size() ? p_old[t[k]] : p[t[k]];
+  }
+  in.rho = f_.c.rho;
+  in.mu = f_.walls.inviscid(t) ? 0.0 : f_.c.mu;
+  in.dt = f_.step.dt > 0 ? f_.step.dt : f_.c.analysis_dt;
+  in.tau_U = tau_U_;
+  in.bulk = f_.c.bulk;
+  in.c_vol = f_.volume.c_vol();
+  in.g = f_.c.gravity;
+  in.lumped = lumped_;
+  in.c_m = c_m;
+  in.c_c = c_c;
+  return in;
+}
+
+namespace {
+
+class PspgScheme final : public FluidScheme {
+ public:
+  PspgScheme(const FluidParts& f, const PspgSettings& s, std::unique_ptr<TimeIntegrator> integrator)
+      : FluidScheme(f), s_(s), integrator_(std::move(integrator)), solver_(make_linear_solver(s.solver)) {
+    tau_U_ = s.tau_U;
+    lumped_ = s.lumped;
+  }
+  bool free_surface_dirichlet() const override { return s_.free_surface_dirichlet; }
+  void begin_step() override {
+    pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
+    J_ = pattern_.pattern();
+    integrator_->begin_step(f_.cloud.state(), f_.step.dt);
+    // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep
+    // the factorization of the first pass.
+    iter_in_step_ = 0;
+  }
+  void restart() override { last_dx_ = last_dp_ = prev_dx_ = std::numeric_limits<double>::infinity(); }
+  /// One Newton iteration.
+  IterationReport iterate() override;
+  void end_step() override {
+    integrator_->end_step(f_.step.x, f_.cloud.state());
+    f_.walls.set_wall_motion(f_.step.t_new, f_.cloud.v(), f_.cloud.a());
+    f_.ghosts.set_rates(f_.cloud.v(), f_.cloud.a());
+  }
+  /// The trapezoidal rule's mean of v_n and v_{n+1}.
+  Vec step_velocity() const override {
+    const Vec& x = f_.cloud.x();
+    const Vec& v = f_.cloud.v();
+    Vec v_end = Vec(2.0 / f_.step.dt * (f_.step.x - x) - v);
+    return Vec(0.5 * (v + v_end));
+  }
+
+ private:
+  PspgSettings s_;
+  std::unique_ptr<TimeIntegrator> integrator_;
+  std::unique_ptr<LinearSolver> solver_;
+  ElementPattern pattern_;
+  SparseMatrix J_;
+  int iter_in_step_ = 0;  // iterations of the step (all coupling passes)
+  double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
+};
+
+IterationReport PspgScheme::iterate() {
+  auto t0 = Clock::now();
+  const FluidMesh& mesh = f_.mesh;
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
+  FluidStep& step = f_.step;
+  Vec& x_new = step.x;
+  Vec& p = f_.cloud.p();
+  const std::vector<char>& fixed = step.fixed;
+  const double h = f_.c.h;
+  const Index np = f_.cloud.n();
+  EvalPoint ev = integrator_->kinematics(x_new);
+  // Moving walls: their particles' velocity and acceleration are those of the prescribed motion (from the
+  // trapezoidal rule they would alternate around it after the jump of the wall's velocity at the start,
+  // and the pressure in the tank then grows step after step).
+  f_.walls.set_wall_motion(ev.t, ev.v, ev.a);
+  f_.ghosts.set_rates(ev.v, ev.a);
+  const TangentCoefficients cf = integrator_->coefficients();
+  const Vec2 g = f_.c.gravity;  // ballistic particles below
+  Vec R = Vec::Zero(3 * np);
+  double* jv = J_.valuePtr();
+  std::fill(jv, jv + J_.nonZeros(), 0.0);
+  std::vector<char> has_mass(np, 0);
+  double inertia2 = 0, gravity2 = 0;
+  std::string failure;
+
+  const Index ne = mesh.num_elements();
+  // One parallel loop over all elements with atomic additions (no colour barriers: on a loaded 2-core
+  // machine each OpenMP barrier of busy-waiting threads can cost a time slice).
+#pragma omp parallel for schedule(static) if (ne >= 2000) reduction(+ : inertia2, gravity2)
+    for (Index e = 0; e < ne; ++e) {
+      const auto& t = mesh.tri[e];
+      const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
+      Eigen::Matrix<double, 9, 1> r;
+      Eigen::Matrix<double, 9, 9> K;
+      double i2 = 0, g2 = 0;
+      if (!pspg_element(in, r, K, i2, g2)) {
+        // Turned over by a structure's boundary sliding past another prescribed particle (see
+        // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
+        if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
+#pragma omp critical(lagfsi_fluid_failure)
+        failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
+                  std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +
+                  std::to_string(step.t_new) + " (area " + std::to_string(mesh.element_area(ev.x, e)) + ")";
+        continue;
+      }
+      inertia2 += i2;
+      gravity2 += g2;
+      for (int a = 0; a < 3; ++a) {
+        for (int c = 0; c < 3; ++c) {
+#pragma omp atomic
+          R[3 * t[a] + c] += r[3 * a + c];
+        }
+        has_mass[t[a]] = 1;
+      }
+      const int* sc = pattern_.scatter(e);
+      for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) {
+#pragma omp atomic
+          jv[sc[j * 9 + i]] += K(i, j);
+        }
+    }
+  if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
+
+  // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.
+  const double m0 = f_.c.rho * h * h;
+  const int* op = J_.outerIndexPtr();
+  const int* ip = J_.innerIndexPtr();
+  auto diag = [&](Index dof) -> double& {
+    const int* pos = std::lower_bound(ip + op[dof], ip + op[dof + 1], dof);
+    return jv[pos - ip];
+  };
+  for (Index i = 0; i < np; ++i) {
+    if (has_mass[i] || kind[i] != ParticleKind::Fluid) continue;
+    for (int c = 0; c < 2; ++c) {
+      R[3 * i + c] = m0 * (ev.a[2 * i + c] - g[c]);
+      diag(3 * i + c) += cf.c_m * m0;
+    }
+  }
+  // Dirichlet: rows and columns of prescribed dofs become identity. Pressure columns are scaled by
+  // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
+  // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
+  // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
+  const double sp = 3.0 * f_.c.rho * h * cf.c_m;
+  for (int k = 0; k < J_.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(J_, k); it; ++it) {
+      if (fixed[it.row()] || fixed[it.col()])
+        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+      else if (k % 3 == 2)
+        it.valueRef() *= sp;
+    }
+  // Forces on the ghost particles: the reactions of their prescribed momentum rows, sign flipped (the
+  // residual there is the force the structure applies to the fluid).
+  Vec& ghost_force = f_.ghosts.forces();
+  for (size_t gi = 0; gi < f_.ghosts.count(); ++gi)
+    for (int c = 0; c < 2; ++c)
+      ghost_force[2 * gi + c] = f_.ghosts.merged(gi) ? 0.0 : -R[3 * f_.ghosts.index(gi) + c];
+  // The force each wall or ghost particle applies to the fluid (its prescribed momentum row's residual):
+  // the boundary work of the energy balance.
+  if (step.energy) {
+    Vec& boundary_force = step.boundary_force;
+    boundary_force.resize(2 * f_.cloud.n_boundary_particles());
+    for (Index i = 0; i < boundary_force.size() / 2; ++i)
+      for (int c = 0; c < 2; ++c) boundary_force[2 * i + c] = R[3 * i + c];
+  }
+  double rm2 = 0;
+  for (Index i = 0; i < 3 * np; ++i) {
+    if (fixed[i]) R[i] = 0.0;
+    else if (i % 3 != 2) rm2 += R[i] * R[i];
+  }
+  IterationReport rep;
+  rep.residual = std::sqrt(rm2);
+  rep.residual_ref = std::max(std::sqrt(inertia2), std::sqrt(gravity2));
+  rep.increment = last_dx_;
+  rep.increment_ref = h;
+  if (!std::isfinite(rep.residual)) throw SolverError("body '" + f_.c.name + "': non-finite residual");
+  f_.times.assembly += seconds_since(t0);
+  // Converged: the last corrections of positions and pressures are below tolerance; or the momentum
+  // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
+  // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
+  // pressure corrections of a few particles from ever reaching tol * p_scale).
+  const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
+  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * step.p_scale) || stalled) {
+    rep.converged = true;
+    return rep;
+  }
+
+  t0 = Clock::now();
+  if (s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0) {
+    try {
+      solver_->factorize(J_);
+    } catch (const SolverError& e) {
+      throw SolverError("body '" + f_.c.name + "': " + e.what());
+    }
+  }
+  ++iter_in_step_;
+  f_.times.factorization += seconds_since(t0);
+  t0 = Clock::now();
+  Vec d;
+  solver_->solve(-R, d);
+  f_.times.solve += seconds_since(t0);
+  prev_dx_ = last_dx_;
+  last_dx_ = last_dp_ = 0;
+  for (Index i = 0; i < np; ++i) {
+    x_new[2 * i] += d[3 * i];
+    x_new[2 * i + 1] += d[3 * i + 1];
+    const double dp = fixed[3 * i + 2] ? 0.0 : sp * d[3 * i + 2];
+    p[i] += dp;
+    last_dx_ = std::max({last_dx_, std::abs(d[3 * i]), std::abs(d[3 * i + 1])});
+    last_dp_ = std::max(last_dp_, std::abs(dp));
+  }
+  if (!x_new.allFinite() || !p.allFinite()) throw SolverError("body '" + f_.c.name + "': non-finite solution");
+  if (std::getenv("LAGFSI_DEBUG_NEWTON")) {  // developer aid: one line per Newton iteration on stderr
+    Index worst = 0;
+    for (Index i = 0; i < np; ++i)
+      if (std::abs(d[3 * i]) + std::abs(d[3 * i + 1]) > std::abs(d[3 * worst]) + std::abs(d[3 * worst + 1])) worst = i;
+    std::fprintf(stderr, "  t=%.6g res=%.3e ref=%.3e dx=%.3e (h %.3e) dp=%.3e (p %.3e) worst %d kind %d free %d\n",
+                 step.t_new, rep.residual, rep.residual_ref, last_dx_, h, last_dp_, step.p_scale, worst,
+                 int(kind[worst]), int(mesh.free[worst]));
+  }
+  return rep;
+}
+
+}  // namespace
+
+std::unique_ptr<FluidScheme> make_pspg_scheme(const FluidParts& f, const PspgSettings& s,
+                                              std::unique_ptr<TimeIntegrator> integrator) {
+  return std::make_unique<PspgScheme>(f, s, std::move(integrator));
+}
+
+}  // namespace lagfsi::fluid

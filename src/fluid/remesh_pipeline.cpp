@@ -1,0 +1,283 @@
+// The PFEM remeshing of a step and its filters (remesh_pipeline.hpp).
+#include "remesh_pipeline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lagfsi::fluid {
+
+void RemeshPipeline::set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const std::vector<Vec2>& pts) {
+  domain_lo_ = wall_lo;   // the walls' box (empty without walls), enlarged to every particle
+  domain_hi_ = wall_hi;
+  for (const auto& q : pts) {
+    domain_lo_ = domain_lo_.cwiseMin(q);
+    domain_hi_ = domain_hi_.cwiseMax(q);
+  }
+  const double margin = s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff();
+  domain_lo_ -= Vec2::Constant(margin);
+  domain_hi_ += Vec2::Constant(margin);
+}
+
+void RemeshPipeline::extend_domain(const std::vector<Vec2>& points) {
+  if (domain_lo_.x() <= domain_hi_.x()) {
+    const double margin = s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * s_.domain_margin);
+    for (const auto& q : points) {
+      domain_lo_ = domain_lo_.cwiseMin(q - Vec2::Constant(margin));
+      domain_hi_ = domain_hi_.cwiseMax(q + Vec2::Constant(margin));
+    }
+  }
+}
+
+void RemeshPipeline::initial_mesh() {
+  if (s_.detection == meshing::DomainDetection::Alpha) {
+    remesh_now();
+    return;
+  }
+  meshing::PreviousDomain regions(std::move(region_triangles_), {});
+  const Settings keep = s_;
+  s_.detection = meshing::DomainDetection::LevelSet;
+  s_.level_set_band = 0.0;
+  remesh_now(&regions);
+  s_ = keep;
+  added_outside_ = separated_ = 0;
+}
+
+void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy) {
+  drop_outside_domain(t_new, volume);
+  // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
+  // domain box is counted apart, VolumeCorrection's area_left) against the new one.
+  const double area0 = mesh_.area(cloud_.x()), ke0 = energy.kinetic(), pe0 = energy.potential();
+  if (s_.detection == meshing::DomainDetection::Alpha) {
+    remesh_now();
+    const bool removed = remove_close_particles();
+    if (removed) remesh_now();
+    if (insert_particles()) remesh_now();
+  } else {
+    meshing::PreviousDomain previous = advected_domain();
+    std::vector<std::uint8_t> meshed;
+    std::vector<std::pair<Index, Index>> edges;
+    manage_particles(meshed, edges);
+    previous.set_topology(std::move(meshed), std::move(edges));
+    remesh_now(&previous);
+  }
+  const double area1 = mesh_.area(cloud_.x());
+  remesh_dA_ = area1 - area0;
+  remesh_dKE_ = energy.kinetic() - ke0;
+  (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
+  remesh_ke_total_ += remesh_dKE_;
+  remesh_pe_total_ += energy.potential() - pe0;
+  if (volume.type() == VolumeCorrection::Type::surface) volume.restore_area();
+}
+
+void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
+  const std::vector<ParticleKind>& kind = cloud_.kind();
+  const std::vector<Vec2> pts = cloud_.positions();
+  meshing::RemeshResult r;
+  meshing::RemeshSettings settings;
+  settings.alpha = s_.alpha;
+  if (previous != nullptr && !previous->empty()) {
+    settings.detection = s_.detection;
+    settings.previous = previous;
+    settings.separation_alpha = s_.separation_alpha;
+    settings.level_set_band = s_.level_set_band;
+  }
+  try {
+    r = meshing::remesh(pts, kind, cloud_.h(), settings);
+  } catch (const std::exception& e) {
+    throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
+  }
+  added_outside_ += r.added_outside;
+  separated_ += r.separated_inside;
+  auto& tri = mesh_.tri;
+  tri = std::move(r.triangles);
+  mesh_.free = std::move(r.free_surface);
+  mesh_.connected = std::move(r.connected);
+  // Meniscus elements: two wall particles and one free-surface fluid particle. Beside a wall above the
+  // water line such an element is air, but it passes the alpha test (its circumradius is h/sqrt(2)); kept,
+  // its PSPG gravity term has no hydrostatic gradient to balance it, and the surface particle next to the
+  // wall is driven up and down the wall (spurious currents in a tank at rest). Removing them costs a
+  // wedge of h^2/2 at a front sliding on a wall, where the front particle stays connected through its
+  // other elements.
+  // With the advected domain (previous != nullptr) a meniscus element is only ever there because the fluid
+  // was: new ones are not added (meshing/remesh.cpp), and existing ones go by the separation test.
+  const bool meniscus_filter = previous == nullptr || previous->empty();
+  const double h = c_.h;
+  size_t kept = 0;
+  bool removed = false;
+  for (size_t e = 0; e < tri.size(); ++e) {
+    int walls = 0, free_fluid = 0;
+    for (Index i : tri[e]) {
+      walls += kind[i] != ParticleKind::Fluid;
+      free_fluid += kind[i] == ParticleKind::Fluid && mesh_.free[i];
+    }
+    if ((meniscus_filter && walls == 2 && free_fluid == 1) ||
+        mesh_.element_area(cloud_.x(), static_cast<Index>(e)) < s_.flat_fraction * h * h ||
+        (ghosts_.particles() > 0 && ghosts_.crosses_structure(tri[e]))) {
+      removed = true;
+      continue;
+    }
+    tri[kept++] = tri[e];
+  }
+  tri.resize(kept);
+  if (removed) {
+    std::vector<char> walls(cloud_.n(), 0);
+    for (Index i = 0; i < cloud_.n(); ++i) walls[i] = kind[i] != ParticleKind::Fluid;
+    mark_free_surface(walls);
+  }
+}
+
+void RemeshPipeline::mark_free_surface(const std::vector<char>& on_wall) {
+  const Index np = cloud_.n();
+  std::vector<std::pair<Index, Index>> edges;
+  edges.reserve(3 * mesh_.tri.size());
+  mesh_.connected.assign(np, 0);
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      mesh_.connected[t[k]] = 1;
+      edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
+    }
+  std::sort(edges.begin(), edges.end());
+  mesh_.free.assign(np, 0);
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const bool shared = (k + 1 < edges.size() && edges[k + 1] == edges[k]) || (k > 0 && edges[k - 1] == edges[k]);
+    if (shared || (on_wall[edges[k].first] && on_wall[edges[k].second])) continue;
+    for (Index i : {edges[k].first, edges[k].second})
+      if (cloud_.kind(i) == ParticleKind::Fluid) mesh_.free[i] = 1;
+  }
+}
+
+bool RemeshPipeline::remove_close_particles() {
+  // Particles pressed together (impacts, the wall) make near-flat elements that invert within a step.
+  // Of a fluid-fluid pair closer than close_fraction * h one particle goes (meshing picks it); a fluid
+  // particle closer than that to a wall particle goes. The fluid area is measured on the elements, so
+  // the mass this removes shows in the area drift.
+  if (s_.close_fraction <= 0) return false;
+  const std::vector<ParticleKind>& kind = cloud_.kind();
+  const std::vector<Vec2> pts = cloud_.positions();
+  std::vector<char> drop(cloud_.n(), 0);
+  for (Index i : meshing::close_fluid_particles(pts, kind, cloud_.h(), mesh_.tri, s_.close_fraction)) drop[i] = 1;
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], b = t[(k + 1) % 3];
+      const bool fa = kind[a] == ParticleKind::Fluid, fb = kind[b] == ParticleKind::Fluid;
+      if (fa == fb) continue;
+      if ((pts[a] - pts[b]).norm() < s_.close_fraction * c_.h) drop[fa ? a : b] = 1;
+    }
+  return drop_particles(drop);
+}
+
+bool RemeshPipeline::insert_particles() {
+  // Where the flow stretches the particle distribution, elements grow until the alpha test deletes them
+  // and the fluid tears; a particle at the centroid of every element larger than insert_factor * h^2
+  // (with the element's mean velocity, acceleration and pressure) keeps the spacing near h.
+  if (s_.insert_factor <= 0) return false;
+  const std::vector<Vec2> pts = cloud_.positions();
+  const auto big = meshing::oversized_elements(pts, cloud_.h(), mesh_.tri, s_.insert_factor);
+  if (big.empty()) return false;
+  const Vec &xs = cloud_.x(), &vs = cloud_.v(), &as = cloud_.a(), &ps = cloud_.p();
+  std::vector<ParticleCloud::Particle> added;
+  added.reserve(big.size());
+  for (Index e : big) {
+    const auto& t = mesh_.tri[e];
+    Vec2 x = Vec2::Zero(), v = Vec2::Zero(), a = Vec2::Zero();
+    double p = 0, hh = 0;
+    for (Index i : t) {
+      x += xs.segment<2>(2 * i) / 3.0;
+      v += vs.segment<2>(2 * i) / 3.0;
+      a += as.segment<2>(2 * i) / 3.0;
+      p += ps[i] / 3.0;
+      hh += cloud_.h(i) / 3.0;
+    }
+    ParticleCloud::Particle q;
+    q.kind = ParticleKind::Fluid;
+    q.h = hh;
+    q.x = x;
+    q.X0 = x;
+    q.v = v;
+    q.a = a;
+    q.p = p;
+    added.push_back(q);
+  }
+  cloud_.append(added);
+  return true;
+}
+
+bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume) {
+  // Fluid particles that left the domain box (walls and initial fluid, enlarged by domain_margin times the
+  // larger side) are gone: a jet that falls off the end of a floor would otherwise fly forever. The box is
+  // open on the side gravity points away from: a splash thrown above the walls falls back.
+  if (domain_lo_.x() > domain_hi_.x()) return false;
+  const Vec2 g = c_.gravity;
+  const Vec2 lo(g.x() > 0 ? -std::numeric_limits<double>::infinity() : domain_lo_.x(),
+                g.y() > 0 ? -std::numeric_limits<double>::infinity() : domain_lo_.y());
+  const Vec2 hi(g.x() < 0 ? std::numeric_limits<double>::infinity() : domain_hi_.x(),
+                g.y() < 0 ? std::numeric_limits<double>::infinity() : domain_hi_.y());
+  std::vector<char> drop(cloud_.n(), 0);
+  bool any = false;
+  Index fluid_left = 0;
+  for (Index i = 0; i < cloud_.n(); ++i) {
+    if (cloud_.kind(i) != ParticleKind::Fluid) continue;
+    const Vec2 q = cloud_.pos(i);
+    if (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y()) {
+      drop[i] = 1;
+      any = true;
+    } else {
+      ++fluid_left;
+    }
+  }
+  if (!any) return false;
+  if (fluid_left == 0)
+    throw SolverError("body '" + c_.name + "': all fluid particles left the domain box by t = " + std::to_string(t_new));
+  // The fluid that left is gone: its share of the last mesh (A_e / 3 per dropped particle of each element)
+  // leaves the reference area too, so that the volume correction does not make it up elsewhere.
+  for (Index e = 0; e < mesh_.num_elements(); ++e)
+    for (Index i : mesh_.tri[e])
+      if (drop[i]) volume.add_left(mesh_.element_area(cloud_.x(), e) / 3.0);
+  volume.rebase();
+  return drop_particles(drop);
+}
+
+bool RemeshPipeline::drop_particles(const std::vector<char>& drop) {
+  const Index np = cloud_.n();
+  renumber_.assign(np, -1);
+  Index kept = 0;
+  for (Index i = 0; i < np; ++i)
+    if (!drop[i]) renumber_[i] = kept++;
+  if (!cloud_.compact(drop)) return false;
+  auto& tri = mesh_.tri;
+  size_t kept_elements = 0;
+  for (const auto& t : tri) {
+    if (renumber_[t[0]] < 0 || renumber_[t[1]] < 0 || renumber_[t[2]] < 0) continue;
+    tri[kept_elements++] = {renumber_[t[0]], renumber_[t[1]], renumber_[t[2]]};
+  }
+  tri.resize(kept_elements);
+  return true;
+}
+
+void RemeshPipeline::append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h) {
+  ParticleCloud::Particle q;
+  q.kind = ParticleKind::Fluid;
+  q.h = h;
+  q.x = x;
+  q.X0 = x;
+  q.v = v;
+  q.a = a;
+  q.p = p;
+  cloud_.append({q});
+}
+
+Json RemeshPipeline::summary() const {
+  return {{"area_added", remesh_area_added_},
+          {"area_removed", remesh_area_removed_},
+          {"kinetic_energy_change", remesh_ke_total_},
+          {"potential_energy_change", remesh_pe_total_},
+          {"particles_merged", merged_},
+          {"edges_split", split_},
+          {"particles_inserted", inserted_},
+          {"particles_removed_at_walls", wall_removed_},
+          {"elements_added_outside", added_outside_},
+          {"elements_separated", separated_}};
+}
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,119 @@
+#pragma once
+/// @file remesh_pipeline.hpp (private to src/fluid)
+/// The PFEM remeshing of a step (remesh_step): the fluid that left the domain box goes, then
+///  - "domain_detection": "alpha" (the default): the particles are remeshed (Delaunay + alpha shape,
+///    meshing/remesh.hpp, then the meniscus, flat and crossing filters), particles too close together are
+///    removed and particles are inserted in oversized elements (each followed by a remesh);
+///  - "advected" / "level_set" (conservative remeshing, particle_management.cpp): the last step's mesh at the
+///    particles' present positions is the predicate of the new domain (meshing/previous_domain.hpp); the
+///    particles are managed on it (merged, split, inserted) before one Delaunay triangulation;
+/// what the remesh changed (area, kinetic energy) is measured, and the "surface" volume correction moves the
+/// free surface.
+#include "fluid_common.hpp"
+#include "fluid_energy.hpp"
+#include "fluid_mesh.hpp"
+#include "ghosts.hpp"
+#include <lagfsi/fluid/particle_cloud.hpp>
+#include "volume_correction.hpp"
+
+#include <lagfsi/meshing/previous_domain.hpp>
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace lagfsi::fluid {
+
+class RemeshPipeline {
+ public:
+  using Settings = FluidRemeshSettings;
+  RemeshPipeline(const FluidConstants& c, ParticleCloud& cloud, FluidMesh& mesh, const Ghosts& ghosts)
+      : c_(c), cloud_(cloud), mesh_(mesh), ghosts_(ghosts) {}
+  void configure(const Settings& s) { s_ = s; }
+  const Settings& settings() const { return s_; }
+
+  /// The domain box: the walls' box (wall_lo, wall_hi; empty without walls) and the particles `pts`,
+  /// enlarged by domain_margin times its larger side. Without it (fixed connectivity) nothing is dropped.
+  void set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const std::vector<Vec2>& pts);
+  /// The domain box holds `points` too (a structure's boundary, add_ghosts).
+  void extend_domain(const std::vector<Vec2>& points);
+
+  /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
+  /// detections.
+  void add_region_triangle(const std::array<Vec2, 3>& t) { region_triangles_.push_back(t); }
+  /// The initial mesh (initialize, PFEM mode): with the advected and level-set detections the regions
+  /// themselves are the domain: the Delaunay elements whose centroid lies in them (with the separation
+  /// test), none outside (a level set of zero band). The alpha shape would cut the corners where the surface
+  /// meets a wall, which the advected domain would then keep filling and emptying. With "alpha", remesh_now.
+  void initial_mesh();
+  /// The regions' triangles are freed (only the initial domain needs them).
+  void free_regions() { std::vector<std::array<Vec2, 3>>().swap(region_triangles_); }
+
+  /// The whole remeshing of a step (predict, t_new the end of the step): drop_outside_domain; with "alpha"
+  /// remesh_now, remove_close_particles, insert_particles (each change remeshed again), otherwise particle
+  /// management on the advected domain and one remesh; the change of area and energies it made (`energy`
+  /// measures them); then the "surface" correction.
+  void remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy);
+  /// Delaunay + domain detection of the present cloud: the alpha shape, or (advected / level set) the
+  /// previous domain `previous` as predicate; then the meniscus, flat-element and structure-crossing filters;
+  /// the free-surface flags of what is left.
+  void remesh_now(const meshing::PreviousDomain* previous = nullptr);
+  /// free and connected of the mesh from its elements: particles of edges used by one element, unless both
+  /// ends are on a wall (`on_wall`); only Fluid particles are free surface.
+  void mark_free_surface(const std::vector<char>& on_wall);
+  /// Removes fluid particles closer than close_fraction * h to another particle; true when some were.
+  bool remove_close_particles();
+  /// Inserts particles at the centroids of the oversized elements; true when some were.
+  bool insert_particles();
+  /// Removes the fluid particles outside the domain box (their share of the mesh's area leaves `volume`'s
+  /// reference); throws SolverError when none is left (t_new in the message).
+  bool drop_outside_domain(double t_new, VolumeCorrection& volume);
+
+  /// Remeshing's effect in the last step (log.csv remesh_dA, remesh_dKE).
+  double area_change() const { return remesh_dA_; }
+  double kinetic_energy_change() const { return remesh_dKE_; }
+  /// summary.json's "remeshing" block, but for the detection's name and the volume correction's energy.
+  Json summary() const;
+
+ private:
+  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
+  /// (particle_management.cpp).
+  meshing::PreviousDomain advected_domain() const;
+  /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
+  /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long
+  /// free-surface edges are split at their midpoints and large elements get a particle at their centroid
+  /// (state interpolated on the mesh). Keeps the mesh consistent with the cloud. Returns true if it changed
+  /// it. `meshed` and `boundary_edges` receive the previous mesh's topology in the new numbering (the
+  /// particles it used, inserted ones included; its boundary edges, through merges and splits).
+  bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges);
+  /// The boundary of the mesh as chains: next[i] / prev[i] the particle after / before i along a boundary
+  /// edge (directed as in its element), -1 if none; pinched where two boundary edges leave one particle (two
+  /// surfaces touching at it).
+  struct BoundaryChains {
+    std::vector<Index> next, prev;
+    std::vector<char> pinched;
+  };
+  BoundaryChains boundary_chains() const;
+  /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
+  /// particle go, the others are renumbered (renumber_).
+  bool drop_particles(const std::vector<char>& drop);
+  /// Appends a fluid particle with the given state (an inserted particle: X0 = x).
+  void append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h);
+
+
+  const FluidConstants& c_;
+  ParticleCloud& cloud_;
+  FluidMesh& mesh_;
+  const Ghosts& ghosts_;
+  Settings s_;
+  Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
+  std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
+  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
+  // Remeshing's effect per step (log.csv) and over the run (summary.json).
+  double remesh_dA_ = 0, remesh_dKE_ = 0;
+  double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
+  long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0;
+};
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,108 @@
+// Volume corrections of the PFEM fluid (volume_correction.hpp): "surface" (restore_area) and "source" (c_vol).
+#include "volume_correction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lagfsi::fluid {
+
+void VolumeCorrection::restore_area() {
+  // Remeshing changes the fluid's area: the alpha shape closes or opens elements along the free surface
+  // (a splash joining the pool, a film tearing), and inserted or removed particles shift it. The error is
+  // geometric and sits on the free surface, so it is removed there, before the step is solved: the
+  // free-surface particles move along the gradient of the mesh area, g_i = dA/dx_i = sum_e (A_e grad N_i)
+  // (zero at interior particles, (1/2) J (x_next - x_prev) on the boundary), by the smallest such motion
+  // that restores the reference area to first order, dx_i = lambda g_i, lambda = (A_ref - A) / sum |g_i|^2
+  // (two passes close the second-order remainder). No velocity changes and no pressure is needed (the
+  // "source" correction needs a pressure of order rho L^2 (error) / T^2 to contract the whole fluid). Each
+  // pass moves a particle by at most 0.05 h; a larger error is closed over several steps.
+  if (!(area_ref_ > 0)) return;
+  const Index np = cloud_.n();
+  const std::vector<ParticleKind>& kind = cloud_.kind();
+  const std::vector<std::array<Index, 3>>& tri = mesh_.tri;
+  Vec& x = cloud_.x();
+  // Only the surface of the bulk moves: a free-surface particle of an element with an interior fluid
+  // particle. Films, jets and drops (elements of free-surface particles only) keep their positions: their
+  // continuity rows are not solved (p = 0 on the free surface), and a push along their thin outline would
+  // accumulate at their tips (the front of a dam break runs ahead by a film).
+  std::vector<char> movable = mesh_.beside_interior_fluid(kind);
+  const std::vector<char> at_wall = mesh_.in_element_with(np, [&](Index i) { return kind[i] != ParticleKind::Fluid; });
+  for (Index i = 0; i < np; ++i)
+    movable[i] = movable[i] && kind[i] == ParticleKind::Fluid && mesh_.free[i] && !at_wall[i];
+  const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {   // twice the signed area
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  Vec g(2 * np);
+  std::vector<double> lumped(np);   // lumped areas (the particles' masses / rho): the potential energy
+                                    // the correction moves is counted (probe volume_correction_energy)
+  for (int pass = 0; pass < 2; ++pass) {
+    double area = 0;
+    g.setZero();
+    std::fill(lumped.begin(), lumped.end(), 0.0);
+    for (Index e = 0; e < static_cast<Index>(tri.size()); ++e) {
+      const auto& t = tri[e];
+      const Vec2 xa = x.segment<2>(2 * t[0]), xb = x.segment<2>(2 * t[1]), xc = x.segment<2>(2 * t[2]);
+      const double Ae = 0.5 * area2(xa, xb, xc);
+      area += Ae;
+      for (Index i : t) lumped[i] += Ae / 3.0;
+      const Vec2 xs[3] = {xa, xb, xc};
+      for (int k = 0; k < 3; ++k) {
+        const Vec2& q = xs[(k + 1) % 3];
+        const Vec2& r = xs[(k + 2) % 3];
+        g.segment<2>(2 * t[k]) += 0.5 * Vec2(q.y() - r.y(), r.x() - q.x());
+      }
+    }
+    const double error = area_ref_ - area;
+    if (std::abs(error) <= 1e-12 * area_ref_) return;
+    // A particle whose move would shrink one of its elements below half its area (a sliver at a splash)
+    // stays where it is; lambda is then recomputed over the others.
+    double lambda = 0;
+    for (int guard = 0; guard < 4; ++guard) {
+      double gg = 0, gmax = 0;
+      for (Index i = 0; i < np; ++i) {
+        if (!movable[i]) continue;
+        gg += g.segment<2>(2 * i).squaredNorm();
+        gmax = std::max(gmax, g.segment<2>(2 * i).norm() / cloud_.h(i));
+      }
+      if (!(gg > 0)) return;
+      lambda = error / gg;
+      if (std::abs(lambda) * gmax > 0.05) lambda = std::copysign(0.05 / gmax, lambda);
+      bool frozen = false;
+      for (const auto& t : tri) {
+        if (!(movable[t[0]] || movable[t[1]] || movable[t[2]])) continue;
+        Vec2 y[3];
+        for (int k = 0; k < 3; ++k)
+          y[k] = x.segment<2>(2 * t[k]) + (movable[t[k]] ? lambda : 0.0) * g.segment<2>(2 * t[k]);
+        const Vec2 xa = x.segment<2>(2 * t[0]), xb = x.segment<2>(2 * t[1]), xc = x.segment<2>(2 * t[2]);
+        if (area2(y[0], y[1], y[2]) < 0.5 * area2(xa, xb, xc)) {
+          for (Index i : t) movable[i] = 0;
+          frozen = true;
+        }
+      }
+      if (!frozen) break;
+      if (guard == 3) return;
+    }
+    for (Index i = 0; i < np; ++i) {
+      if (!movable[i]) continue;
+      x.segment<2>(2 * i) += lambda * g.segment<2>(2 * i);
+      correction_energy_ -= c_.rho * lumped[i] * c_.gravity.dot(lambda * g.segment<2>(2 * i));
+    }
+  }
+}
+
+void VolumeCorrection::set_remeshed(double area) {
+  area_remesh_ = area;
+  // Volume correction "source": a uniform source in the continuity equation, div v = -(A - A_ref)/(A_ref T),
+  // that closes the area error of remeshing (alpha shape, inserted/removed particles) over the relaxation
+  // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt;
+  // then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
+  // elements): the default is the "surface" correction (restore_area) instead.
+  c_vol_ = type_ == Type::source && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
+}
+
+Json VolumeCorrection::summary() const {
+  return {{"initial", area_initial_}, {"final", area_end_}, {"left_domain", area_left_},
+          {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}};
+}
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,63 @@
+#pragma once
+/// @file volume_correction.hpp (private to src/fluid)
+/// The fluid's area bookkeeping (initial, reference, after remeshing, at the end of the step, left through
+/// the domain box) and the two volume corrections: "surface" (restore_area: a geometric move of the free
+/// surface after remeshing) and "source" (c_vol: a uniform source in the continuity equation).
+#include "fluid_common.hpp"
+#include "fluid_mesh.hpp"
+#include <lagfsi/fluid/particle_cloud.hpp>
+
+#include <lagfsi/params.hpp>
+
+namespace lagfsi::fluid {
+
+class VolumeCorrection {
+ public:
+  enum class Type { surface, source, none };
+  VolumeCorrection(const FluidConstants& c, ParticleCloud& cloud, const FluidMesh& mesh)
+      : c_(c), cloud_(cloud), mesh_(mesh) {}
+  /// The case's "volume_correction" and "volume_relaxation_time" (s).
+  void configure(Type type, double relax_time) {
+    type_ = type;
+    relax_time_ = relax_time;
+  }
+  Type type() const { return type_; }
+
+  /// The initial mesh's area: the reference, initial, remeshed and end-of-step areas (initialize).
+  void start(double area) { area_ref_ = area_remesh_ = area_end_ = area_initial_ = area; }
+  /// Fluid dropped outside the domain box: `share` of the last mesh's area left with it (added up by
+  /// drop_outside_domain, then rebase()).
+  void add_left(double share) { area_left_ += share; }
+  /// The fluid that left is gone from the reference area too, so that the correction does not make it up
+  /// elsewhere.
+  void rebase() { area_ref_ = area_initial_ - area_left_; }
+
+  /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
+  /// that the area after remeshing equals the reference area again.
+  void restore_area();
+  /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step.
+  void set_remeshed(double area);
+  /// The mesh's area at the end of the step.
+  void set_end(double area) { area_end_ = area; }
+
+  /// The uniform source of the continuity equation (0 unless "source").
+  double c_vol() const { return c_vol_; }
+  double area_remeshed() const { return area_remesh_; }
+  double area_end() const { return area_end_; }
+  /// Potential energy put into the fluid by the "surface" correction's moves, -sum m_i g . dx_i.
+  double correction_energy() const { return correction_energy_; }
+  /// summary.json's "fluid_area": initial, final, left the domain, drift without the latter.
+  Json summary() const;
+
+ private:
+  const FluidConstants& c_;
+  ParticleCloud& cloud_;
+  const FluidMesh& mesh_;
+  Type type_ = Type::surface;
+  double relax_time_ = 0.1;  // s: the "source" correction closes an area error over this time
+  double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
+  double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
+  double correction_energy_ = 0;
+};
+
+}  // namespace lagfsi::fluid

@@ -3,7 +3,9 @@
 /// The driver: reads a case, builds its models through the registry, runs the time (or load) stepping
 /// with Newton iterations per model, and writes resolved_case.json, the ParaView series, probes.csv,
 /// log.csv and summary.json. Output files are flushed after every step, so a run that stops (error,
-/// divergence, kill) leaves valid files behind.
+/// divergence, kill) leaves valid files behind; every write is checked (a full disk fails the run with exit
+/// code 5, never "completed"). SIGINT and SIGTERM end the current step, write the output and set
+/// summary.json's status to "interrupted".
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,10 +18,18 @@ struct RunOptions {
   std::vector<std::string> overrides;     ///< "key.path=value"
   int threads = 0;                        ///< 0: OpenMP default
   bool quiet = false;
+  std::string progress = "auto";         ///< auto | bar | lines | none (none when quiet)
 };
 
-/// Exit codes of `lagfsi`.
-enum ExitCode : int { kOk = 0, kUsage = 1, kInputError = 2, kSolverError = 3, kInternalError = 4 };
+/// Exit codes of `lagfsi`. An interrupted run (SIGINT, SIGTERM) exits with 128 + the signal's number.
+enum ExitCode : int {
+  kOk = 0,
+  kUsage = 1,
+  kInputError = 2,
+  kSolverError = 3,
+  kInternalError = 4,
+  kOutputError = 5,   ///< an output file could not be written (disk full, file-size limit, permissions)
+};
 
 /// Runs a case; returns an exit code. Errors are reported on stderr as one line; never throws.
 int run_case(const RunOptions& opt);

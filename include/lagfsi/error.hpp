@@ -20,6 +20,18 @@ class InputError : public std::runtime_error {
   std::string file_, path_, reason_;
 };
 
+/// An output file that cannot be written (disk full, file-size limit, permissions, a folder in its place).
+/// The message is "FILE: cannot write (reason)", naming the file.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError(const std::string& file, const std::string& reason)
+      : std::runtime_error(file + ": cannot write (" + reason + ")"), file_(file) {}
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
 /// A solve that cannot go on: Newton divergence, non-finite values, a singular matrix.
 class SolverError : public std::runtime_error {
  public:

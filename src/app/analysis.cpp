@@ -1,13 +1,20 @@
+#include "input_checks.hpp"
+#include "interrupt.hpp"
+#include "output_lock.hpp"
+#include "progress.hpp"
+
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/case.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fsi/dirichlet_neumann.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/output_file.hpp>
+#include <lagfsi/text.hpp>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <new>
@@ -73,9 +80,10 @@ struct Case {
   std::vector<std::unique_ptr<Probe>> probes;
   int output_every = 1;
   bool vtk = true;
+  std::vector<std::string> warnings;   ///< chosen on purpose (a conditionally stable integrator): stderr and summary.json
 };
 
-AnalysisSettings read_analysis(Params a) {
+AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
   a.validate({{"type", nullptr},
               {"dt", 0.0},
               {"end_time", 0.0},
@@ -100,18 +108,15 @@ AnalysisSettings read_analysis(Params a) {
   if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
   const std::string itype = it.choice("type", {"newmark", "generalized_alpha", "central_difference"});
   if (itype == "newmark") {
-    it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}});
-    if (!(it.number("beta") > 0)) it.fail("beta", "must be positive (beta = 0 is the explicit central_difference)");
-    if (it.number("gamma") < 0.5) it.fail("gamma", "must be at least 1/2 (gamma < 1/2 is unstable)");
+    it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}, {"allow_conditionally_stable", false}});
   } else if (itype == "generalized_alpha") {
     it.validate({{"type", "generalized_alpha"}, {"rho_inf", 0.8}});
-    const double r = it.number("rho_inf");
-    if (r < 0 || r > 1) it.fail("rho_inf", "must lie in [0, 1]");
   } else {
     it.validate({{"type", "central_difference"}});
     it.fail("type", "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
                     "(use newmark or generalized_alpha)");
   }
+  warnings = check_integrator_stability(it);
   s.integrator = it.json();
   Params nw = a.at("newton");
   nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});
@@ -134,7 +139,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.ctx.quiet = opt.quiet;
   c.ctx.base_dir = opt.case_file.parent_path();
   c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
-  c.ctx.analysis = read_analysis(c.root.at("analysis"));
+  c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings);
   c.ctx.gravity = c.root.vec2("gravity");
   Params out = c.root.at("output");
   out.validate({{"every", 1}, {"vtk", true}});
@@ -211,19 +216,15 @@ Case build_case(const RunOptions& opt, bool for_check) {
     }
     c.probes.push_back(std::move(probe));
   }
+  // What no single body can see: output names shared by two bodies, bodies that overlap.
+  check_output_names(c.root);
+  check_overlaps(c.root);
   return c;
 }
 
-/// Writes text to a file through a temporary and a rename (the file is always complete).
-void write_atomic(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream o(tmp);
-    if (!o) throw std::runtime_error("cannot write " + tmp.string());
-    o << text;
-  }
-  fs::rename(tmp, path);
-}
+/// JSON text for a file: never throws (every string is UTF-8 since the input is checked; any other byte
+/// would be replaced).
+std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
 struct Totals {
   PhaseTimes phases;
@@ -261,7 +262,12 @@ std::unique_ptr<Case> build_case_or_report(const RunOptions& opt, bool for_check
 int check_case(const RunOptions& opt) {
   const auto c = build_case_or_report(opt, true);
   if (!c) return kInputError;
-  std::cout << c->root.json().dump(2) << "\n";
+  for (const auto& w : c->warnings) std::cerr << "lagfsi: warning: " << w << "\n";
+  std::cout << json_text(c->root.json()) << std::flush;
+  if (!std::cout) {
+    std::cerr << "lagfsi: error: stdout: cannot write (" << errno_reason(errno) << ")\n";
+    return kOutputError;
+  }
   return kOk;
 }
 
@@ -273,14 +279,19 @@ int run_case(const RunOptions& opt) {
   const std::unique_ptr<Case> cp = build_case_or_report(opt, false);
   if (!cp) return kInputError;
   Case& c = *cp;
+  // From here on Ctrl-C ends the current step and writes the output (a second one stops at once).
+  const InterruptGuard interrupt_guard;
   const fs::path out = c.ctx.out_dir;
-  std::ofstream probes_csv, log_csv;
+  AppendFile probes_csv, log_csv;
   Totals tot;
   std::string status = "running", message;
   int code = kOk;
   double t = 0.0, last_output_t = -1.0;
   const AnalysisSettings& an = c.ctx.analysis;
   const long nsteps = std::lround(std::ceil(an.end_time / an.dt * (1 - 1e-9)));
+  ProgressMode mode = ProgressMode::none;
+  parse_progress_mode(opt.progress, opt.quiet, mode);
+  Progress progress(mode, c.name, !opt.quiet);
 
   auto write_summary = [&]() {
     Json s;
@@ -288,6 +299,8 @@ int run_case(const RunOptions& opt) {
     s["case_file"] = opt.case_file.string();
     s["status"] = status;
     s["message"] = message;
+    if (InterruptGuard::received()) s["signal"] = signal_name(InterruptGuard::received());
+    s["warnings"] = c.warnings;
     s["analysis"] = an.type;
     s["steps"] = tot.steps;
     s["steps_planned"] = nsteps;
@@ -326,37 +339,54 @@ int run_case(const RunOptions& opt) {
 #else
     s["threads"] = 1;
 #endif
-    write_atomic(out / "summary.json", s.dump(2) + "\n");
+    write_file_atomic(out / "summary.json", json_text(s));
   };
 
-  // The output folder first: if it cannot be written, say so once and write nothing else.
+  // The output folder first: not the case file's own, not in use by another run; if it cannot be written,
+  // say so once and write nothing else.
+  OutputLock lock;
+  try {
+    check_output_folder(opt.case_file, out);
+  } catch (const InputError& e) {
+    std::cerr << "lagfsi: error: " << e.what() << "\n";
+    return kInputError;
+  }
   try {
     fs::create_directories(out);
     if (!fs::is_directory(out)) throw std::runtime_error("it is not a folder");
-    write_atomic(out / "resolved_case.json", c.root.json().dump(2) + "\n");
   } catch (const std::exception& e) {
     const auto* fe = dynamic_cast<const fs::filesystem_error*>(&e);
     std::cerr << "lagfsi: error: " << opt.case_file.string() << ": cannot write the output folder " << out.string()
               << " (" << (fe ? fe->code().message() : std::string(e.what())) << ")\n";
     return kInputError;
   }
+  if (const std::string why = lock.acquire(out); !why.empty()) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": the output folder " << out.string() << " is "
+              << (why.rfind("in use", 0) == 0 ? why : "not usable: " + why) << "\n";
+    return kInputError;
+  }
+  for (const auto& w : c.warnings)
+    if (!opt.quiet) std::cerr << "lagfsi: warning: " << w << "\n";
+  long step = 0;
   try {
+    write_file_atomic(out / "resolved_case.json", json_text(c.root.json()));
     probes_csv.open(out / "probes.csv");
     log_csv.open(out / "log.csv");
-    if (!probes_csv || !log_csv) throw std::runtime_error("cannot write in " + out.string());
-    probes_csv << "time";
-    for (const auto& p : c.probes)
-      for (const auto& col : p->columns()) probes_csv << "," << col;
-    probes_csv << "\n" << std::setprecision(12);
-    log_csv << "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
-               "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n"
-            << std::setprecision(10);
-    auto sample = [&]() {
-      probes_csv << t;
+    {
+      std::string header = "time";
       for (const auto& p : c.probes)
-        for (double v : p->sample()) probes_csv << "," << v;
-      probes_csv << "\n";
-      probes_csv.flush();
+        for (const auto& col : p->columns()) header += "," + col;
+      probes_csv.write(header + "\n");
+    }
+    log_csv.write("step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
+                  "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n");
+    auto sample = [&]() {
+      std::ostringstream row;
+      row << std::setprecision(12) << t;
+      for (const auto& p : c.probes)
+        for (double v : p->sample()) row << "," << v;
+      row << "\n";
+      probes_csv.write(row.str());
     };
     auto output = [&]() {
       if (!c.vtk || t == last_output_t) return;
@@ -374,8 +404,8 @@ int run_case(const RunOptions& opt) {
     // Step loop. A step whose Newton iterations fail (divergence, an element inverted, a singular
     // matrix) is retried from the same state with half the time step, up to max_step_halvings times;
     // the next step goes back to the nominal dt. A remainder shorter than 1e-6 dt at the end is dropped.
-    long step = 0;
-    while (an.end_time - t > 1e-6 * an.dt) {
+    // A signal (SIGINT, SIGTERM) is looked at between steps: the step under way ends first.
+    while (an.end_time - t > 1e-6 * an.dt && !InterruptGuard::received()) {
       ++step;
       const auto t_step = Clock::now();
       double dt = std::min(an.dt, an.end_time - t);
@@ -394,9 +424,10 @@ int run_case(const RunOptions& opt) {
           break;
         } catch (const SolverError& e) {
           if (halving >= an.max_step_halvings) throw;
-          if (!opt.quiet)
-            std::fprintf(stderr, "[%s] step at t=%.6g failed (%s); retrying with dt=%.3g\n", c.name.c_str(), t_new,
-                         e.what(), dt / 2);
+          char note[512];
+          std::snprintf(note, sizeof note, "[%s] step at t=%.6g failed (%s); retrying with dt=%.3g", c.name.c_str(),
+                        t_new, e.what(), dt / 2);
+          progress.note(note);
           dt /= 2;
           ++tot.retries;
         }
@@ -420,9 +451,11 @@ int run_case(const RunOptions& opt) {
       tot.iterations += iters_step;
       tot.max_iterations = std::max(tot.max_iterations, iters_step);
       sample();
-      if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt) output();
+      // The last step's state is written too when a signal ends the run here.
+      if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt || InterruptGuard::received()) output();
       PhaseTimes ph;
       Index nn = 0, ne = 0;
+      long particles = 0;
       double area = 0, area_remeshed = 0, remesh_dA = 0, remesh_dKE = 0;
       tot.body_phases.resize(c.models.size());
       for (size_t i = 0; i < c.models.size(); ++i) tot.body_phases[i] += c.models[i]->times();
@@ -430,6 +463,7 @@ int run_case(const RunOptions& opt) {
         ph += m->times();
         nn += m->num_nodes();
         ne += m->num_elements();
+        if (m->type() == "fluid" || m->type() == "mpm") particles += m->num_nodes();
         area += m->fluid_area();
         area_remeshed += m->fluid_area_remeshed();
         remesh_dA += m->remesh_area_change();
@@ -437,18 +471,29 @@ int run_case(const RunOptions& opt) {
       }
       tot.phases += ph;
       const double wall_step = since(t_step);
-      log_csv << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn << "," << ne
-              << "," << area_remeshed << "," << area << "," << remesh_dA << "," << remesh_dKE << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << ","
-              << ph.output << "," << wall_step << "," << fsi_iterations << "," << fsi_residual << "\n";
-      log_csv.flush();
-      if (!opt.quiet) {
-        const double wall = since(t_start);
-        const double eta = wall / t * (an.end_time - t);
-        std::fprintf(stderr, "[%s] step %ld t=%.6g/%.6g dt=%.3g it=%d wall=%.2fs eta=%.1fs\n", c.name.c_str(), step,
-                     t, an.end_time, dt, iters_step, wall, eta);
-      }
+      std::ostringstream row;
+      row << std::setprecision(10) << step << "," << t << "," << dt << "," << iters_step << "," << last_res << ","
+          << nn << "," << ne << "," << area_remeshed << "," << area << "," << remesh_dA << "," << remesh_dKE << ","
+          << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << "," << ph.output << ","
+          << wall_step << "," << fsi_iterations << "," << fsi_residual << "\n";
+      log_csv.write(row.str());
+      StepStatus st;
+      st.step = step;
+      st.t = t;
+      st.t_end = an.end_time;
+      st.dt = dt;
+      st.iterations = iters_step;
+      st.fsi_passes = fsi_iterations;
+      st.particles = particles;
+      st.nodes = nn;
+      st.wall = since(t_start);
+      progress.step(st);
       if (step % 50 == 0) write_summary();
     }
+  } catch (const OutputError& e) {
+    status = "failed";
+    message = e.what();
+    code = kOutputError;
   } catch (const SolverError& e) {
     status = "failed";
     message = e.what();
@@ -466,28 +511,51 @@ int run_case(const RunOptions& opt) {
     message = e.what();
     code = kInternalError;
   }
+  progress.finish();
   if (code != kOk) {
     std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << message << "\n";
-    // Last output: the last converged state, so that the series ends where the run did.
+    // Last output: the last converged state, so that the series ends where the run did (not after a failed
+    // write: the disk that refused it would refuse this one too).
     try {
-      if (c.vtk && t != last_output_t)
+      if (c.vtk && t != last_output_t && code != kOutputError)
         for (auto& m : c.models) m->write_output(t);
     } catch (const std::exception&) {
     }
+  }
+  const int sig = InterruptGuard::received();
+  if (code == kOk && sig != 0 && an.end_time - t > 1e-6 * an.dt) {
+    status = "interrupted";
+    message = std::string("interrupted by ") + signal_name(sig) + " after step " + std::to_string(step) +
+              " at t = " + std::to_string(t);
+    code = 128 + sig;
   }
   if (code == kOk) status = "completed";
   try {
     write_summary();
   } catch (const std::exception& e) {
     // After a failure its message has been printed: one line per run.
-    if (code == kOk) {
+    if (code == kOk || code > 128) {
       std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << e.what() << "\n";
-      code = kInternalError;
+      code = dynamic_cast<const OutputError*>(&e) ? kOutputError : kInternalError;
     }
   }
-  if (!opt.quiet && code == kOk)
-    std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,
-                 tot.iterations, since(t_start), out.string().c_str());
+  if (code == kOk || code > 128) {
+    TimeTable table;
+    table.phases = tot.phases;
+    table.wall = since(t_start);
+    table.steps = tot.steps;
+    table.retries = tot.retries;
+    table.iterations = tot.iterations;
+    table.fsi_passes = tot.coupling_iterations;
+    progress.table(table);
+  }
+  if (code > 128) {
+    std::cerr << "lagfsi: " << message << "; output written to " << out.string() << "\n";
+  } else if (code == kOk) {
+    if (!opt.quiet)
+      std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,
+                   tot.iterations, since(t_start), out.string().c_str());
+  }
   return code;
 }
 

@@ -1,10 +1,15 @@
+#include "progress.hpp"
+
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/app.hpp>
+#include <lagfsi/text.hpp>
 
 #include <Eigen/Core>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace lagfsi {
@@ -13,35 +18,76 @@ namespace {
 
 const char* kUsageText =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
+    "                            [--progress auto|bar|lines|none]\n"
     "       lagfsi check CASE.json [--set key.path=value ...]\n"
-    "       lagfsi --version | --help\n";
+    "       lagfsi --version | --help | COMMAND --help\n";
 
 const char* kHelp =
-    "lagfsi: 2D Lagrangian mechanics (positional FEM solids, PFEM free-surface fluid; FSI to come).\n\n"
+    "lagfsi: 2D Lagrangian mechanics (positional FEM solids and shells, PFEM free-surface fluid, FSI, MPM).\n\n"
     "commands:\n"
     "  run CASE.json     run a case; writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu,\n"
     "                    probes.csv, log.csv, summary.json} (OUTDIR defaults to out/<case name>)\n"
     "  check CASE.json   validate a case (meshes and models are built) and print it with every\n"
     "                    default filled in; runs nothing\n\n"
+    "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure (divergence), 4 internal error,\n"
+    "            5 the output cannot be written (disk full, permissions), 130 / 143 interrupted\n"
+    "            (SIGINT / SIGTERM: the step ends, the output is written, summary.json says \"interrupted\")\n";
+
+const char* kRunHelp =
+    "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
+    "                            [--progress auto|bar|lines|none]\n\n"
+    "Runs a case and writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu, probes.csv, log.csv,\n"
+    "summary.json}. OUTDIR (default out/<case name>) is locked while the run writes into it and must not be\n"
+    "the case file's own folder.\n\n"
     "options:\n"
     "  -o, --output DIR        output folder\n"
     "  --set key.path=value    override a case value (e.g. --set analysis.dt=1e-4,\n"
     "                          --set bodies.0.mesh.size=0.01); the value is JSON or a plain string\n"
-    "  --threads N             OpenMP threads for assembly\n"
-    "  --quiet                 no per-step progress line on stderr\n\n"
-    "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure (divergence), 4 internal error\n";
+    "  --threads N             OpenMP threads for assembly (1 to 4 x the hardware threads)\n"
+    "  --progress MODE         auto (default: a status line redrawn in place on a terminal, otherwise a\n"
+    "                          line every 5 s and at each tenth of the run), bar, lines or none; a table of\n"
+    "                          where the time went at the end\n"
+    "  -q, --quiet             no progress and no warnings on stderr (errors only)\n\n"
+    "Ctrl-C (SIGINT) or SIGTERM ends the current step, writes the output and exits with 130 (143);\n"
+    "a second Ctrl-C stops at once.\n"
+    "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure, 4 internal error, 5 output not written,\n"
+    "            130 / 143 interrupted\n";
+
+const char* kCheckHelp =
+    "usage: lagfsi check CASE.json [--set key.path=value ...]\n\n"
+    "Validates a case (meshes and models are built, bodies checked for overlaps and output names) and\n"
+    "prints it on stdout with every default filled in; runs nothing.\n\n"
+    "options:\n"
+    "  --set key.path=value    override a case value, as for run\n\n"
+    "exit codes: 0 ok, 1 usage, 2 bad input, 5 stdout cannot be written\n";
+
+/// One line on stderr: "lagfsi: error: <what>".
+int usage_error(const std::string& what) {
+  std::cerr << "lagfsi: error: " << what << "\n";
+  return kUsage;
+}
+
+/// --threads: at most four threads per hardware thread (100 000 threads crashed the OpenMP runtime).
+int max_threads() {
+  const unsigned hw = std::thread::hardware_concurrency();
+  return 4 * static_cast<int>(hw > 0 ? hw : 64);
+}
 
 }  // namespace
 
 int app_main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    std::cerr << kUsageText;
-    return kUsage;
-  }
+  // Every argument ends up in messages and in summary.json: it must be UTF-8.
+  for (size_t i = 0; i < args.size(); ++i)
+    if (!valid_utf8(args[i]))
+      return usage_error("argument " + std::to_string(i + 1) + " is not UTF-8 text ('" + echo(args[i]) + "')");
+  if (args.empty()) return usage_error("no command (run, check; see lagfsi --help)");
   const std::string cmd = args[0];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-    std::cout << kUsageText << "\n" << kHelp;
+    const std::string topic = args.size() > 1 ? args[1] : "";
+    if (topic == "run") std::cout << kRunHelp;
+    else if (topic == "check") std::cout << kCheckHelp;
+    else std::cout << kUsageText << "\n" << kHelp;
     return kOk;
   }
   if (cmd == "--version") {
@@ -51,59 +97,77 @@ int app_main(int argc, char** argv) {
               << LAGFSI_CGAL_VERSION << "\n";
     return kOk;
   }
-  if (cmd != "run" && cmd != "check") {
-    std::cerr << "lagfsi: error: unknown command '" << cmd << "'\n" << kUsageText;
-    return kUsage;
-  }
+  if (cmd != "run" && cmd != "check")
+    return usage_error("unknown command '" + echo(cmd) + "' (run, check; see lagfsi --help)");
+  // --help anywhere after the command: that command's help, whatever else the line holds.
+  for (size_t i = 1; i < args.size(); ++i)
+    if (args[i] == "--help" || args[i] == "-h") {
+      std::cout << (cmd == "run" ? kRunHelp : kCheckHelp);
+      return kOk;
+    }
+  const std::string see = " (see lagfsi " + cmd + " --help)";
   RunOptions opt;
+  std::string progress = "auto";
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&](const char* what) -> std::string {
-      if (i + 1 >= args.size()) {
-        std::cerr << "lagfsi: error: " << a << " needs " << what << "\n";
-        throw 1;
-      }
-      return args[++i];
+    std::string v;
+    auto value = [&]() -> bool {
+      if (i + 1 >= args.size()) return false;
+      v = args[++i];
+      return true;
     };
-    try {
-      if (a == "-o" || a == "--output") {
-        opt.out_dir = value("a folder");
-      } else if (a == "--set") {
-        opt.overrides.push_back(value("key.path=value"));
-      } else if (a.rfind("--set=", 0) == 0) {
-        opt.overrides.push_back(a.substr(6));
-      } else if (a == "--threads") {
-        const std::string v = value("a number");
-        size_t used = 0;
-        try {
-          opt.threads = std::stoi(v, &used);
-        } catch (...) {
-          opt.threads = -1;
-        }
-        if (used != v.size()) opt.threads = -1;   // "1x", "2 threads"
-        if (opt.threads < 1) {
-          std::cerr << "lagfsi: error: --threads needs a positive integer (got '" << v << "')\n";
-          return kUsage;
-        }
-      } else if (a == "--quiet" || a == "-q") {
-        opt.quiet = true;
-      } else if (!a.empty() && a[0] == '-') {
-        std::cerr << "lagfsi: error: unknown option '" << a << "'\n" << kUsageText;
-        return kUsage;
-      } else if (opt.case_file.empty()) {
-        opt.case_file = a;
-      } else {
-        std::cerr << "lagfsi: error: unexpected argument '" << a << "'\n" << kUsageText;
-        return kUsage;
+    auto only_run = [&]() { return cmd == "run"; };
+    if (a == "-o" || a == "--output") {
+      if (!only_run()) return usage_error(a + " is an option of run, not of check" + see);
+      if (!value()) return usage_error(a + " needs a folder" + see);
+      opt.out_dir = v;
+    } else if (a == "--set") {
+      if (!value()) return usage_error("--set needs key.path=value" + see);
+      opt.overrides.push_back(v);
+    } else if (a.rfind("--set=", 0) == 0) {
+      opt.overrides.push_back(a.substr(6));
+    } else if (a == "--threads" || a.rfind("--threads=", 0) == 0) {
+      if (a == "--threads" && !value()) return usage_error("--threads needs a number" + see);
+      if (a != "--threads") v = a.substr(10);
+      size_t used = 0;
+      long n = -1;
+      try {
+        n = std::stol(v, &used);
+      } catch (...) {
+        n = -1;
       }
-    } catch (int) {
-      return kUsage;
+      if (used != v.size()) n = -1;   // "1x", "2 threads"
+      if (n < 1) return usage_error("--threads needs a positive integer (got '" + echo(v) + "')");
+      if (n > max_threads())
+        return usage_error("--threads " + echo(v) + ": at most " + std::to_string(max_threads()) + " (4 x the " +
+                           std::to_string(max_threads() / 4) + " hardware threads of this machine)");
+      opt.threads = static_cast<int>(n);
+    } else if (a == "--progress" || a.rfind("--progress=", 0) == 0) {
+      if (a == "--progress" && !value()) return usage_error("--progress needs auto, bar, lines or none" + see);
+      if (a != "--progress") v = a.substr(11);
+      ProgressMode m;
+      if (!parse_progress_mode(v, false, m))
+        return usage_error("--progress: unknown mode '" + echo(v) + "' (auto, bar, lines or none)");
+      progress = v;
+    } else if (a == "--quiet" || a == "-q") {
+      opt.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + echo(a) + "'" + see);
+    } else if (opt.case_file.empty()) {
+      opt.case_file = a;
+    } else {
+      return usage_error("unexpected argument '" + echo(a) + "' (one case file per run)" + see);
     }
   }
-  if (opt.case_file.empty()) {
-    std::cerr << "lagfsi: error: " << cmd << " needs a case file\n" << kUsageText;
-    return kUsage;
+  if (opt.case_file.empty()) return usage_error(cmd + " needs a case file" + see);
+  // The same bound for OMP_NUM_THREADS (read by the OpenMP runtime when --threads is not given).
+  if (const char* env = std::getenv("OMP_NUM_THREADS"); env && opt.threads == 0) {
+    const long n = std::strtol(env, nullptr, 10);
+    if (n > max_threads())
+      return usage_error("OMP_NUM_THREADS=" + echo(env) + ": at most " + std::to_string(max_threads()) +
+                         " (4 x the hardware threads of this machine)");
   }
+  opt.progress = progress;
   return cmd == "run" ? run_case(opt) : check_case(opt);
 }
 

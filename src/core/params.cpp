@@ -1,9 +1,10 @@
+#include <lagfsi/input_file.hpp>
 #include <lagfsi/params.hpp>
+#include <lagfsi/text.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -53,7 +54,7 @@ class DuplicateKeyCheck {
       case Json::parse_event_t::key: {
         Frame& f = frames_.back();
         const std::string k = parsed.get<std::string>();
-        if (!f.keys.insert(k).second) throw InputError(file_, parent_path() + "/" + k, "duplicate key");
+        if (!f.keys.insert(k).second) throw InputError(file_, parent_path() + "/" + echo(k), "duplicate key");
         f.key = k;
         break;
       }
@@ -80,28 +81,28 @@ class DuplicateKeyCheck {
   std::string parent_path() const {
     std::string path;
     for (size_t i = 0; i + 1 < frames_.size(); ++i)
-      path += "/" + (frames_[i].object ? frames_[i].key : std::to_string(frames_[i].index));
+      path += "/" + (frames_[i].object ? echo(frames_[i].key) : std::to_string(frames_[i].index));
     return path;
   }
   std::string file_;
   std::vector<Frame> frames_;
 };
 
-size_t line_of(const std::string& text, size_t byte) {
-  size_t line = 1;
-  for (size_t i = 0; i < std::min(byte, text.size()); ++i) line += text[i] == '\n';
-  return line;
-}
 }  // namespace
 
 Params Params::load(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw InputError(file.string(), "", "is a folder, not a case file");
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "", "cannot open the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  std::string text;
+  try {
+    text = read_regular_file(file, kMaxCaseFileBytes);
+  } catch (const InputFileError& e) {
+    throw InputError(echo(file.string(), 200), "", e.what());
+  }
+  // Every string of the case ends up in resolved_case.json and in messages: it must be UTF-8 (the JSON
+  // parser checks strings only; a byte in a comment would still reach an echo).
+  size_t bad = 0;
+  if (!valid_utf8(text, &bad))
+    throw InputError(file.string(), "", "not UTF-8 text: byte " + std::to_string(bad) + " (line " +
+                                            std::to_string(line_of(text, bad)) + ") is not valid UTF-8");
   try {
     DuplicateKeyCheck check(file.string());
     Json::parser_callback_t cb = [&check](int depth, Json::parse_event_t event, Json& parsed) {
@@ -129,7 +130,7 @@ Params Params::load(const std::filesystem::path& file) {
 
 void Params::fail(const std::string& reason) const { throw InputError(file_, path_, reason); }
 void Params::fail(const std::string& key, const std::string& reason) const {
-  throw InputError(file_, child_path(key), reason);
+  throw InputError(file_, path_ + "/" + echo(key), reason);
 }
 
 void Params::validate(const Json& defaults) {
@@ -234,7 +235,7 @@ std::string Params::choice(const std::string& key, const std::vector<std::string
   const std::string s = string(key);
   for (const auto& o : options)
     if (o == s) return s;
-  fail(key, "unknown value '" + s + "' (valid: " + join(options) + ")");
+  fail(key, "unknown value '" + echo(s) + "' (valid: " + join(options) + ")");
 }
 
 Vec2 Params::vec2(const std::string& key) const {
@@ -274,9 +275,12 @@ std::vector<double> Params::numbers(const std::string& key) const {
 }
 
 void apply_override(Json& doc, const std::string& assignment) {
+  size_t bad = 0;
+  if (!valid_utf8(assignment, &bad))
+    throw InputError("--set", echo(assignment), "not UTF-8 text (byte " + std::to_string(bad) + ")");
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw InputError("--set", assignment, "expected key.path=value");
+    throw InputError("--set", echo(assignment), "expected key.path=value");
   const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   Json value;
   try {
@@ -286,7 +290,7 @@ void apply_override(Json& doc, const std::string& assignment) {
   } catch (const Json::out_of_range&) {
     std::string where = "/" + key;
     std::replace(where.begin(), where.end(), '.', '/');
-    throw InputError("--set", where, "number " + text + " is out of range");
+    throw InputError("--set", echo(where), "number " + echo(text) + " is out of range");
   }
   Json* node = &doc;
   std::string path;
@@ -296,7 +300,8 @@ void apply_override(Json& doc, const std::string& assignment) {
   while (std::getline(ss, part, '.')) parts.push_back(part);
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::string& p = parts[i];
-    path += "/" + p;
+    path += '/';   // (not "/" + echo(p): a false -Wrestrict of GCC 12, bug 105329)
+    path += echo(p);
     if (node->is_array()) {
       size_t idx = 0;
       const bool digits = !p.empty() && p.size() < 10 &&

@@ -1,10 +1,14 @@
 #include <lagfsi/time_function.hpp>
 
+#include <lagfsi/input_file.hpp>
+#include <lagfsi/text.hpp>
+
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
+#include <string_view>
 
 namespace lagfsi {
 
@@ -81,33 +85,104 @@ class Table final : public TimeFunction {
   std::vector<double> t_, f_, cum_;
 };
 
+/// One number of a table row: the whole field must be a finite number in C notation ("1.5", "-2e-3",
+/// "+4"); nothing before or after it.
+bool parse_number(std::string_view field, double& x) {
+  if (!field.empty() && field.front() == '+') field.remove_prefix(1);
+  if (field.empty()) return false;
+  const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), x);
+  return ec == std::errc() && end == field.data() + field.size() && std::isfinite(x);
+}
+
+std::string_view trim(std::string_view s) {
+  const auto a = s.find_first_not_of(" \t");
+  if (a == std::string_view::npos) return {};
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+/// The fields of a data row: separated by commas when the row has one (spaces around them allowed), by
+/// spaces or tabs otherwise.
+std::vector<std::string_view> split_row(std::string_view row) {
+  std::vector<std::string_view> fields;
+  if (row.find(',') != std::string_view::npos) {
+    size_t a = 0;
+    for (;;) {
+      const size_t b = row.find(',', a);
+      fields.push_back(trim(row.substr(a, b == std::string_view::npos ? std::string_view::npos : b - a)));
+      if (b == std::string_view::npos) break;
+      a = b + 1;
+    }
+  } else {
+    size_t a = row.find_first_not_of(" \t");
+    while (a != std::string_view::npos) {
+      const size_t b = row.find_first_of(" \t", a);
+      fields.push_back(row.substr(a, b == std::string_view::npos ? std::string_view::npos : b - a));
+      a = b == std::string_view::npos ? b : row.find_first_not_of(" \t", b);
+    }
+  }
+  return fields;
+}
+
+/// A table: rows "time, value" (two numbers separated by a comma or by spaces), '#' comment lines and
+/// blank lines; one header line (text, e.g. "time,value") allowed before the first row. Everything else is
+/// an error naming FILE:LINE: a ';' (a spreadsheet's separator), decimal commas ("0,5"), a third column,
+/// text in a row, a non-finite value, times that do not increase.
 std::unique_ptr<TimeFunction> read_table(const Params& p, const std::filesystem::path& base_dir) {
   std::filesystem::path file = p.string("file");
   if (file.is_relative()) file = base_dir / file;
-  std::ifstream in(file);
-  if (!in) p.fail("file", "cannot open '" + file.string() + "'");
-  std::vector<double> t, f;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream ls(line);
-    double a, b;
-    if (!(ls >> a >> b)) {
-      if (t.empty()) continue;  // a header line
-      p.fail("file", file.string() + " line " + std::to_string(lineno) + ": expected two numbers");
-    }
-    if (!std::isfinite(a) || !std::isfinite(b))
-      p.fail("file", file.string() + " line " + std::to_string(lineno) + ": non-finite value");
-    if (!t.empty() && a <= t.back())
-      p.fail("file", file.string() + " line " + std::to_string(lineno) + ": times must increase");
-    t.push_back(a);
-    f.push_back(b);
+  const std::string name = echo(file.string(), 200);
+  std::string text;
+  try {
+    text = read_regular_file(file, kMaxTableFileBytes);
+  } catch (const InputFileError& e) {
+    p.fail("file", "'" + name + "' " + e.what());
   }
-  if (t.size() < 2) p.fail("file", file.string() + ": needs at least two rows (time, value)");
+  std::vector<double> t, f;
+  bool header_allowed = true;
+  size_t lineno = 0;
+  std::string_view rest = text;
+  while (!rest.empty()) {
+    ++lineno;
+    const size_t nl = rest.find('\n');
+    std::string_view line = rest.substr(0, nl);
+    rest = nl == std::string_view::npos ? std::string_view{} : rest.substr(nl + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::string_view row = trim(line);
+    if (row.empty() || row.front() == '#') continue;
+    auto bad = [&](const std::string& why) {
+      // "0,5" between digits: a decimal comma, read as a separator.
+      bool digit_comma_digit = false;
+      for (size_t k = 1; k + 1 < row.size(); ++k)
+        digit_comma_digit = digit_comma_digit || (row[k] == ',' && std::isdigit(static_cast<unsigned char>(row[k - 1])) &&
+                                                  std::isdigit(static_cast<unsigned char>(row[k + 1])));
+      p.fail("file", name + ":" + std::to_string(lineno) + ": " + why +
+                         (digit_comma_digit ? " (decimal commas? write 0.5, not 0,5)" : "") + " (found '" + echo(row) +
+                         "')");
+    };
+    if (row.find(';') != std::string_view::npos) bad("';' is not a separator: use ',' or spaces");
+    const auto fields = split_row(row);
+    std::vector<double> x(fields.size());
+    bool numbers = true;
+    for (size_t k = 0; k < fields.size(); ++k) numbers = numbers && parse_number(fields[k], x[k]);
+    if (!numbers) {
+      // Only the first line that is not a comment may be a header, and a header holds no number.
+      bool any_number = false;
+      for (size_t k = 0; k < fields.size(); ++k) any_number = any_number || parse_number(fields[k], x[k]);
+      if (header_allowed && !any_number && valid_utf8(row)) {
+        header_allowed = false;
+        continue;
+      }
+      bad("expected two numbers (time, value) separated by ',' or spaces");
+    }
+    header_allowed = false;
+    if (fields.size() != 2) {
+      bad("expected two numbers (time, value), found " + std::to_string(fields.size()));
+    }
+    if (!t.empty() && x[0] <= t.back()) bad("times must increase");
+    t.push_back(x[0]);
+    f.push_back(x[1]);
+  }
+  if (t.size() < 2) p.fail("file", name + ": needs at least two rows (time, value)");
   return std::make_unique<Table>(std::move(t), std::move(f));
 }
 

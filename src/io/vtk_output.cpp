@@ -13,6 +13,7 @@
 ///    from its first vertex, then the interior node), so connectivity is written unchanged;
 ///  - polydata (.vtp): one polyline cell (Lines) per line, or one VTK_VERTEX (Verts) per point when there
 ///    are no lines.
+#include <lagfsi/output_file.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include <vtkCellArray.h>
@@ -23,6 +24,7 @@
 #include <vtkErrorCode.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
+#include <vtkObject.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -32,8 +34,8 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 #include <vtkXMLWriter.h>
 
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -50,8 +52,7 @@ void ensure_parent_directory(const fs::path& path) {
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec || !fs::is_directory(parent))
-    throw std::runtime_error(parent.string() + ": cannot create directory" +
-                             (ec ? " (" + ec.message() + ")" : std::string()));
+    throw OutputError(parent.string(), ec ? "cannot create the folder: " + ec.message() : "not a folder");
 }
 
 /// vtkPoints holding `points` with z = 0.
@@ -104,18 +105,28 @@ void add_fields(vtkDataSet* dataset, const std::vector<Field>& point_fields, con
   for (const Field& f : cell_fields) dataset->GetCellData()->AddArray(make_array(f, nc, "cell", caller));
 }
 
-/// Writes `input` to `path` with `writer` (binary appended raw, zlib), creating the parent directory.
+/// Writes `input` to `path` with `writer` (binary appended raw, zlib), creating the parent directory. A
+/// failure throws OutputError naming the file, with the system's reason when there is one; VTK's own error
+/// log (several coloured lines on stderr) is switched off: the caller reports the error in one line.
 void write_xml(vtkXMLWriter* writer, vtkDataObject* input, const fs::path& path) {
   ensure_parent_directory(path);
+  vtkObject::GlobalWarningDisplayOff();
   writer->SetFileName(path.string().c_str());
   writer->SetInputData(input);
   writer->SetDataModeToAppended();
   writer->SetEncodeAppendedData(false);
   writer->SetCompressorTypeToZLib();
+  errno = 0;
   const int ok = writer->Write();
-  if (!ok || writer->GetErrorCode() != vtkErrorCode::NoError)
-    throw std::runtime_error(path.string() + ": cannot write VTK file (VTK error code " +
-                             std::to_string(writer->GetErrorCode()) + ")");
+  const int err = errno;
+  const unsigned long code = writer->GetErrorCode();
+  if (!ok || code != vtkErrorCode::NoError) {
+    std::string reason = err != 0 ? errno_reason(err) : std::string();
+    if (reason.empty() && code == vtkErrorCode::OutOfDiskSpaceError) reason = "out of disk space";
+    if (reason.empty() && code == vtkErrorCode::CannotOpenFileError) reason = "cannot open the file";
+    if (reason.empty()) reason = "VTK error code " + std::to_string(code);
+    throw OutputError(path.string(), reason);
+  }
 }
 
 /// Offsets 0, 1, ..., n and connectivity 0, ..., n-1: one vertex cell per point.
@@ -161,29 +172,18 @@ std::string step_file_name(const std::string& name, int step, const char* extens
 /// Rewrites the whole .pvd `pvd` listing `entries` (time, file relative to the .pvd) into a temporary
 /// file, then renames it over the old one (atomic on POSIX).
 void rewrite_pvd(const fs::path& pvd, const std::vector<std::pair<double, std::string>>& entries) {
-  fs::path tmp = pvd;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot open for writing");
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    char time[32];
-    for (const auto& [time_value, file] : entries) {
-      std::snprintf(time, sizeof time, "%.17g", time_value);
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(file)
-          << "\"/>\n";
-    }
-    out << "  </Collection>\n"
-        << "</VTKFile>\n";
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
+  char time[32];
+  for (const auto& [time_value, file] : entries) {
+    std::snprintf(time, sizeof time, "%.17g", time_value);
+    text += std::string("    <DataSet timestep=\"") + time + "\" group=\"\" part=\"0\" file=\"" + xml_escape(file) +
+            "\"/>\n";
   }
-  std::error_code ec;
-  fs::rename(tmp, pvd, ec);
-  if (ec)
-    throw std::runtime_error(pvd.string() + ": cannot replace it by " + tmp.string() + " (" + ec.message() + ")");
+  text += "  </Collection>\n</VTKFile>\n";
+  write_file_atomic(pvd, text);
 }
 
 }  // namespace

@@ -68,6 +68,15 @@ void fill_regions(Params regions, const Grid& grid, int ppc, double rho, Particl
       poly = reg.points("points");
       if (poly.size() < 3) reg.fail("points", "a polygon needs at least 3 points");
     }
+    // A region partly outside the grid would be cut silently: an error naming the corner outside.
+    const Vec2 lo = grid.origin, hi = grid.origin + grid.h * Vec2(grid.nx, grid.ny), tol = 1e-9 * (hi - lo);
+    for (size_t c = 0; c < poly.size(); ++c)
+      if ((poly[c].array() < (lo - tol).array()).any() || (poly[c].array() > (hi + tol).array()).any()) {
+        std::ostringstream os;
+        os << "reaches (" << poly[c].x() << ", " << poly[c].y() << "), outside the grid (" << lo.x() << ".." << hi.x()
+           << " x " << lo.y() << ".." << hi.y() << "): the region would be cut";
+        reg.fail(reg.string("type") == "rectangle" ? (c == 0 ? "origin" : "size") : "points/" + std::to_string(c), os.str());
+      }
     const size_t before = P.size();
     for (int j = 0; j < grid.ny * ppc; ++j)
       for (int i = 0; i < grid.nx * ppc; ++i) {

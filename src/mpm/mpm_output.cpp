@@ -2,9 +2,10 @@
 // CSV (written to a temporary file, then renamed, so that a reader never sees half of it).
 #include "mpm_output.hpp"
 
-#include <fstream>
+#include <lagfsi/output_file.hpp>
+
 #include <iomanip>
-#include <stdexcept>
+#include <sstream>
 
 namespace lagfsi::mpm {
 
@@ -55,11 +56,8 @@ void MpmWriter::write(double t, const MpmBody& b) {
     grid_series_->write(t, g);
   }
   if (particles_csv_) {
-    const auto path = out_dir_ / (name + "_particles.csv");
-    const auto tmp = path.string() + ".tmp";
+    std::ostringstream o;   // written through write_file_atomic: every write checked
     {
-      std::ofstream o(tmp);
-      if (!o) throw std::runtime_error("cannot write " + tmp);
       o << "# " << name << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume,pore_pressure\n" << std::setprecision(12);
       for (size_t p = 0; p < P.size(); ++p) {
         const auto& sg = P.stress[p];
@@ -68,7 +66,7 @@ void MpmWriter::write(double t, const MpmBody& b) {
           << -P.pore_pressure[p] << "\n";
       }
     }
-    std::filesystem::rename(tmp, path);
+    write_file_atomic(out_dir_ / (name + "_particles.csv"), o.str());
   }
 }
 

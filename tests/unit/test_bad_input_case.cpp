@@ -1,0 +1,177 @@
+// Whole-case checks at input (issue #21, classes 6, 7, 8 and 10): body names against the run's output files,
+// overlapping bodies, MPM regions outside their grid and MPM bodies leaving it, and time integrators that are
+// only conditionally stable.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "case_runner.hpp"
+#include "process.hpp"
+
+namespace {
+
+using namespace lagfsi::testing;
+using nlohmann::json;
+
+json fluid_body() {
+  return json::parse(R"({
+    "name": "water", "type": "fluid", "density": 1000, "viscosity": 1e-3, "spacing": 0.05,
+    "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.4, 0.2]}],
+    "walls": [{"name": "tank", "points": [[0, 0.6], [0, 0], [1.0, 0], [1.0, 0.6]]}],
+    "scheme": {"type": "fractional_step"}
+  })");
+}
+
+json plate_body(double x0, double y0, double w, double h) {
+  json p = json::parse(R"({
+    "name": "plate", "type": "solid",
+    "material": {"type": "svk", "young": 1e6, "poisson": 0.0, "density": 2500},
+    "mesh": {"type": "structured", "size": 0.05, "order": 1}
+  })");
+  p["geometry"] = {{"type", "rectangle"}, {"origin", {x0, y0}}, {"size", {w, h}}};
+  p["boundary_conditions"] = json::array(
+      {{{"type", "fixed"}, {"select", {{"type", "segment"}, {"from", {x0, y0}}, {"to", {x0 + w, y0}}}}}});
+  return p;
+}
+
+json case_of(const std::vector<json>& bodies) {
+  json j = {{"name", "case_checks"},
+            {"analysis", {{"type", "dynamic"}, {"dt", 1e-3}, {"end_time", 2e-3}}},
+            {"gravity", {0, -9.81}},
+            {"bodies", bodies},
+            {"output", {{"vtk", false}}}};
+  return j;
+}
+
+json mpm_body(const std::string& name, double x0, double y0) {
+  json m = json::parse(R"({
+    "type": "mpm",
+    "material": {"type": "linear_elastic", "young": 1e6, "poisson": 0.3, "density": 1000},
+    "grid": {"origin": [0, 0], "size": [1.0, 1.0], "cell": 0.1}
+  })");
+  m["name"] = name;
+  m["regions"] = json::array({{{"type", "rectangle"}, {"origin", {x0, y0}}, {"size", {0.4, 0.4}}}});
+  m["boundary_conditions"] =
+      json::array({{{"type", "fixed"}, {"select", {{"type", "segment"}, {"from", {0, 0}}, {"to", {1, 0}}}}}});
+  return m;
+}
+
+Finished check(const std::string& tag, const json& j) {
+  const fs::path dir = fresh_dir("case_checks_" + tag);
+  write_text(dir / "case.json", j.dump(2));
+  return run_args({"check", (dir / "case.json").string()}, dir);
+}
+
+Finished run(const std::string& tag, const json& j, std::vector<std::string> extra = {"--quiet"}) {
+  const fs::path dir = fresh_dir("case_checks_" + tag);
+  write_text(dir / "case.json", j.dump(2));
+  std::vector<std::string> args{"run", (dir / "case.json").string(), "-o", (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_args(args, dir);
+}
+
+void expect_input_error(const Finished& r, const std::string& part) {
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+}
+
+TEST(BadInputCase, BodyNamesAgainstOutputFiles) {
+  EXPECT_EQ(check("names_ok", case_of({fluid_body(), plate_body(0.6, 0, 0.05, 0.3)})).code, 0);
+  // A fluid "water" writes water_walls.pvd: a solid "water_walls" would write its series into the same file.
+  json plate = plate_body(0.6, 0, 0.05, 0.3);
+  plate["name"] = "water_walls";
+  expect_input_error(check("names_walls", case_of({fluid_body(), plate})),
+                     "/bodies/1/name: its output 'water_walls.pvd' is also written by body 'water'");
+  // The other order too.
+  expect_input_error(check("names_walls_first", case_of({plate, fluid_body()})), "/bodies/1/name: its output 'water_walls");
+  // Names of the run's own files, and folders that would take a file's place; case is ignored.
+  for (const std::string name : {"log", "summary", "probes", "resolved_case", "Log", "summary.json", "log.csv"}) {
+    plate["name"] = name;
+    expect_input_error(check("names_run_files", case_of({fluid_body(), plate})), "/bodies/1/name: ");
+  }
+  plate["name"] = "Water";
+  expect_input_error(check("names_case", case_of({fluid_body(), plate})), "ignoring case");
+  // MPM bodies write NAME_grid.pvd and NAME_particles.csv.
+  expect_input_error(check("names_mpm", case_of({mpm_body("soil", 0.2, 0), mpm_body("soil_grid", 0.2, 0.5)})),
+                     "/bodies/1/name: its output 'soil_grid.pvd'");
+}
+
+TEST(BadInputCase, OverlappingBodies) {
+  // A fluid region filling a solid plate, in either order: the later body is named.
+  expect_input_error(check("overlap_plate_first", case_of({plate_body(0.1, 0, 0.05, 0.3), fluid_body()})),
+                     "/bodies/1/regions/0: overlaps body 'plate'");
+  expect_input_error(check("overlap_fluid_first", case_of({fluid_body(), plate_body(0.1, 0, 0.05, 0.3)})),
+                     "/bodies/1/geometry: overlaps body 'water'");
+  // A plate beside the water, touching it, is not an overlap; nor one standing on the tank's floor.
+  EXPECT_EQ(check("overlap_touching", case_of({fluid_body(), plate_body(0.4, 0, 0.05, 0.3)})).code, 0);
+  // A polygon region (non-convex, an L) that reaches into the plate.
+  json l = fluid_body();
+  l["particles"] = "unstructured";
+  l["regions"][0] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.8, 0], [0.8, 0.1], [0.3, 0.1], [0.3, 0.2], [0, 0.2]]})");
+  expect_input_error(check("overlap_polygon", case_of({l, plate_body(0.6, 0.05, 0.05, 0.3)})),
+                     "/bodies/1/geometry: overlaps body 'water'");
+  EXPECT_EQ(check("overlap_polygon_notch", case_of({l, plate_body(0.45, 0.1, 0.05, 0.3)})).code, 0)
+      << "the plate stands in the L's notch";
+  // A solid crossed by the tank's wall (a plate through the floor).
+  expect_input_error(check("overlap_wall", case_of({fluid_body(), plate_body(0.6, -0.1, 0.05, 0.3)})),
+                     "/bodies/1/geometry: is crossed by the wall 'tank' of body 'water'");
+  // Two MPM bodies in one place.
+  expect_input_error(check("overlap_mpm", case_of({mpm_body("a", 0.2, 0), mpm_body("b", 0.4, 0.2)})),
+                     "/bodies/1/regions/0: overlaps body 'a'");
+  EXPECT_EQ(check("overlap_mpm_apart", case_of({mpm_body("a", 0.0, 0), mpm_body("b", 0.5, 0.0)})).code, 0);
+}
+
+TEST(BadInputCase, MpmRegionOutsideItsGridAndLeavingIt) {
+  // Partly outside: the region was cut silently.
+  json m = mpm_body("block", 0.8, 0.0);
+  expect_input_error(check("mpm_cut", case_of({m})), "/bodies/0/regions/0/size: reaches (1.2, 0), outside the grid");
+  m["regions"][0] = json::parse(R"({"type": "polygon", "points": [[0.2, 0.2], [0.6, 0.2], [0.4, -0.3]]})");
+  expect_input_error(check("mpm_cut_polygon", case_of({m})), "/bodies/0/regions/0/points/2: reaches");
+  // No supports: the block falls out of its grid; the run stops with "left the grid" (exit 3), the output valid.
+  m = mpm_body("block", 0.3, 0.5);
+  m["boundary_conditions"] = json::array();
+  json j = case_of({m});
+  j["analysis"]["end_time"] = 0.6;
+  const Finished r = run("mpm_falls_out", j);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("left the grid"), std::string::npos) << r.err;
+  const auto s = json::parse(std::ifstream(fs::path(LAGFSI_BINARY_DIR) / "test_output" / "case_checks_mpm_falls_out" /
+                                           "out" / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_LT(s["time"].get<double>(), 0.6);
+}
+
+TEST(BadInputCase, IntegratorStability) {
+  json j = case_of({plate_body(0, 0, 0.05, 0.3)});
+  auto with = [&](json it) {
+    json k = j;
+    k["analysis"]["integrator"] = it;
+    return k;
+  };
+  EXPECT_EQ(check("newmark_ok", with({{"type", "newmark"}, {"beta", 0.3025}, {"gamma", 0.6}})).code, 0);
+  EXPECT_EQ(check("newmark_edge", with({{"type", "newmark"}, {"beta", 0.3}, {"gamma", 0.6}})).code, 0);
+  // gamma > 2 beta: stable only below a critical step (it blew up).
+  expect_input_error(check("newmark_conditional", with({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.6}})),
+                     "/analysis/integrator/beta: beta = 0.25 < gamma / 2 = 0.3: conditionally stable");
+  expect_input_error(check("newmark_fox_goodwin", with({{"type", "newmark"}, {"beta", 1.0 / 12}, {"gamma", 0.5}})),
+                     "allow_conditionally_stable");
+  expect_input_error(check("newmark_gamma", with({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.4}})),
+                     "/analysis/integrator/gamma: must be at least 1/2");
+  expect_input_error(check("alpha_rho", with({{"type", "generalized_alpha"}, {"rho_inf", 1.2}})),
+                     "/analysis/integrator/rho_inf: must lie in [0, 1]");
+  // Chosen on purpose: a warning on stderr and in summary.json.
+  const Finished r = run("newmark_allowed",
+                         with({{"type", "newmark"}, {"beta", 1.0 / 12}, {"gamma", 0.5}, {"allow_conditionally_stable", true}}),
+                         {"--progress", "none"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("lagfsi: warning: /analysis/integrator: beta = 0.08333 < gamma / 2 = 0.25"), std::string::npos)
+      << r.err;
+  const auto s = json::parse(std::ifstream(fs::path(LAGFSI_BINARY_DIR) / "test_output" / "case_checks_newmark_allowed" /
+                                           "out" / "summary.json"));
+  ASSERT_EQ(s["warnings"].size(), 1u) << s.dump();
+  EXPECT_NE(s["warnings"][0].get<std::string>().find("conditionally stable"), std::string::npos);
+}
+
+}  // namespace

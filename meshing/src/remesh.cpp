@@ -107,6 +107,60 @@ void check_edges_1d(const DT& dt, const std::vector<Vec2>& points, double tol2, 
   }
 }
 
+/// Puts the previous domain's boundary edges back into the triangulation where one Delaunay edge crosses them.
+/// Particles move within a step, and an edge of the old free surface may no longer be Delaunay in the new
+/// cloud: then no new face has it, the two faces across it straddle the old boundary, and whichever side
+/// their centroids fall on, the domain gains or loses a sliver of the area (issue #16: 2.4e-4 m^2 at once
+/// on the sloshing tank). Where exactly one edge (c, d) crosses the old edge (a, b), the quadrilateral a c b d
+/// is convex and flipping (c, d) into (a, b) restores the old boundary; the flipped faces are then classified
+/// as any other. An edge crossed by more than one Delaunay edge (the boundary folded within a step) is left
+/// out. The triangulation is no longer Delaunay at the flipped edges, which is what a constrained Delaunay
+/// triangulation with those constraints would give locally (Leyssens et al. 2024 keep the old boundary the
+/// same way).
+void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t n, int& restored, int& lost) {
+  std::vector<DT::Vertex_handle> vh(n);
+  for (auto v : dt.finite_vertex_handles()) vh[static_cast<std::size_t>(v->info())] = v;
+  const K::Orientation_2 orient = K().orientation_2_object();
+  for (const auto& [a, b] : previous.boundary_edges()) {
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
+    const DT::Vertex_handle va = vh[static_cast<std::size_t>(a)], vb = vh[static_cast<std::size_t>(b)];
+    if (va == DT::Vertex_handle() || vb == DT::Vertex_handle() || dt.is_edge(va, vb)) continue;
+    // The face around a through which the segment a -> b leaves: b strictly left of a -> c and right of a -> d
+    // (counter-clockwise face a, c, d); its edge (c, d) is the first one the segment crosses.
+    DT::Face_handle hit;
+    int opp = -1;
+    auto fc = dt.incident_faces(va);
+    const auto done = fc;
+    do {
+      if (dt.is_infinite(fc)) continue;
+      const int ia = fc->index(va);
+      const auto vc = fc->vertex(DT::ccw(ia)), vd = fc->vertex(DT::cw(ia));
+      if (orient(va->point(), vc->point(), vb->point()) == CGAL::LEFT_TURN &&
+          orient(va->point(), vd->point(), vb->point()) == CGAL::RIGHT_TURN) {
+        hit = fc;
+        opp = ia;
+        break;
+      }
+    } while (++fc != done);
+    if (opp < 0) {
+      ++lost;
+      continue;
+    }
+    const DT::Face_handle g = hit->neighbor(opp);
+    if (dt.is_infinite(g) || g->vertex(g->index(hit)) != vb) {
+      ++lost;   // more than one edge crosses (a, b), or it leaves the convex hull
+      continue;
+    }
+    const Index c = hit->vertex(DT::ccw(opp))->info(), d = hit->vertex(DT::cw(opp))->info();
+    if (previous.is_boundary_edge(c, d)) {
+      ++lost;   // two old boundary edges cross: keep the one the Delaunay triangulation has
+      continue;
+    }
+    dt.flip(hit, opp);
+    ++restored;
+  }
+}
+
 void check_triangles(const std::vector<std::array<Index, 3>>& triangles, std::size_t n, const char* where) {
   for (std::size_t e = 0; e < triangles.size(); ++e)
     for (Index v : triangles[e])
@@ -154,6 +208,9 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     check_edges_1d(dt, points, tol2, where);
     return result;
   }
+
+  int restored = 0, lost = 0;
+  if (previous != nullptr) restore_boundary_edges(dt, *previous, n, restored, lost);
 
   // The free-surface pass reads the flag of every neighbour, including the infinite faces.
   {
@@ -272,6 +329,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
   result.removed_boundary_only = removed_boundary;
   result.added_outside = added;
   result.separated_inside = separated;
+  result.restored_edges = restored;
+  result.lost_edges = lost;
   return result;
 }
 

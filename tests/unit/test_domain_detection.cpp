@@ -172,3 +172,33 @@ TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluid
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DomainDetection, AdvectedRestoresAnOldBoundaryEdgeThatIsNoLongerDelaunay) {
+  // The previous domain is the triangle a (0,0), b (1,0), e (0.5,-0.8) (area 0.4), its top edge a-b on the free
+  // surface. Inside it is d (0.5,-0.2); outside, c (0.5,0.05) just above the edge. a-b is not Delaunay in the new
+  // cloud (c lies in the circle through a, b, d): Delaunay has c-d instead, and the two faces across a-b, (b,c,d)
+  // and (c,a,d), straddle the old surface with centroids inside it. Without the restored edge both are kept and
+  // the domain gains the part of them above a-b (area 0.425); with it, (a,d,b) is kept and (a,b,c) is an outside
+  // face that the alpha test (h = 0.04) rejects: the area stays 0.4.
+  Cloud c;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {1, 0}, {0.5, -0.8}, {0.5, -0.2}, {0.5, 0.05}})
+    c.add(x, y);
+  for (double& h : c.h) h = 0.04;
+  const Vec2 a(0, 0), b(1, 0), e(0.5, -0.8);
+  PreviousDomain prev({{a, b, e}}, {{a, b}, {b, e}, {e, a}});
+  prev.set_topology({1, 1, 1, 1, 0}, {{0, 1}, {1, 2}, {0, 2}});
+  RemeshSettings s;
+  s.alpha = 1.2;
+  s.detection = DomainDetection::Advected;
+  s.previous = &prev;
+  s.separation_alpha = 100.0;
+  const auto r = remesh(c.p, c.kind, c.h, s);
+  EXPECT_EQ(r.restored_edges, 1);
+  EXPECT_EQ(r.lost_edges, 0);
+  EXPECT_NEAR(r.area, 0.4, 1e-12);
+  EXPECT_EQ(r.triangles.size(), 3u);
+}
+
+}  // namespace

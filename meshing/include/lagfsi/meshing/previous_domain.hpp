@@ -43,6 +43,8 @@ class PreviousDomain {
   void set_topology(std::vector<std::uint8_t> meshed, std::vector<std::pair<Index, Index>> boundary_edges);
   bool meshed(Index i) const;
   bool is_boundary_edge(Index a, Index b) const;
+  /// The boundary edges given to set_topology, as (min, max) pairs, sorted.
+  const std::vector<std::pair<Index, Index>>& boundary_edges() const { return boundary_edges_; }
 
  private:
   struct Grid {

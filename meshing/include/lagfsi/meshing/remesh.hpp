@@ -55,6 +55,9 @@ struct RemeshResult {
   int removed_boundary_only = 0;                ///< elements deleted because all their particles are walls/ghosts
   int added_outside = 0;                        ///< Advected / LevelSet: kept elements outside the previous domain
   int separated_inside = 0;                     ///< Advected / LevelSet: elements inside it deleted (separation)
+  int restored_edges = 0;                       ///< Advected / LevelSet: previous boundary edges flipped back in
+  int lost_edges = 0;                           ///< Advected / LevelSet: previous boundary edges left out (crossed
+                                                ///< by more than one Delaunay edge)
 };
 
 /// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its

@@ -7,6 +7,23 @@
 
 namespace lagfsi::fluid {
 
+namespace {
+
+/// A new fluid particle at x with the given state; its reference position is where it is created.
+ParticleCloud::Particle fluid_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h) {
+  ParticleCloud::Particle q;
+  q.kind = ParticleKind::Fluid;
+  q.h = h;
+  q.x = x;
+  q.X0 = x;
+  q.v = v;
+  q.a = a;
+  q.p = p;
+  return q;
+}
+
+}  // namespace
+
 void RemeshPipeline::set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const std::vector<Vec2>& pts) {
   domain_lo_ = wall_lo;   // the walls' box (empty without walls), enlarged to every particle
   domain_hi_ = wall_hi;
@@ -189,15 +206,7 @@ bool RemeshPipeline::insert_particles() {
       p += ps[i] / 3.0;
       hh += cloud_.h(i) / 3.0;
     }
-    ParticleCloud::Particle q;
-    q.kind = ParticleKind::Fluid;
-    q.h = hh;
-    q.x = x;
-    q.X0 = x;
-    q.v = v;
-    q.a = a;
-    q.p = p;
-    added.push_back(q);
+    added.push_back(fluid_particle(x, v, a, p, hh));
   }
   cloud_.append(added);
   return true;
@@ -256,15 +265,7 @@ bool RemeshPipeline::drop_particles(const std::vector<char>& drop) {
 }
 
 void RemeshPipeline::append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h) {
-  ParticleCloud::Particle q;
-  q.kind = ParticleKind::Fluid;
-  q.h = h;
-  q.x = x;
-  q.X0 = x;
-  q.v = v;
-  q.a = a;
-  q.p = p;
-  cloud_.append({q});
+  cloud_.append({fluid_particle(x, v, a, p, h)});
 }
 
 Json RemeshPipeline::summary() const {

@@ -116,6 +116,19 @@ void PreviousDomain::set_topology(std::vector<std::uint8_t> meshed, std::vector<
   boundary_edges_ = std::move(edges);
 }
 
+void PreviousDomain::set_edges(std::vector<std::pair<Index, Index>> edges) {
+  for (auto& e : edges)
+    if (e.first > e.second) std::swap(e.first, e.second);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  edges_ = std::move(edges);
+}
+
+bool PreviousDomain::is_edge(Index a, Index b) const {
+  const std::pair<Index, Index> e = std::minmax(a, b);
+  return std::binary_search(edges_.begin(), edges_.end(), e);
+}
+
 bool PreviousDomain::meshed(Index i) const {
   return meshed_.empty() || (i >= 0 && static_cast<std::size_t>(i) < meshed_.size() && meshed_[static_cast<std::size_t>(i)]);
 }

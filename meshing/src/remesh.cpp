@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -107,6 +108,37 @@ void check_edges_1d(const DT& dt, const std::vector<Vec2>& points, double tol2, 
   }
 }
 
+/// The one Delaunay edge that crosses the segment a -> b, when exactly one does: the face (a, c, d) around a
+/// through which the segment leaves and the index of a in it (its edge (c, d) is opposite a), with the face
+/// across (c, d) having b as its third vertex. Then the quadrilateral a c b d is strictly convex and flipping
+/// (c, d) gives (a, b). Returns false if more than one edge crosses, or the segment leaves the convex hull.
+bool single_crossing(const DT& dt, DT::Vertex_handle va, DT::Vertex_handle vb, DT::Face_handle& hit, int& opp) {
+  const K::Orientation_2 orient = K().orientation_2_object();
+  opp = -1;
+  auto fc = dt.incident_faces(va);
+  const auto done = fc;
+  do {
+    if (dt.is_infinite(fc)) continue;
+    const int ia = fc->index(va);
+    const auto vc = fc->vertex(DT::ccw(ia)), vd = fc->vertex(DT::cw(ia));
+    if (orient(va->point(), vc->point(), vb->point()) == CGAL::LEFT_TURN &&
+        orient(va->point(), vd->point(), vb->point()) == CGAL::RIGHT_TURN) {
+      hit = fc;
+      opp = ia;
+      break;
+    }
+  } while (++fc != done);
+  if (opp < 0) return false;
+  const DT::Face_handle g = hit->neighbor(opp);
+  return !dt.is_infinite(g) && g->vertex(g->index(hit)) == vb;
+}
+
+std::vector<DT::Vertex_handle> vertex_handles(const DT& dt, std::size_t n) {
+  std::vector<DT::Vertex_handle> vh(n);
+  for (auto v : dt.finite_vertex_handles()) vh[static_cast<std::size_t>(v->info())] = v;
+  return vh;
+}
+
 /// Puts the previous domain's boundary edges back into the triangulation where one Delaunay edge crosses them.
 /// Particles move within a step, and an edge of the old free surface may no longer be Delaunay in the new
 /// cloud: then no new face has it, the two faces across it straddle the old boundary, and whichever side
@@ -118,36 +150,14 @@ void check_edges_1d(const DT& dt, const std::vector<Vec2>& points, double tol2, 
 /// triangulation with those constraints would give locally (Leyssens et al. 2024 keep the old boundary the
 /// same way).
 void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t n, int& restored, int& lost) {
-  std::vector<DT::Vertex_handle> vh(n);
-  for (auto v : dt.finite_vertex_handles()) vh[static_cast<std::size_t>(v->info())] = v;
-  const K::Orientation_2 orient = K().orientation_2_object();
+  const std::vector<DT::Vertex_handle> vh = vertex_handles(dt, n);
   for (const auto& [a, b] : previous.boundary_edges()) {
     if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
     const DT::Vertex_handle va = vh[static_cast<std::size_t>(a)], vb = vh[static_cast<std::size_t>(b)];
     if (va == DT::Vertex_handle() || vb == DT::Vertex_handle() || dt.is_edge(va, vb)) continue;
-    // The face around a through which the segment a -> b leaves: b strictly left of a -> c and right of a -> d
-    // (counter-clockwise face a, c, d); its edge (c, d) is the first one the segment crosses.
     DT::Face_handle hit;
     int opp = -1;
-    auto fc = dt.incident_faces(va);
-    const auto done = fc;
-    do {
-      if (dt.is_infinite(fc)) continue;
-      const int ia = fc->index(va);
-      const auto vc = fc->vertex(DT::ccw(ia)), vd = fc->vertex(DT::cw(ia));
-      if (orient(va->point(), vc->point(), vb->point()) == CGAL::LEFT_TURN &&
-          orient(va->point(), vd->point(), vb->point()) == CGAL::RIGHT_TURN) {
-        hit = fc;
-        opp = ia;
-        break;
-      }
-    } while (++fc != done);
-    if (opp < 0) {
-      ++lost;
-      continue;
-    }
-    const DT::Face_handle g = hit->neighbor(opp);
-    if (dt.is_infinite(g) || g->vertex(g->index(hit)) != vb) {
+    if (!single_crossing(dt, va, vb, hit, opp)) {
       ++lost;   // more than one edge crosses (a, b), or it leaves the convex hull
       continue;
     }
@@ -159,6 +169,43 @@ void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t 
     dt.flip(hit, opp);
     ++restored;
   }
+}
+
+/// The previous mesh's interior edges, flipped back in with hysteresis (RemeshSettings::keep_edges_angle):
+/// an old edge (a, b) crossed by exactly one Delaunay edge (c, d) that is not an old edge is restored when
+/// the angles at c and d facing it sum to at most pi + tol (Delaunay: at most pi). Each flip adds an old
+/// edge and removes a new one, so the passes end; a later pass may restore an edge that an earlier flip
+/// made crossable once.
+int keep_previous_edges(DT& dt, const PreviousDomain& previous, std::size_t n, const std::vector<Vec2>& points,
+                        double tol) {
+  const std::vector<DT::Vertex_handle> vh = vertex_handles(dt, n);
+  const double limit = std::numbers::pi + tol;
+  const auto angle = [&](Index apex, Index p, Index q) {
+    const Vec2 u = points[static_cast<std::size_t>(p)] - points[static_cast<std::size_t>(apex)];
+    const Vec2 w = points[static_cast<std::size_t>(q)] - points[static_cast<std::size_t>(apex)];
+    return std::atan2(std::abs(u.x() * w.y() - u.y() * w.x()), u.dot(w));
+  };
+  int kept = 0;
+  for (int pass = 0; pass < 8; ++pass) {
+    int flips = 0;
+    for (const auto& [a, b] : previous.edges()) {
+      if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
+      if (previous.is_boundary_edge(a, b)) continue;   // restore_boundary_edges' business
+      const DT::Vertex_handle va = vh[static_cast<std::size_t>(a)], vb = vh[static_cast<std::size_t>(b)];
+      if (va == DT::Vertex_handle() || vb == DT::Vertex_handle() || dt.is_edge(va, vb)) continue;
+      DT::Face_handle hit;
+      int opp = -1;
+      if (!single_crossing(dt, va, vb, hit, opp)) continue;
+      const Index c = hit->vertex(DT::ccw(opp))->info(), d = hit->vertex(DT::cw(opp))->info();
+      if (previous.is_edge(c, d)) continue;
+      if (angle(c, a, b) + angle(d, a, b) > limit) continue;
+      dt.flip(hit, opp);
+      ++flips;
+    }
+    kept += flips;
+    if (flips == 0) break;
+  }
+  return kept;
 }
 
 void check_triangles(const std::vector<std::array<Index, 3>>& triangles, std::size_t n, const char* where) {
@@ -188,6 +235,9 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
       fail(where, "separation_alpha must be finite and >= alpha");
     if (!(std::isfinite(settings.level_set_band) && settings.level_set_band >= 0))
       fail(where, "level_set_band must be finite and >= 0");
+    if (!(std::isfinite(settings.keep_edges_angle) && settings.keep_edges_angle >= 0 &&
+          settings.keep_edges_angle < std::numbers::pi / 2))
+      fail(where, "keep_edges_angle must be in [0, pi/2)");
     previous = settings.previous;
   }
   const double tol2 = check_points(points, where);
@@ -209,8 +259,12 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     return result;
   }
 
-  int restored = 0, lost = 0;
-  if (previous != nullptr) restore_boundary_edges(dt, *previous, n, restored, lost);
+  int restored = 0, lost = 0, kept_edges = 0;
+  if (previous != nullptr) {
+    restore_boundary_edges(dt, *previous, n, restored, lost);
+    if (settings.keep_edges_angle > 0 && !previous->edges().empty())
+      kept_edges = keep_previous_edges(dt, *previous, n, points, settings.keep_edges_angle);
+  }
 
   // The free-surface pass reads the flag of every neighbour, including the infinite faces.
   {
@@ -331,6 +385,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
   result.separated_inside = separated;
   result.restored_edges = restored;
   result.lost_edges = lost;
+  result.kept_edges = kept_edges;
   return result;
 }
 

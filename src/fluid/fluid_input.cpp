@@ -21,6 +21,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"domain_detection", "alpha"},
               {"separation_alpha", 2.5},
               {"level_set_band", 0.25},
+              {"keep_edges_angle", 0.0},
               {"domain_margin", 0.1},
               {"remesh", true},
               {"regions", nullptr},
@@ -49,6 +50,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (rs.separation_alpha < rs.alpha)
     b.fail("separation_alpha", "must be at least alpha (" + std::to_string(rs.alpha) + ")");
   rs.level_set_band = b.non_negative("level_set_band");
+  const double keep_deg = b.non_negative("keep_edges_angle");
+  if (keep_deg >= 90.0) b.fail("keep_edges_angle", "must be below 90 degrees");
+  rs.keep_edges_angle = keep_deg * std::numbers::pi / 180.0;
   rs.domain_margin = b.non_negative("domain_margin");
 
   Params s = b.at("scheme");

@@ -77,7 +77,8 @@ meshing::PreviousDomain RemeshPipeline::advected_domain() const {
 }
 
 bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
-                                  std::vector<std::pair<Index, Index>>& boundary_edges) {
+                                      std::vector<std::pair<Index, Index>>& boundary_edges,
+                                      std::vector<std::pair<Index, Index>>* all_edges) {
   const Index np = cloud_.n();
   std::vector<Vec2> pts(np);
   for (Index i = 0; i < np; ++i) pts[i] = cloud_.pos(i);
@@ -210,6 +211,17 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
       edges.emplace_back(a2, c2);
     }
   }
+  std::vector<std::pair<Index, Index>> interior;
+  if (all_edges != nullptr) {
+    // Every edge of the previous mesh through the merges (boundary edges, with their splits, are in `edges`).
+    for (const auto& t : mesh_.tri)
+      for (int k = 0; k < 3; ++k) {
+        const Index a = t[k], c = t[(k + 1) % 3];
+        if ((drop[a] && alias[a] == a) || (drop[c] && alias[c] == c)) continue;
+        const Index a2 = alias[a], c2 = alias[c];
+        if (a2 != c2 && chain.next[a] != c && chain.next[c] != a) interior.emplace_back(a2, c2);
+      }
+  }
   for (const auto& q : fresh) append_particle(q.x, q.v, q.a, q.p, q.h);
   drop.resize(static_cast<size_t>(cloud_.n()), 0);
   const bool dropped = drop_particles(drop);
@@ -222,6 +234,11 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   boundary_edges.clear();
   for (const auto& [a, c] : edges)
     if (to_new(a) >= 0 && to_new(c) >= 0) boundary_edges.emplace_back(to_new(a), to_new(c));
+  if (all_edges != nullptr) {
+    *all_edges = boundary_edges;
+    for (const auto& [a, c] : interior)
+      if (to_new(a) >= 0 && to_new(c) >= 0) all_edges->emplace_back(to_new(a), to_new(c));
+  }
   return dropped || !fresh.empty();
 }
 

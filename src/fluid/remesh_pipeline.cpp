@@ -73,9 +73,10 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   } else {
     meshing::PreviousDomain previous = advected_domain();
     std::vector<std::uint8_t> meshed;
-    std::vector<std::pair<Index, Index>> edges;
-    manage_particles(meshed, edges);
+    std::vector<std::pair<Index, Index>> edges, all_edges;
+    manage_particles(meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr);
     previous.set_topology(std::move(meshed), std::move(edges));
+    previous.set_edges(std::move(all_edges));
     remesh_now(&previous);
   }
   const double area1 = mesh_.area(cloud_.x());
@@ -98,6 +99,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     settings.previous = previous;
     settings.separation_alpha = s_.separation_alpha;
     settings.level_set_band = s_.level_set_band;
+    settings.keep_edges_angle = s_.keep_edges_angle;
   }
   try {
     r = meshing::remesh(pts, kind, cloud_.h(), settings);
@@ -105,6 +107,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
   }
   added_outside_ += r.added_outside;
+  kept_edges_ += r.kept_edges;
   separated_ += r.separated_inside;
   auto& tri = mesh_.tri;
   tri = std::move(r.triangles);
@@ -278,6 +281,7 @@ Json RemeshPipeline::summary() const {
           {"particles_inserted", inserted_},
           {"particles_removed_at_walls", wall_removed_},
           {"elements_added_outside", added_outside_},
+          {"edges_kept", kept_edges_},
           {"elements_separated", separated_}};
 }
 

@@ -85,8 +85,11 @@ class RemeshPipeline {
   /// free-surface edges are split at their midpoints and large elements get a particle at their centroid
   /// (state interpolated on the mesh). Keeps the mesh consistent with the cloud. Returns true if it changed
   /// it. `meshed` and `boundary_edges` receive the previous mesh's topology in the new numbering (the
-  /// particles it used, inserted ones included; its boundary edges, through merges and splits).
-  bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges);
+  /// particles it used, inserted ones included; its boundary edges, through merges and splits), and, when
+  /// `all_edges` is given, every edge of the previous mesh through merges (an edge of a removed particle goes;
+  /// a split boundary edge gives its two halves).
+  bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges,
+                        std::vector<std::pair<Index, Index>>* all_edges = nullptr);
   /// The boundary of the mesh as chains: next[i] / prev[i] the particle after / before i along a boundary
   /// edge (directed as in its element), -1 if none; pinched where two boundary edges leave one particle (two
   /// surfaces touching at it).
@@ -113,7 +116,7 @@ class RemeshPipeline {
   // Remeshing's effect per step (log.csv) and over the run (summary.json).
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
-  long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0;
+  long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0, kept_edges_ = 0;
 };
 
 }  // namespace lagfsi::fluid

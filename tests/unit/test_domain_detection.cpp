@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -199,6 +200,47 @@ TEST(DomainDetection, AdvectedRestoresAnOldBoundaryEdgeThatIsNoLongerDelaunay) {
   EXPECT_EQ(r.lost_edges, 0);
   EXPECT_NEAR(r.area, 0.4, 1e-12);
   EXPECT_EQ(r.triangles.size(), 3u);
+}
+
+/// True if some triangle has the edge (a, b).
+bool has_edge(const std::vector<std::array<Index, 3>>& tri, Index a, Index b) {
+  for (const auto& t : tri)
+    for (int k = 0; k < 3; ++k)
+      if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) return true;
+  return false;
+}
+
+TEST(DomainDetection, KeepsAPreviousInteriorEdgeWithinTheFlipHysteresis) {
+  // A unit square whose previous mesh had the diagonal 0-2; corner 1 has moved inwards to (0.97, 0.03), so the
+  // angles facing 0-2 sum to 183.5 degrees and Delaunay takes 1-3. With keep_edges_angle 10 degrees the old
+  // diagonal is flipped back; with 2 degrees, or without the previous edges, it is not. The area is the
+  // quadrilateral's either way.
+  Cloud c;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {0.97, 0.03}, {1, 1}, {0, 1}}) c.add(x, y);
+  const Vec2 p0(0, 0), p1(0.97, 0.03), p2(1, 1), p3(0, 1);
+  const auto run = [&](double degrees, bool with_edges) {
+    PreviousDomain prev({{p0, p1, p2}, {p0, p2, p3}}, {{p0, p1}, {p1, p2}, {p2, p3}, {p3, p0}});
+    prev.set_topology({1, 1, 1, 1}, {{0, 1}, {1, 2}, {2, 3}, {0, 3}});
+    if (with_edges) prev.set_edges({{0, 1}, {1, 2}, {2, 3}, {0, 3}, {0, 2}});
+    RemeshSettings s;
+    s.alpha = 1.2;
+    s.detection = DomainDetection::Advected;
+    s.previous = &prev;
+    s.separation_alpha = 100.0;
+    s.keep_edges_angle = degrees * std::numbers::pi / 180.0;
+    return remesh(c.p, c.kind, c.h, s);
+  };
+  const auto kept = run(10.0, true);
+  EXPECT_EQ(kept.kept_edges, 1);
+  EXPECT_TRUE(has_edge(kept.triangles, 0, 2));
+  EXPECT_FALSE(has_edge(kept.triangles, 1, 3));
+  const double quad = 0.5 * (0.97 * 1.0 - 0.03 * 1.0) + 0.5 * 1.0;   // (0,1,2) + (0,2,3)
+  EXPECT_NEAR(kept.area, quad, 1e-12);
+  for (const auto& r : {run(2.0, true), run(10.0, false), run(0.0, true)}) {
+    EXPECT_EQ(r.kept_edges, 0);
+    EXPECT_TRUE(has_edge(r.triangles, 1, 3));
+    EXPECT_NEAR(r.area, quad, 1e-12);
+  }
 }
 
 }  // namespace

@@ -45,6 +45,11 @@ class PreviousDomain {
   bool is_boundary_edge(Index a, Index b) const;
   /// The boundary edges given to set_topology, as (min, max) pairs, sorted.
   const std::vector<std::pair<Index, Index>>& boundary_edges() const { return boundary_edges_; }
+  /// Every edge of the previous mesh (boundary and interior) in the same numbering, for keeping its
+  /// connectivity (RemeshSettings::keep_edges_angle). Optional; without it only boundary edges are kept.
+  void set_edges(std::vector<std::pair<Index, Index>> edges);
+  const std::vector<std::pair<Index, Index>>& edges() const { return edges_; }
+  bool is_edge(Index a, Index b) const;
 
  private:
   struct Grid {
@@ -61,6 +66,7 @@ class PreviousDomain {
 
   std::vector<std::uint8_t> meshed_;
   std::vector<std::pair<Index, Index>> boundary_edges_;   // (min, max), sorted
+  std::vector<std::pair<Index, Index>> edges_;            // (min, max), sorted, unique
   std::vector<std::array<Vec2, 3>> triangles_;
   std::vector<std::array<Vec2, 2>> boundary_;
   Grid tri_grid_, edge_grid_;

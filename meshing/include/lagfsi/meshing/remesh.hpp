@@ -44,6 +44,13 @@ struct RemeshSettings {
   double level_set_band = 0.25;               ///< LevelSet: outside elements within this h_e of the boundary
   double wetting_distance = 0.5;              ///< Advected / LevelSet: a dry wall particle joins the domain
                                               ///< when a fluid particle comes within this h_e of it
+  /// Advected / LevelSet with the previous mesh's edges (PreviousDomain::set_edges): an interior edge of the
+  /// previous mesh that is no longer Delaunay is flipped back while the two angles facing it sum to at most
+  /// pi + keep_edges_angle (radians). The Delaunay criterion is discontinuous: a nearly cocircular quadrilateral
+  /// of particles flips its diagonal back and forth as they move, and each flip changes the discrete
+  /// divergence-free space the velocity lives in; this hysteresis keeps the connectivity until the quality
+  /// asks for a change. 0: only the previous boundary edges are restored.
+  double keep_edges_angle = 0.0;
 };
 
 struct RemeshResult {
@@ -58,6 +65,7 @@ struct RemeshResult {
   int restored_edges = 0;                       ///< Advected / LevelSet: previous boundary edges flipped back in
   int lost_edges = 0;                           ///< Advected / LevelSet: previous boundary edges left out (crossed
                                                 ///< by more than one Delaunay edge)
+  int kept_edges = 0;                           ///< keep_edges_angle > 0: previous interior edges flipped back in
 };
 
 /// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its

@@ -1,7 +1,8 @@
 #pragma once
 /// @file case.hpp
-/// The case file: what every model builder receives, the shared geometry and selection helpers, and the
-/// registry that turns a body's "type" string into a model.
+/// The case file: what every model builder receives and the shared geometry and selection helpers. The
+/// registry that turns a body's "type" string into a model is the app layer's (model_registry.hpp): the core
+/// knows no model.
 ///
 /// A case file (JSON, comments allowed) has the top-level keys documented by case_defaults(); each body
 /// and each nested object is validated against its own defaults (see the builders), so `lagfsi check`
@@ -63,15 +64,8 @@ TriMesh build_mesh(Params geometry, Params mesh);
 /// An empty selection is an error.
 std::vector<Index> select_nodes(Params select, const std::vector<Vec2>& nodes);
 
-/// Registry of body types: a small explicit map from the "type" string to a builder.
+/// A body's builder: reads the body (its case-file object) and builds the model; each model's public header
+/// declares its own, and the app layer's registry (model_registry.hpp) maps the "type" strings to them.
 using ModelBuilder = std::function<std::unique_ptr<PhysicsModel>(Params body, const CaseContext&)>;
-const std::map<std::string, ModelBuilder>& model_registry();
-
-/// Builders registered in model_registry().
-std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx);
-std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
-std::unique_ptr<PhysicsModel> make_mpm_model(Params body, const CaseContext& ctx);
-std::unique_ptr<PhysicsModel> make_dem_model(Params body, const CaseContext& ctx);
-std::unique_ptr<PhysicsModel> make_efg_model(Params body, const CaseContext& ctx);   ///< element-free Galerkin (efg/)
 
 }  // namespace lagfsi

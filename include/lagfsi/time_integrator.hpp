@@ -6,27 +6,46 @@
 ///
 /// where the unknown of every implicit step is the new position x_{n+1} (not an increment).
 ///
-/// Contract (in the spirit of MFEM's SecondOrderODESolver / NewmarkSolver):
-///  - At entry to a step the state (x_n, v_n, a_n) is known and consistent.
-///  - begin_step(state, dt) stores the old state and returns nothing; predictor() gives the first Newton
-///    guess for x_{n+1}.
+/// The contract (in the spirit of MFEM's SecondOrderODESolver / NewmarkSolver). Every member is built by
+/// make_time_integrator() from the case's integrator object; a model never constructs one by name.
+///
+/// Rules for every member:
+///  - The state (x_n, v_n, a_n, t_n) of a KinematicState is consistent at entry to a step: a_n is the
+///    acceleration of the equation of motion at (x_n, v_n, t_n), not a leftover of a failed attempt.
+///  - A step can be abandoned and taken again with another dt from the same state: nothing a step computes
+///    is kept by the integrator beyond the stored start of the step, so a model that keeps its own copy of
+///    the state (the snapshot of PhysicsModel::predict) retries by calling begin_step() again.
+///  - dt > 0 and finite; t_{n+1} = t_n + dt.
+///
+/// Implicit members (Newmark, generalized-alpha; is_explicit() false):
+///  - begin_step(state, dt) stores the old state; predictor() gives the first Newton guess for x_{n+1}.
 ///  - For a trial x_{n+1}, kinematics(x_{n+1}) returns the quantities at which the residual is evaluated:
 ///    x_eval, v_eval, a_eval and t_eval (for Newmark these are x_{n+1}, v_{n+1}, a_{n+1}, t_{n+1}; for
 ///    generalized-alpha the intermediate points x_{n+1-af}, v_{n+1-af}, a_{n+1-am}, t_{n+1-af}).
 ///    The model assembles r = M a_eval + C v_eval + f_int(x_eval) - f_ext(t_eval).
 ///  - coefficients() gives the derivatives of those quantities with respect to x_{n+1}:
 ///    d a_eval/dx = c_m, d v_eval/dx = c_c, d x_eval/dx = c_k, so the consistent tangent is
-///    H = c_m M + c_c C + c_k K(x_eval).
-///  - end_step(x_{n+1}, state) writes (x_{n+1}, v_{n+1}, a_{n+1}) into the state.
-/// Explicit central difference is the limit case (Newmark with beta = 0, gamma = 1/2, in velocity-Verlet
-/// form): is_explicit() is true, and the model calls explicit_step() instead:
+///    H = c_m M + c_c C + c_k K(x_eval) (system_assembly.hpp: combine_tangent()).
+///  - end_step(x_{n+1}, state) writes (x_{n+1}, v_{n+1}, a_{n+1}) into the state; it is const and may be
+///    called on a scratch state for any trial x_{n+1} (the integrator's own v_{n+1}(x), a_{n+1}(x): what an
+///    energy account or a coupling's interface kinematics use, never a formula of one particular rule).
+///
+/// Explicit members (central difference; is_explicit() true): Newmark with beta = 0, gamma = 1/2 in
+/// velocity-Verlet form, with a lumped (diagonal) mass; the model calls explicit_step() or its
+/// non-allocating form explicit_step_into() instead of the Newton loop:
 ///   x_{n+1} = x_n + dt v_n + dt^2/2 a_n,  a_{n+1} = M_L^{-1} F(x_{n+1}, v_n + dt a_n, t_{n+1}),
 ///   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
-/// explicit_step_into() is the same step without allocation, for particle models that take millions of
-/// small steps (DEM): the caller owns the force vector, the step works in place on the state, and the force
-/// callback receives the half-step velocity v_{n+1/2} = v_n + dt/2 a_n (what a dashpot or a tangential
-/// spring history uses). It equals explicit_step() up to rounding (v_{n+1} is formed as
-/// v_{n+1/2} + dt/2 a_{n+1}); the other integrators and explicit_step() are unchanged.
+///  - Conditionally stable: dt <= 2 / omega_max. The model's driver step is its step-size control: it splits
+///    the analysis' dt into n equal sub-steps below its stable step (the DEM's critical step, the MPM's
+///    cfl h / c) and calls the member once per sub-step.
+///  - Prescribed dofs have inv_mass 0 (no acceleration from the force); the caller imposes their motion.
+///  - explicit_step_into() works in place on the state; the caller owns the force vector, and the force
+///    callback receives the half-step velocity v_{n+1/2} = v_n + dt/2 a_n (what a dashpot or a tangential
+///    spring history uses). It equals explicit_step() up to rounding (v_{n+1} is formed as
+///    v_{n+1/2} + dt/2 a_{n+1}).
+///  - Leapfrog form: with v_n = v_{n-1/2} + dt/2 a_n the step gives v_{n+1/2} = v_{n-1/2} + dt a_n and
+///    x_{n+1} = x_n + dt v_{n+1/2}, the symplectic update of a model whose velocities live at half steps
+///    (the explicit MPM's grid, whose force is that of the sub-step's start: mpm_scheme_explicit.cpp).
 ///
 /// References: Newmark (1959); Chung & Hulbert (1993), J. Appl. Mech. 60:371 (generalized-alpha with
 /// am = (2 rho - 1)/(rho + 1), af = rho/(rho + 1), gamma = 1/2 - am + af, beta = (1 - am + af)^2 / 4);
@@ -36,8 +55,11 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lagfsi {
+
+class Params;
 
 /// Positions, velocities and accelerations of all dofs at one time.
 struct KinematicState {
@@ -87,6 +109,15 @@ class TimeIntegrator {
   virtual void explicit_step_into(const ForceIntoFunction& force, const Vec& inv_mass, double dt,
                                   KinematicState& s, Vec& f) const;
 };
+
+/// The integrator a case names: {"type": "newmark", "beta": 0.25, "gamma": 0.5} |
+/// {"type": "generalized_alpha", "rho_inf": 0.8} | {"type": "central_difference"} (missing parameters take these
+/// defaults). A bad type or parameter fails with InputError naming the file and JSON path. The one place that
+/// turns a name into an integrator: every model's input reading calls it (the analysis' integrator for the
+/// implicit models, {"type": "central_difference"} for the explicit MPM and the DEM).
+std::unique_ptr<TimeIntegrator> make_time_integrator(const Params& integrator);
+/// The "type" names make_time_integrator() accepts.
+const std::vector<std::string>& time_integrator_types();
 
 /// Newmark-beta (beta, gamma); beta = 1/4, gamma = 1/2 is the average-acceleration rule.
 std::unique_ptr<TimeIntegrator> make_newmark(double beta = 0.25, double gamma = 0.5);

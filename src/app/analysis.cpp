@@ -5,11 +5,13 @@
 
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/case.hpp>
+#include <lagfsi/model_registry.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fsi/dirichlet_neumann.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/output_file.hpp>
 #include <lagfsi/text.hpp>
+#include <lagfsi/time_integrator.hpp>
 
 #include <cerrno>
 #include <chrono>
@@ -106,7 +108,7 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
   s.max_step_halvings = a.integer("max_step_halvings", 0);
   Params it = a.at("integrator");
   if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
-  const std::string itype = it.choice("type", {"newmark", "generalized_alpha", "central_difference"});
+  const std::string itype = it.choice("type", time_integrator_types());
   if (itype == "newmark") {
     it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}, {"allow_conditionally_stable", false}});
   } else if (itype == "generalized_alpha") {
@@ -117,6 +119,7 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
                     "(use newmark or generalized_alpha)");
   }
   warnings = check_integrator_stability(it);
+  (void)make_time_integrator(it);  // the models build theirs with the same factory: its errors show here first
   s.integrator = it.json();
   Params nw = a.at("newton");
   nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});

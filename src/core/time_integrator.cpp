@@ -1,5 +1,7 @@
 #include <lagfsi/time_integrator.hpp>
 
+#include <lagfsi/params.hpp>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -148,5 +150,27 @@ std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf) {
 }
 
 std::unique_ptr<TimeIntegrator> make_central_difference() { return std::make_unique<CentralDifference>(); }
+
+const std::vector<std::string>& time_integrator_types() {
+  static const std::vector<std::string> types = {"newmark", "generalized_alpha", "central_difference"};
+  return types;
+}
+
+std::unique_ptr<TimeIntegrator> make_time_integrator(const Params& p) {
+  const std::string type = p.choice("type", time_integrator_types());
+  auto number = [&](const char* key, double fallback) { return p.has(key) ? p.number(key) : fallback; };
+  if (type == "newmark") {
+    const double beta = number("beta", 0.25), gamma = number("gamma", 0.5);
+    if (!(beta > 0.0)) p.fail("beta", "must be positive (beta = 0 is the explicit central_difference)");
+    if (!(gamma >= 0.0)) p.fail("gamma", "must not be negative");
+    return make_newmark(beta, gamma);
+  }
+  if (type == "generalized_alpha") {
+    const double rho = number("rho_inf", 0.8);
+    if (!(rho >= 0.0 && rho <= 1.0)) p.fail("rho_inf", "must lie in [0, 1]");
+    return make_generalized_alpha(rho);
+  }
+  return make_central_difference();
+}
 
 }  // namespace lagfsi

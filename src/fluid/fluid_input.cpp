@@ -120,11 +120,10 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   remesh_.configure(rs);
 
   // The analysis' integrator (read for both schemes; the fractional step does not use it).
-  Params it(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
-  const std::string itype = it.string("type");
-  std::unique_ptr<TimeIntegrator> integrator = itype == "generalized_alpha"
-                                                   ? make_generalized_alpha(it.number("rho_inf"))
-                                                   : make_newmark(it.number("beta"), it.number("gamma"));
+  const Params it(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
+  if (pspg && it.string("type") == "central_difference")
+    it.fail("type", "the monolithic fluid scheme is implicit (use newmark or generalized_alpha)");
+  std::unique_ptr<TimeIntegrator> integrator = make_time_integrator(it);
   scheme_ = pspg ? make_pspg_scheme(parts(), ps, std::move(integrator)) : make_fractional_step(parts(), fs);
   build_particles(b);
 }

@@ -102,11 +102,15 @@ void FluidModel::predict(double t_new, double dt) {
   // A retry of a failed step (the driver calls predict again with a smaller dt): start again from the
   // step's initial pressures. The failed attempt left its own in p, and taking them as the start of the
   // retry compounded the failure (a projection velocity growing like 1/dt at every halving).
-  if (step_open_) cloud_.p() = step_.p_old;
+  // The cloud's state (x, v, a) is only changed by finalize_step, so the retry starts from it as it is, and the
+  // step's mesh is kept: it was built from that same state (the remeshing does not depend on t_new or dt), and
+  // remeshing again would insert and remove particles a second time, unlike a clean step of the smaller dt.
+  const bool retry = step_open_;
+  if (retry) cloud_.p() = step_.p_old;
   step_open_ = true;
   step_.t_new = t_new;
   step_.dt = dt;
-  if (c_.remesh && solved_once_) remesh_.remesh_step(t_new, volume_, energy_);
+  if (c_.remesh && solved_once_ && !retry) remesh_.remesh_step(t_new, volume_, energy_);
   times_.remesh += seconds_since(t0);
   t0 = Clock::now();
   solved_once_ = true;

@@ -63,6 +63,13 @@ class FluidScheme {
   /// The converged step into the particles' state (x, v, a).
   virtual void end_step() = 0;
   /// The step's velocity for the viscous dissipation (FluidEnergy::account, before end_step).
+  ///
+  /// The fractional step's symplectic Euler (u^{n+1} from the projection, x^{n+1} = x^n + dt u^{n+1}) is not
+  /// taken through the time-integrator contract: its velocity update is the implicit viscous predictor and
+  /// the pressure projection (a Poisson solve on the step's mesh), not M_L^{-1} times a force at known
+  /// positions as the explicit member needs, and its positions use the end-of-step velocity, which the
+  /// contract's members (Newmark family, central difference) would give only through a different update order
+  /// (results not bit-identical). It stays the scheme's own two lines (fractional_step.cpp).
   virtual Vec step_velocity() const = 0;
   /// Elements inverted within accepted steps (the fractional step with "inverted_elements": "remesh").
   virtual long inverted_kept() const { return 0; }

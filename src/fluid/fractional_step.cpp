@@ -24,6 +24,7 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/system_assembly.hpp>
 
 #include <array>
 #include <cmath>
@@ -44,13 +45,9 @@ constexpr Index kParallelElements = 2000;
 /// the diagonal of the others.
 template <class Fixed, class Diag>
 void constrain(SparseMatrix& A, const Fixed& fixed, const Diag& diag) {
-  for (int col = 0; col < A.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(A, col); it; ++it) {
-      if (fixed(it.row()) || fixed(it.col()))
-        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-      else if (it.row() == it.col())
-        it.valueRef() += diag(it.row());
-    }
+  dirichlet_identity(A, fixed, [&](Index row, Index col, double& value) {
+    if (row == col) value += diag(row);
+  });
 }
 
 /// The fractional step: the pressure Poisson matrix and the implicit viscous predictor's matrix (both one dof

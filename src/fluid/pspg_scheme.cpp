@@ -15,6 +15,7 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/system_assembly.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -76,12 +77,13 @@ class PspgScheme final : public FluidScheme {
     f_.walls.set_wall_motion(f_.step.t_new, f_.cloud.v(), f_.cloud.a());
     f_.ghosts.set_rates(f_.cloud.v(), f_.cloud.a());
   }
-  /// The trapezoidal rule's mean of v_n and v_{n+1}.
+  /// The mean of v_n and the integrator's own v_{n+1} at the step's x_{n+1} (end_step on a scratch state):
+  /// (x_{n+1} - x_n) / dt for the trapezoidal rule, and generalized-alpha's own velocity update under
+  /// generalized-alpha (not the trapezoidal formula 2 (x_{n+1} - x_n) / dt - v_n, which is not its v_{n+1}).
   Vec step_velocity() const override {
-    const Vec& x = f_.cloud.x();
-    const Vec& v = f_.cloud.v();
-    Vec v_end = Vec(2.0 / f_.step.dt * (f_.step.x - x) - v);
-    return Vec(0.5 * (v + v_end));
+    KinematicState end;
+    integrator_->end_step(f_.step.x, end);
+    return Vec(0.5 * (f_.cloud.v() + end.v));
   }
 
  private:
@@ -177,13 +179,11 @@ IterationReport PspgScheme::iterate() {
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
   // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
   const double sp = 3.0 * f_.c.rho * h * cf.c_m;
-  for (int k = 0; k < J_.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(J_, k); it; ++it) {
-      if (fixed[it.row()] || fixed[it.col()])
-        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-      else if (k % 3 == 2)
-        it.valueRef() *= sp;
-    }
+  dirichlet_identity(
+      J_, [&](Index i) { return fixed[i] != 0; },
+      [&](Index, Index col, double& value) {
+        if (col % 3 == 2) value *= sp;
+      });
   // Forces on the ghost particles: the reactions of their prescribed momentum rows, sign flipped (the
   // residual there is the force the structure applies to the fluid).
   Vec& ghost_force = f_.ghosts.forces();

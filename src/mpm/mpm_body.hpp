@@ -62,4 +62,28 @@ struct MpmBody {
   }
 };
 
+/// What a step changes in a body (the retry snapshot of MpmModel::predict): the particles, their supports,
+/// the boundaries (the free-field columns' state), the clock and the gravity work. The grid is rebuilt from
+/// the particles at every sub-step.
+struct MpmStepSnapshot {
+  Particles particles;
+  std::vector<Support> support;
+  GridBoundaries boundaries;
+  double t = 0, gravity_work = 0;
+  void save(const MpmBody& b) {
+    particles = b.particles;
+    support = b.support;
+    boundaries = b.boundaries;
+    t = b.t;
+    gravity_work = b.gravity_work;
+  }
+  void restore(MpmBody& b) const {
+    b.particles = particles;
+    b.support = support;
+    b.boundaries = boundaries;
+    b.t = t;
+    b.gravity_work = gravity_work;
+  }
+};
+
 }  // namespace lagfsi::mpm

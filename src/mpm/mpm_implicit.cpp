@@ -9,6 +9,8 @@
 // is linear in x (small strain), so one solve with H = c_m M + c_k K is exact. Empty nodes are held.
 #include "mpm_scheme.hpp"
 
+#include <lagfsi/system_assembly.hpp>
+
 namespace lagfsi::mpm {
 
 namespace {
@@ -104,17 +106,11 @@ void Implicit::step(MpmBody& b, double t_new, double dt) {
   Vec r = Vec::Zero(2 * nn);
   for (Index I = 0; I < nn; ++I) r.segment<2>(2 * I) = mass[I] * ev.a.segment<2>(2 * I);
   r += fint0 + K * (ev.x - s.x) - fext;
-  SparseMatrix H = cf.c_k * K;
-  for (Index I = 0; I < nn; ++I)
-    for (int c = 0; c < 2; ++c) H.coeffRef(2 * I + c, 2 * I + c) += cf.c_m * mass[I];
-  for (int k = 0; k < H.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(H, k); it; ++it)
-      if (held[it.row()] || held[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  SparseMatrix& H = K;
+  combine_tangent_lumped(H, cf.c_k, cf.c_m, mass);
+  dirichlet_identity(H, r, held);
   for (Index d = 0; d < 2 * nn; ++d)
-    if (held[d]) {
-      r[d] = 0.0;
-      if (H.coeff(d, d) == 0.0) H.coeffRef(d, d) = 1.0;
-    }
+    if (held[d] && H.coeff(d, d) == 0.0) H.coeffRef(d, d) = 1.0;
   H.makeCompressed();
   solver_->factorize(H);
   Vec dx;

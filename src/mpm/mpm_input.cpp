@@ -176,7 +176,9 @@ std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& upd
   std::unique_ptr<ExplicitScheme> scheme =
       B.two_phase ? make_two_phase_scheme()
                   : make_explicit_scheme(update == "usl" ? StressUpdate::Usl
-                                         : update == "usf" ? StressUpdate::Usf : StressUpdate::Musl);
+                                         : update == "usf" ? StressUpdate::Usf : StressUpdate::Musl,
+                                         make_time_integrator(Params(Json{{"type", "central_difference"}}, b.file(),
+                                                                     b.child_path("time_integration"))));
   const Grid& grid = B.grid;
   const double c = scheme->wave_speed(B);
   const double substeps = ctx.analysis.end_time * c / (B.cfl * grid.h);
@@ -202,9 +204,7 @@ std::unique_ptr<MpmScheme> read_implicit_scheme(Params b, const MpmBody& B, cons
   Params ip(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
   const std::string it = ip.string("type");
   if (it == "central_difference") b.fail("time_integration", "an implicit MPM body needs newmark or generalized_alpha");
-  std::unique_ptr<TimeIntegrator> integrator = it == "generalized_alpha" ? make_generalized_alpha(ip.number("rho_inf"))
-                                                                         : make_newmark(ip.number("beta"), ip.number("gamma"));
-  return make_implicit_scheme(std::move(integrator), make_linear_solver("cholmod"));
+  return make_implicit_scheme(make_time_integrator(ip), make_linear_solver("cholmod"));
 }
 
 }  // namespace

@@ -47,6 +47,17 @@ double MpmModel::strain_energy() const {
 
 void MpmModel::initialize() { body_->t = 0; }
 
+void MpmModel::predict(double t_new, double dt) {
+  if (!snapshot_) snapshot_ = std::make_unique<MpmStepSnapshot>();
+  if (step_open_)
+    snapshot_->restore(*body_);
+  else
+    snapshot_->save(*body_);
+  step_open_ = true;
+  t_new_ = t_new;
+  dt_ = dt;
+}
+
 IterationReport MpmModel::solve_iteration() {
   const auto t0 = Clock::now();
   const int n = scheme_->advance(*body_, t_new_, dt_);

@@ -4,7 +4,9 @@
 //  - explicit saturated two-phase, the v-w formulation (mpm_two_phase.cpp);
 //  - implicit (Newmark or generalized-alpha on the grid, mpm_implicit.cpp).
 // The explicit ones split the driver's step into sub-steps dt_sub <= cfl h / c, c the P-wave speed
-// (mpm_scheme.cpp).
+// (mpm_scheme.cpp): the step-size control of the explicit member of the time-integrator contract, which the
+// single-phase scheme steps its grid with. The two-phase scheme keeps its own update of the two grid velocity
+// fields (the drag couples them implicitly per node, outside the contract's diagonal-mass form).
 #include "mpm_body.hpp"
 
 #include <lagfsi/linear_solver.hpp>
@@ -37,7 +39,8 @@ class ExplicitScheme : public MpmScheme {
 /// The particle stress update rule of the explicit single-phase scheme ("update").
 enum class StressUpdate { Musl, Usl, Usf };
 
-std::unique_ptr<ExplicitScheme> make_explicit_scheme(StressUpdate update);
+/// integrator: the central difference (make_time_integrator), which takes every sub-step's grid update.
+std::unique_ptr<ExplicitScheme> make_explicit_scheme(StressUpdate update, std::unique_ptr<TimeIntegrator> integrator);
 std::unique_ptr<ExplicitScheme> make_two_phase_scheme();
 std::unique_ptr<MpmScheme> make_implicit_scheme(std::unique_ptr<TimeIntegrator> integrator,
                                                 std::unique_ptr<LinearSolver> solver);

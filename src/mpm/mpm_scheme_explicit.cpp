@@ -2,7 +2,14 @@
 // Lagrangian" (MUSL) algorithm of the seed (Ludeña 2016, ch. 3; Al-Kafaji 2013); one sub-step:
 //
 //   particles -> grid:  m_I, (m v)_I, f_I (mpm_transfer.cpp)
-//   grid update:        (m v)_I += dt f_I (fixed components zeroed; local damping f -= alpha |f| sign(v))
+//   grid update:        v_I <- v_I + dt f_I / m_I (fixed components zeroed; local damping f -= alpha |f| sign(v)),
+//                       one step of the shared central difference (time_integrator.hpp) in leapfrog form:
+//                       the mapped grid velocity is the half-step velocity v_{n-1/2}, the step is started from
+//                       v_n = v_{n-1/2} + dt/2 a_n, a_n = f_I / m_I, and explicit_step_into() hands the force
+//                       callback v_{n+1/2} = v_{n-1/2} + dt a_n (equal to (m v + dt f)_I / m_I up to rounding);
+//                       the callback does the rest of the sub-step. The force at the sub-step's end is the next
+//                       sub-step's mapping on a reset grid, so the callback returns none and the contract's
+//                       a_{n+1}, v_{n+1} of the scratch grid state are not used.
 //   grid -> particles:  v_p += dt sum_I N_Ip f_I / m_I (FLIP),  x_p += dt sum_I N_Ip v_I
 //   stress update:      L_p = sum_I v_I (x) grad N_Ip, F_p = (I + dt L_p) F_p, V_p = det F_p V_p0,
 //                       sigma_p += C : dt sym(L_p) (small strain rate; the material's return mapping)
@@ -18,6 +25,7 @@
 #include <lagfsi/mpm/mpm_transfer.hpp>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace lagfsi::mpm {
 
@@ -25,7 +33,11 @@ namespace {
 
 class ExplicitSinglePhase final : public ExplicitScheme {
  public:
-  explicit ExplicitSinglePhase(StressUpdate update) : update_(update) {}
+  ExplicitSinglePhase(StressUpdate update, std::unique_ptr<TimeIntegrator> integrator)
+      : update_(update), integrator_(std::move(integrator)) {
+    if (!integrator_ || !integrator_->is_explicit())
+      throw std::invalid_argument("the explicit MPM scheme needs an explicit time integrator");
+  }
   double wave_speed(const MpmBody& b) const override { return b.material->p_wave_speed(); }
 
  protected:
@@ -35,8 +47,15 @@ class ExplicitSinglePhase final : public ExplicitScheme {
   /// Stress update of every particle from the nodal velocities vgrid (and F, volume, strain, strain rate).
   void stress_update(MpmBody& b, double dt, const std::vector<Vec2>& vgrid) const;
 
+  /// The rest of the sub-step once the grid velocities are v_{n+1/2}: prescribed motion, grid to particles,
+  /// the MUSL re-mapping and the stress update.
+  void finish_substep(MpmBody& b, double dt);
+
   StressUpdate update_;
+  std::unique_ptr<TimeIntegrator> integrator_;  // central difference: the grid's velocity update
   ScatterBuffers buffers_;  // per-thread grid copies of the scatter
+  KinematicState grid_state_;  // the sub-step's grid dofs (2 per node; scratch, reset every sub-step)
+  Vec no_inverse_mass_, end_force_;  // the end force is not formed (zero inverse mass): see the file's header
 };
 
 void ExplicitSinglePhase::stress_update(MpmBody& b, double dt, const std::vector<Vec2>& vgrid) const {
@@ -69,7 +88,6 @@ void ExplicitSinglePhase::substep(MpmBody& b, double dt) {
   Grid& grid = b.grid;
   const GridBoundaries& bc = b.boundaries;
   const Damping& damping = b.damping;
-  const Index np = static_cast<Index>(P.size());
   const size_t nn = grid.mass.size();
   b.locate_particles();
   const Vec2 g = b.gravity();
@@ -104,11 +122,45 @@ void ExplicitSinglePhase::substep(MpmBody& b, double dt) {
   b.boundaries.add_dashpot_forces(grid, b.t, dt, *b.material);
   b.boundaries.step_free_fields(b.t, dt, *b.material, damping.mass, damping.stiffness);
   bc.apply_fixed(grid.force);
-  for (size_t i = 0; i < nn; ++i) {
-    if (!(grid.mass[i] > 0)) continue;
-    grid.momentum[i] += dt * grid.force[i];
-    grid.velocity[i] = grid.momentum[i] / grid.mass[i];
-  }
+  // The grid update through the time integrator (see the header): a_n = f / m, v_n = v_{n-1/2} + dt/2 a_n at
+  // the nodes with mass; the grid velocity of the other nodes is left as it is (as the momentum update did).
+  const Index nd = 2 * static_cast<Index>(nn);
+  KinematicState& s = grid_state_;
+  s.t = b.t;
+  s.x.setZero(nd);
+  s.v.resize(nd);
+  s.a.resize(nd);
+  for (size_t i = 0; i < nn; ++i)
+    for (int c = 0; c < 2; ++c) {
+      const Index d = 2 * static_cast<Index>(i) + c;
+      if (grid.mass[i] > 0) {
+        s.a[d] = grid.force[i][c] / grid.mass[i];
+        s.v[d] = grid.momentum[i][c] / grid.mass[i] + 0.5 * dt * s.a[d];
+      } else {
+        s.a[d] = s.v[d] = 0.0;
+      }
+    }
+  if (no_inverse_mass_.size() != nd) no_inverse_mass_ = Vec::Zero(nd);
+  integrator_->explicit_step_into(
+      [&](const Vec&, const Vec& v_half, double, Vec& f) {
+        for (size_t i = 0; i < nn; ++i) {
+          if (!(grid.mass[i] > 0)) continue;
+          grid.velocity[i] = v_half.segment<2>(2 * static_cast<Index>(i));
+          grid.momentum[i] = grid.mass[i] * grid.velocity[i];
+        }
+        finish_substep(b, dt);
+        f.setZero();
+      },
+      no_inverse_mass_, dt, s, end_force_);
+}
+
+void ExplicitSinglePhase::finish_substep(MpmBody& b, double dt) {
+  Particles& P = b.particles;
+  Grid& grid = b.grid;
+  const GridBoundaries& bc = b.boundaries;
+  const Index np = static_cast<Index>(P.size());
+  const Vec2 g = b.gravity();
+  const StiffnessDamping viscous{b.damping.stiffness, b.material.get()};
   bc.apply_fixed(grid.velocity);
   // Prescribed motion: the node's velocity at the end of the sub-step; its force is what that takes.
   bc.impose_motion(grid, b.t + dt, dt);
@@ -127,8 +179,8 @@ void ExplicitSinglePhase::substep(MpmBody& b, double dt) {
 
 }  // namespace
 
-std::unique_ptr<ExplicitScheme> make_explicit_scheme(StressUpdate update) {
-  return std::make_unique<ExplicitSinglePhase>(update);
+std::unique_ptr<ExplicitScheme> make_explicit_scheme(StressUpdate update, std::unique_ptr<TimeIntegrator> integrator) {
+  return std::make_unique<ExplicitSinglePhase>(update, std::move(integrator));
 }
 
 }  // namespace lagfsi::mpm

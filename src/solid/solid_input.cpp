@@ -222,14 +222,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
 
   // Integrator and solver.
   if (!is_static_) {
-    Params ip(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
-    const std::string it = ip.string("type");
-    if (it == "newmark")
-      integrator_ = make_newmark(ip.number("beta"), ip.number("gamma"));
-    else if (it == "generalized_alpha")
-      integrator_ = make_generalized_alpha(ip.number("rho_inf"));
-    else
-      integrator_ = make_central_difference();
+    integrator_ = make_time_integrator(Params(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator"));
   }
   solver_type_ = ctx.analysis.linear_solver;
   solver_ = make_linear_solver(solver_type_);

@@ -32,6 +32,8 @@ void SolidModel::initialize() {
 }
 
 void SolidModel::predict(double t_new, double dt) {
+  // Retry-safe: the iterations change only the iterate x_ (state_ changes in finalize_step), so a predict
+  // after a failed attempt starts the smaller step from the same committed state.
   old_state_ = state_;
   t_new_ = t_new;
   dt_ = dt;

@@ -3,6 +3,8 @@
 // factorization (with its fallback to LU).
 #include "solid_model_impl.hpp"
 
+#include <lagfsi/system_assembly.hpp>
+
 namespace lagfsi::solid {
 
 Vec SolidModel::external_force(double t, const Vec& x) const {
@@ -38,13 +40,7 @@ Vec SolidModel::damping_times(const Vec& v) const {
   return r;
 }
 
-void SolidModel::apply_dirichlet(SparseMatrix& H, Vec& r) const {
-  for (int k = 0; k < H.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(H, k); it; ++it)
-      if (fixed_mask_[it.row()] || fixed_mask_[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-  for (Index i = 0; i < r.size(); ++i)
-    if (fixed_mask_[i]) r[i] = 0.0;
-}
+void SolidModel::apply_dirichlet(SparseMatrix& H, Vec& r) const { dirichlet_identity(H, r, fixed_mask_); }
 
 void SolidModel::factorize(const SparseMatrix& H) {
   try {
@@ -103,15 +99,9 @@ IterationReport SolidModel::newton_iteration() {
     // Augmented mass of a coupling iterate: (factor - 1) c_m M (x - x_prev), zero at convergence.
     const bool augmented = aug_factor_ > 1.0 && x_aug_prev_.size() == nd;
     if (augmented) r += (aug_factor_ - 1.0) * c.c_m * (body_->mass() * (x_ - x_aug_prev_));
-    // H = c_m M + c_c C + c_k K, all on the same pattern.
-    const double* m = body_->mass().valuePtr();
-    double* h = H_.valuePtr();
-    const double* k0 = damp_stiff_ > 0 ? K0_.valuePtr() : nullptr;
+    // H = c_m M + c_c C + c_k K, all on the same pattern (C = damp_mass M + damp_stiff K0).
     const double cm = c.c_m * (augmented ? aug_factor_ : 1.0) + c.c_c * damp_mass_;
-    for (Index i = 0; i < H_.nonZeros(); ++i) {
-      h[i] = c.c_k * h[i] + cm * m[i];
-      if (k0) h[i] += c.c_c * damp_stiff_ * k0[i];
-    }
+    combine_tangent(H_, c.c_k, cm, body_->mass(), c.c_c * damp_stiff_, damp_stiff_ > 0 ? &K0_ : nullptr);
     add_follower_tangent(ev.t, c.c_k, H_);
     Vec rf = fext, ri = inertia, ru = f_int_;
     for (Index i = 0; i < nd; ++i)

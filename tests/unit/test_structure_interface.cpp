@@ -4,6 +4,7 @@
 // integrator's own update (v_{n+1}, a_{n+1} as functions of x_{n+1}) for Newmark and generalized-alpha alike;
 // generalized-alpha's tangent coefficients belong to its intermediate evaluation point and would scale them.
 #include <lagfsi/case.hpp>
+#include <lagfsi/model_registry.hpp>
 #include <lagfsi/interface.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/time_integrator.hpp>

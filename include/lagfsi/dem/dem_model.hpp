@@ -80,7 +80,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b);
 
 }  // namespace dem
 
-/// The DEM body's builder (registered as "dem" in model_registry(); also declared in case.hpp).
+/// The DEM body's builder (registered as "dem" in model_registry() of the app layer, model_registry.hpp).
 std::unique_ptr<PhysicsModel> make_dem_model(Params body, const CaseContext& ctx);
 
 }  // namespace lagfsi

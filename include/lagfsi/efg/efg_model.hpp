@@ -162,3 +162,10 @@ class EfgModel final : public PhysicsModel {
 };
 
 }  // namespace lagfsi::efg
+
+namespace lagfsi {
+
+/// The EFG body's builder (registered as "efg" in model_registry() of the app layer, model_registry.hpp).
+std::unique_ptr<PhysicsModel> make_efg_model(Params body, const CaseContext& ctx);
+
+}  // namespace lagfsi

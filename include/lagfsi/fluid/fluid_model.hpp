@@ -32,7 +32,7 @@
 
 namespace lagfsi {
 
-/// The fluid body's builder (registered as "fluid" in model_registry(); also declared in case.hpp). Reads the
+/// The fluid body's builder (registered as "fluid" in model_registry() of the app layer, model_registry.hpp). Reads the
 /// body (its case-file object), builds its walls, particles and scheme; throws InputError for a bad body.
 std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
 

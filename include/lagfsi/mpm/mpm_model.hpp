@@ -33,6 +33,7 @@ namespace mpm {
 struct MpmBody;
 class MpmScheme;
 class MpmWriter;
+struct MpmStepSnapshot;
 
 class MpmModel final : public PhysicsModel {
  public:
@@ -46,14 +47,13 @@ class MpmModel final : public PhysicsModel {
   Index num_nodes() const override;     ///< the particles
   Index num_elements() const override;  ///< the grid's cells
   void initialize() override;
-  void predict(double t_new, double dt) override {
-    t_new_ = t_new;
-    dt_ = dt;
-  }
+  /// Starts a step; the first predict of a step saves the body's state, a second one before finalize_step (the
+  /// driver's retry with a smaller dt after a failure part of the way through the sub-steps) restores it.
+  void predict(double t_new, double dt) override;
   /// Advances the body over the whole step (explicit: in sub-steps; implicit: one linear solve); always
   /// converged, inner_iterations = the sub-steps.
   IterationReport solve_iteration() override;
-  void finalize_step() override {}
+  void finalize_step() override { step_open_ = false; }
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
 
@@ -71,13 +71,15 @@ class MpmModel final : public PhysicsModel {
   std::unique_ptr<MpmBody> body_;
   std::unique_ptr<MpmScheme> scheme_;
   std::unique_ptr<MpmWriter> writer_;
+  std::unique_ptr<MpmStepSnapshot> snapshot_;  // the state at the step's start (retry)
+  bool step_open_ = false;                      // predicted and not finalized
   double t_new_ = 0, dt_ = 0;
   long substeps_ = 0;
 };
 
 }  // namespace mpm
 
-/// The MPM body's builder (registered as "mpm" in model_registry(); also declared in case.hpp).
+/// The MPM body's builder (registered as "mpm" in model_registry() of the app layer, model_registry.hpp).
 std::unique_ptr<PhysicsModel> make_mpm_model(Params body, const CaseContext& ctx);
 
 }  // namespace lagfsi

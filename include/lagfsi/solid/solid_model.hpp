@@ -19,8 +19,8 @@
 
 namespace lagfsi {
 
-/// The solid or shell body's builder (registered as "solid" and "shell" in model_registry(); also declared
-/// in case.hpp). Reads the body (its case-file object); throws InputError for a bad body.
+/// The solid or shell body's builder (registered as "solid" and "shell" in model_registry() of the app
+/// layer, model_registry.hpp). Reads the body (its case-file object); throws InputError for a bad body.
 std::unique_ptr<PhysicsModel> make_solid_model(Params body, const CaseContext& ctx);
 
 }  // namespace lagfsi

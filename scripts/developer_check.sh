@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The Developer build (CMakePresets.json, issue #18): warnings as errors (-Wall -Wextra -Werror) and
+# AddressSanitizer + UndefinedBehaviorSanitizer, in ./build-dev; then the unit and verification tiers under the
+# sanitizers (a sanitizer report fails the test: halt_on_error). CI keeps the Release build (scripts/test.sh).
+# Usage: scripts/developer_check.sh [ctest arguments, e.g. -R Retry]; LAGFSI_JOBS sets the build's parallelism.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+jobs=${LAGFSI_JOBS:-$(nproc)}
+cd "$root"
+cmake --preset Developer >/dev/null
+cmake --build --preset Developer -j "$jobs"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --preset Developer -j "${LAGFSI_TEST_JOBS:-2}" --output-on-failure "$@"

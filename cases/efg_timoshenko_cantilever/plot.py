@@ -24,16 +24,17 @@ fig, ax = plt.subplots(figsize=(6.5, 4.5))
 path = os.path.join(conv, "convergence.csv")
 if os.path.exists(path):
     c = read_csv(path)
-    keys = sorted(set(zip(c["basis"], c["alpha"], c["essential"], c["integration"])))
-    for b, a, es, i in keys:
+    cells = c.get("cells", ["q4"] * len(c["h"]))
+    keys = sorted(set(zip(c["basis"], c["alpha"], c["essential"], c["integration"], cells)))
+    for b, a, es, i, ce in keys:
         idx = [k for k in range(len(c["h"]))
-               if (c["basis"][k], c["alpha"][k], c["essential"][k], c["integration"][k]) == (b, a, es, i)]
+               if (c["basis"][k], c["alpha"][k], c["essential"][k], c["integration"][k], cells[k]) == (b, a, es, i, ce)]
         h = [c["h"][k] for k in idx]
         e = [c["energy_error_relative"][k] for k in idx]
         orders = [math.log(e[k - 1] / e[k]) / math.log(h[k - 1] / h[k]) for k in range(1, len(idx))]
-        print("%-11s rho=%gh %-9s %-10s errors %s orders %s" % (b, a, es, i, " ".join("%.3e" % v for v in e),
+        print("%-11s rho=%gh %-9s %-3s %-10s errors %s orders %s" % (b, a, es, ce, i, " ".join("%.3e" % v for v in e),
                                                            " ".join("%.2f" % o for o in orders)))
-        ax.loglog(h, e, "o-" if i == "gauss" else "s--", label="%s rho=%gh %s %s" % (b, a, es, i))
+        ax.loglog(h, e, "o-" if i == "gauss" else "s--", label="%s rho=%gh %s %s %s" % (b, a, es, ce, i))
     ax.set_xlabel("node spacing h")
     ax.set_ylabel("relative energy-norm error")
     ax.legend(fontsize=6)

@@ -10,16 +10,15 @@
 namespace lagfsi::efg {
 
 namespace {
-/// Drops nodes used by no cell and renumbers.
-QuadMesh compact(const std::vector<Vec2>& nodes, const std::vector<std::array<Index, 4>>& cells) {
+/// Drops nodes used by no cell and renumbers (q9: the cells' nine nodes, else their corners).
+QuadMesh compact(const std::vector<Vec2>& nodes, const std::vector<std::array<Index, 4>>& cells,
+                 const std::vector<std::array<Index, 9>>& q9 = {}) {
   std::vector<Index> map(nodes.size(), -1);
   QuadMesh m;
   for (const auto& c : cells)
-    for (Index n : c)
-      if (map[n] < 0) {
-        map[n] = static_cast<Index>(m.nodes.size());
-        m.nodes.push_back(nodes[n]);
-      }
+    for (Index n : c) map[n] = 0;
+  for (const auto& c : q9)
+    for (Index n : c) map[n] = 0;
   // Keep the original node order (sorted by old index) for readable numbering.
   std::vector<Index> order;
   for (size_t i = 0; i < nodes.size(); ++i)
@@ -30,29 +29,43 @@ QuadMesh compact(const std::vector<Vec2>& nodes, const std::vector<std::array<In
     m.nodes.push_back(nodes[order[k]]);
   }
   for (const auto& c : cells) m.cells.push_back({map[c[0]], map[c[1]], map[c[2]], map[c[3]]});
+  for (const auto& c : q9) {
+    std::array<Index, 9> r;
+    for (int a = 0; a < 9; ++a) r[a] = map[c[a]];
+    m.q9.push_back(r);
+  }
   return m;
 }
 }  // namespace
 
-QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vector<std::array<Vec2, 2>>& holes) {
+QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vector<std::array<Vec2, 2>>& holes,
+                        int order) {
   if (nx < 1 || ny < 1) throw std::invalid_argument("divisions must be at least 1");
+  if (order != 1 && order != 2) throw std::invalid_argument("cell order must be 1 (Q4) or 2 (Q9)");
+  const int mx = order * nx, my = order * ny;   // node intervals
   std::vector<Vec2> nodes;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i)
-      nodes.emplace_back(origin.x() + size.x() * i / nx, origin.y() + size.y() * j / ny);
+  for (int j = 0; j <= my; ++j)
+    for (int i = 0; i <= mx; ++i)
+      nodes.emplace_back(origin.x() + size.x() * i / mx, origin.y() + size.y() * j / my);
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (mx + 1) + i); };
   std::vector<std::array<Index, 4>> cells;
+  std::vector<std::array<Index, 9>> q9;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const Index a = j * (nx + 1) + i;
-      const std::array<Index, 4> c = {a, a + 1, a + nx + 2, a + nx + 1};
+      const int I = order * i, J = order * j, o = order;
+      const std::array<Index, 4> c = {id(I, J), id(I + o, J), id(I + o, J + o), id(I, J + o)};
       const Vec2 ctr = 0.25 * (nodes[c[0]] + nodes[c[1]] + nodes[c[2]] + nodes[c[3]]);
       bool removed = false;
       for (const auto& h : holes)
         if (ctr.x() > h[0].x() && ctr.x() < h[1].x() && ctr.y() > h[0].y() && ctr.y() < h[1].y()) removed = true;
-      if (!removed) cells.push_back(c);
+      if (removed) continue;
+      cells.push_back(c);
+      if (order == 2)
+        q9.push_back({c[0], c[1], c[2], c[3], id(I + 1, J), id(I + 2, J + 1), id(I + 1, J + 2), id(I, J + 1),
+                      id(I + 1, J + 1)});
     }
   if (cells.empty()) throw std::invalid_argument("the holes remove every cell");
-  return compact(nodes, cells);
+  return compact(nodes, cells, q9);
 }
 
 QuadMesh plate_with_hole(double a, double b, int n_arc, int n_rad, double grading) {
@@ -111,6 +124,34 @@ void q4_shape(double xi, double eta, double N[4], double dxi[4], double deta[4])
     dxi[a] = 0.25 * sx[a] * (1 + sy[a] * eta);
     deta[a] = 0.25 * sy[a] * (1 + sx[a] * xi);
   }
+}
+
+void q9_shape(double xi, double eta, double N[9], double dxi[9], double deta[9]) {
+  // 1-D quadratic Lagrange functions at -1, 0, 1 and their derivatives.
+  auto l = [](double s, double v[3], double d[3]) {
+    v[0] = 0.5 * s * (s - 1);
+    v[1] = 1 - s * s;
+    v[2] = 0.5 * s * (s + 1);
+    d[0] = s - 0.5;
+    d[1] = -2 * s;
+    d[2] = s + 0.5;
+  };
+  double lx[3], dx[3], ly[3], dy[3];
+  l(xi, lx, dx);
+  l(eta, ly, dy);
+  // Local node -> (index in x, index in y) of the 3 x 3 tensor grid.
+  static const int ix[9] = {0, 2, 2, 0, 1, 2, 1, 0, 1}, iy[9] = {0, 0, 2, 2, 0, 1, 2, 1, 1};
+  for (int a = 0; a < 9; ++a) {
+    N[a] = lx[ix[a]] * ly[iy[a]];
+    dxi[a] = dx[ix[a]] * ly[iy[a]];
+    deta[a] = lx[ix[a]] * dy[iy[a]];
+  }
+}
+
+void cell_node_natural(int a, double& xi, double& eta) {
+  static const double cx[9] = {-1, 1, 1, -1, 0, 1, 0, -1, 0}, cy[9] = {-1, -1, 1, 1, -1, 0, 1, 0, 0};
+  xi = cx[a];
+  eta = cy[a];
 }
 
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {

@@ -50,14 +50,15 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
     const std::vector<std::string> comps = {"xx", "yy", "xy"};
     const std::string cs = p.choice("component", comps);
     const int comp = static_cast<int>(std::find(comps.begin(), comps.end(), cs) - comps.begin());
-    static const double cxi[4] = {-1, 1, 1, -1}, ceta[4] = {-1, -1, 1, 1};
     std::vector<ShapeValues> shapes;
     for (Index c = 0; c < mesh_.num_cells(); ++c)
-      for (int a = 0; a < 4; ++a)
-        if (mesh_.cells[c][a] == n) {
+      for (int a = 0; a < mesh_.nodes_per_cell(); ++a)
+        if (mesh_.cell_node(c, a) == n) {
           shapes.emplace_back();
+          double xi, eta;
+          cell_node_natural(a, xi, eta);
           try {
-            shape_at(c, cxi[a], ceta[a], shapes.back(), true);
+            shape_at(c, xi, eta, shapes.back(), true);
           } catch (const SolverError& e) {
             p.fail("at", std::string("the shape functions cannot be differentiated at this node: ") + e.what());
           }

@@ -93,7 +93,8 @@ void EfgModel::read_discretization(Params b) {
   try {
     if (t == "rectangle") {
       d.validate({{"type", t}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}, {"divisions", nullptr},
-                  {"holes", Json::array()}});
+                  {"holes", Json::array()}, {"cells", "q4"}});
+      const int order = d.choice("cells", {"q4", "q9"}) == "q9" ? 2 : 1;
       const Vec2 size = d.vec2("size");
       if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
       const auto div = d.numbers("divisions");
@@ -106,7 +107,7 @@ void EfgModel::read_discretization(Params b) {
         hi.validate({{"min", nullptr}, {"max", nullptr}});
         holes.push_back({hi.vec2("min"), hi.vec2("max")});
       }
-      mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes);
+      mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes, order);
     } else {
       d.validate({{"type", t}, {"radius", nullptr}, {"size", nullptr}, {"divisions", nullptr}, {"grading", 1.0}});
       const auto div = d.numbers("divisions");
@@ -137,16 +138,18 @@ void EfgModel::read_discretization(Params b) {
     s.validate({{"from", nullptr}, {"to", nullptr}});
     vis_.segments.push_back({s.vec2("from"), s.vec2("to")});
   }
-  // rho_j = alpha h_j, h_j the largest width / height of the cells at node j.
+  // rho_j = alpha h_j, h_j the largest node spacing (width / height of the cells, halved for Q9 cells) at node j.
   const Index nn = mesh_.num_nodes();
   std::vector<Vec2> h(nn, Vec2::Zero());
-  for (const auto& c : mesh_.cells) {
-    Vec2 lo = mesh_.nodes[c[0]], hi = lo;
-    for (Index n : c) {
+  const int npc = mesh_.nodes_per_cell();
+  for (Index c = 0; c < mesh_.num_cells(); ++c) {
+    Vec2 lo = mesh_.nodes[mesh_.cells[c][0]], hi = lo;
+    for (Index n : mesh_.cells[c]) {
       lo = lo.cwiseMin(mesh_.nodes[n]);
       hi = hi.cwiseMax(mesh_.nodes[n]);
     }
-    for (Index n : c) h[n] = h[n].cwiseMax(hi - lo);
+    const Vec2 spacing = (hi - lo) / (mesh_.quadratic() ? 2.0 : 1.0);
+    for (int a = 0; a < npc; ++a) h[mesh_.cell_node(c, a)] = h[mesh_.cell_node(c, a)].cwiseMax(spacing);
   }
   rho_.resize(nn);
   for (Index i = 0; i < nn; ++i) {
@@ -202,8 +205,8 @@ void EfgModel::read_boundary_conditions(Params b) {
     }
   if (essential_ == "coupling") {
     for (Index c = 0; c < mesh_.num_cells(); ++c)
-      for (Index n : mesh_.cells[c])
-        if (active_[n]) coupling_cell_[c] = 1;
+      for (int a = 0; a < mesh_.nodes_per_cell(); ++a)
+        if (active_[mesh_.cell_node(c, a)]) coupling_cell_[c] = 1;
   } else {
     std::fill(active_.begin(), active_.end(), 0);
   }
@@ -227,26 +230,33 @@ void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool d
   for (Index j : cand)
     if (mls_.domain().contains(x, mesh_.nodes[j], rho_[j]) && (vis_.segments.empty() || vis_.visible(x, mesh_.nodes[j])))
       sup.push_back(j);
+  // The coupling element of the cell: Q4 on a linear mesh, Q9 on a quadratic one; its active nodes' functions.
   FeCorrection fe;
+  Index fe_node[9];
   const bool coupled = coupling_cell_[c];
   if (coupled) {
+    const int npc = mesh_.nodes_per_cell();
+    double Nf[9], fxi[9], feta[9];
+    if (mesh_.quadratic()) q9_shape(xi, eta, Nf, fxi, feta);
+    else q4_shape(xi, eta, Nf, fxi, feta);
     const Mat2 Ji = J.inverse();  // dxi/dx = J^-T applied to (dxi, deta)
-    for (int a = 0; a < 4; ++a)
-      if (active_[cell[a]]) {
-        const Vec2 g = Ji.transpose() * Vec2(dxi[a], deta[a]);
-        fe.x[fe.n] = mesh_.nodes[cell[a]];
-        fe.N[fe.n] = N[a];
-        fe.Nx[fe.n] = g.x();
-        fe.Ny[fe.n] = g.y();
-        ++fe.n;
-      }
+    for (int a = 0; a < npc; ++a) {
+      const Index n = mesh_.cell_node(c, a);
+      if (!active_[n]) continue;
+      const Vec2 g = Ji.transpose() * Vec2(fxi[a], feta[a]);
+      fe_node[fe.n] = n;
+      fe.x[fe.n] = mesh_.nodes[n];
+      fe.N[fe.n] = Nf[a];
+      fe.Nx[fe.n] = g.x();
+      fe.Ny[fe.n] = g.y();
+      ++fe.n;
+    }
   }
   mls_.compute(x, mesh_.nodes, rho_, sup, out, coupled ? &fe : nullptr, "cell " + std::to_string(c), derivatives);
-  if (coupled) {  // add the FE functions of the active corners
-    int k = 0;
-    for (int a = 0; a < 4; ++a)
-      if (active_[cell[a]]) {
-        const Index n = cell[a];
+  if (coupled) {  // add the FE functions of the active nodes
+    for (int k = 0; k < fe.n; ++k) {
+      {
+        const Index n = fe_node[k];
         auto it = std::find(out.nodes.begin(), out.nodes.end(), n);
         size_t pos;
         if (it == out.nodes.end()) {
@@ -261,8 +271,8 @@ void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool d
         out.N[pos] += fe.N[k];
         out.Nx[pos] += fe.Nx[k];
         out.Ny[pos] += fe.Ny[k];
-        ++k;
       }
+    }
   }
 }
 
@@ -364,11 +374,13 @@ void EfgModel::build_integration_points() {
   std::vector<char> done(nn, 0);
   ShapeValues sh;
   for (Index c = 0; c < nc; ++c)
-    for (int a = 0; a < 4; ++a) {
-      const Index n = mesh_.cells[c][a];
+    for (int a = 0; a < mesh_.nodes_per_cell(); ++a) {
+      const Index n = mesh_.cell_node(c, a);
       if (done[n]) continue;
       done[n] = 1;
-      shape_at(c, cxi[a], ceta[a], sh, false);
+      double xi, eta;
+      cell_node_natural(a, xi, eta);
+      shape_at(c, xi, eta, sh, false);
       for (size_t k = 0; k < sh.nodes.size(); ++k)
         if (sh.N[k] != 0.0) node_eval_[n].emplace_back(sh.nodes[k], sh.N[k]);
     }

@@ -288,3 +288,37 @@ TEST(EfgDiscretization, VisibilityAndGrids) {
   EXPECT_GT(area, 25 - M_PI / 4);
   EXPECT_LT(area, 25 - M_PI / 4 + 0.05);
 }
+
+TEST(EfgDiscretization, Q9CellsAndShapeFunctions) {
+  // Q9 grid: (2 nx + 1)(2 ny + 1) nodes, local nodes at their natural coordinates (Kronecker delta), and the Q9
+  // functions reproduce x^2 y^2 (biquadratic) with exact derivatives.
+  const QuadMesh m = rectangle_grid(Vec2(0, 0), Vec2(4, 2), 2, 1, {}, 2);
+  ASSERT_TRUE(m.quadratic());
+  EXPECT_EQ(m.num_nodes(), 5 * 3);
+  EXPECT_EQ(m.num_cells(), 2);
+  for (int a = 0; a < 9; ++a) {
+    double xi, eta, N[9], dx[9], dy[9];
+    cell_node_natural(a, xi, eta);
+    q9_shape(xi, eta, N, dx, dy);
+    for (int b = 0; b < 9; ++b) EXPECT_NEAR(N[b], a == b ? 1.0 : 0.0, 1e-14);
+    // The node's position is the bilinear map of the corners at (xi, eta).
+    double Nq[4], qx[4], qy[4];
+    q4_shape(xi, eta, Nq, qx, qy);
+    Vec2 x = Vec2::Zero();
+    for (int c = 0; c < 4; ++c) x += Nq[c] * m.nodes[m.cells[1][c]];
+    EXPECT_NEAR((x - m.nodes[m.cell_node(1, a)]).norm(), 0.0, 1e-14);
+  }
+  double xi = 0.3, eta = -0.7, N[9], dx[9], dy[9], f = 0, fx = 0, fy = 0;
+  q9_shape(xi, eta, N, dx, dy);
+  for (int a = 0; a < 9; ++a) {
+    double s, t;
+    cell_node_natural(a, s, t);
+    f += N[a] * s * s * t * t;
+    fx += dx[a] * s * s * t * t;
+    fy += dy[a] * s * s * t * t;
+  }
+  EXPECT_NEAR(f, xi * xi * eta * eta, 1e-14);
+  EXPECT_NEAR(fx, 2 * xi * eta * eta, 1e-14);
+  EXPECT_NEAR(fy, 2 * xi * xi * eta, 1e-14);
+  EXPECT_THROW(rectangle_grid(Vec2(0, 0), Vec2(1, 1), 1, 1, {}, 3), std::invalid_argument);
+}

@@ -15,17 +15,31 @@
 
 namespace lagfsi::efg {
 
-/// Quadrilateral mesh: corners counter-clockwise.
+/// Quadrilateral mesh: corners counter-clockwise. A quadratic mesh (q9 not empty) also has the mid-side and centre
+/// nodes of each cell: q9[c] = corners 0-3 (as cells[c]), mid-sides of the edges 0-1, 1-2, 2-3, 3-0, centre; its
+/// cells are then the Q9 coupling elements (thesis §5.3: the 9-term basis needs Q9 coupling elements) and its node
+/// spacing is half the cell width. The geometry of a cell is always the bilinear map of its corners (straight edges,
+/// mid-side nodes at the middle: the Q9 map is then the same).
 struct QuadMesh {
   std::vector<Vec2> nodes;
   std::vector<std::array<Index, 4>> cells;
+  std::vector<std::array<Index, 9>> q9;
   Index num_nodes() const { return static_cast<Index>(nodes.size()); }
   Index num_cells() const { return static_cast<Index>(cells.size()); }
+  bool quadratic() const { return !q9.empty(); }
+  int nodes_per_cell() const { return quadratic() ? 9 : 4; }
+  /// Node a (0 .. nodes_per_cell() - 1) of cell c.
+  Index cell_node(Index c, int a) const { return quadratic() ? q9[c][a] : cells[c][a]; }
 };
 
-/// Structured nx x ny grid of a rectangle; cells whose centre lies in one of `holes` (boxes min/max) are
-/// removed, and so are the nodes left without a cell (an L-shaped panel = a rectangle minus a box).
-QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vector<std::array<Vec2, 2>>& holes = {});
+/// Natural coordinates of the local node a of a Q4 / Q9 cell (corners, mid-sides, centre).
+void cell_node_natural(int a, double& xi, double& eta);
+
+/// Structured nx x ny grid of a rectangle (order 2: Q9 cells, (2 nx + 1) x (2 ny + 1) nodes); cells whose centre lies
+/// in one of `holes` (boxes min/max) are removed, and so are the nodes left without a cell (an L-shaped panel = a
+/// rectangle minus a box).
+QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vector<std::array<Vec2, 2>>& holes = {},
+                        int order = 1);
 
 /// Quarter of a square plate [0, b]^2 with a circular hole of radius a at the origin: two mapped blocks split on
 /// the diagonal, n_arc cells along each half of the arc and n_rad radially, radially graded by `grading`
@@ -37,6 +51,8 @@ std::vector<std::array<Index, 2>> boundary_cell_edges(const QuadMesh& m);
 
 /// Q4 shape functions and derivatives with respect to (xi, eta) in [-1, 1]^2.
 void q4_shape(double xi, double eta, double N[4], double dxi[4], double deta[4]);
+/// Q9 (biquadratic Lagrange) shape functions and derivatives, the node order of QuadMesh::q9.
+void q9_shape(double xi, double eta, double N[9], double dxi[9], double deta[9]);
 
 /// Gauss-Legendre points and weights on [-1, 1] (n = 1..12).
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w);

@@ -105,12 +105,19 @@ void FluidModel::predict(double t_new, double dt) {
   // The cloud's state (x, v, a) is only changed by finalize_step, so the retry starts from it as it is, and the
   // step's mesh is kept: it was built from that same state (the remeshing does not depend on t_new or dt), and
   // remeshing again would insert and remove particles a second time, unlike a clean step of the smaller dt.
+  // A remesh that failed (e.g. all the fluid left the domain box) is not kept: the retry remeshes again, and
+  // fails again with the same message once the driver runs out of retries.
   const bool retry = step_open_;
   if (retry) cloud_.p() = step_.p_old;
+  const bool keep_mesh = retry && step_meshed_;
   step_open_ = true;
   step_.t_new = t_new;
   step_.dt = dt;
-  if (c_.remesh && solved_once_ && !retry) remesh_.remesh_step(t_new, volume_, energy_);
+  if (c_.remesh && solved_once_ && !keep_mesh) {
+    step_meshed_ = false;
+    remesh_.remesh_step(t_new, volume_, energy_);
+  }
+  step_meshed_ = true;
   times_.remesh += seconds_since(t0);
   t0 = Clock::now();
   solved_once_ = true;

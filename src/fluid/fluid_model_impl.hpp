@@ -108,6 +108,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   Index n_initial_ = 0;             // particles at the start (summary.json)
   bool solved_once_ = false;
   bool step_open_ = false;          // predict called and the step not finalized yet (a retry if predicted again)
+  bool step_meshed_ = false;        // the open step's remesh completed (a retry keeps that mesh)
   std::unique_ptr<PvdSeries> series_, wall_series_;
 };
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "strip_case.hpp"
 #include "case_runner.hpp"
 #include "process.hpp"
 
@@ -16,24 +17,9 @@ namespace {
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-/// A small dynamic solid (a cantilever strip under gravity): `steps` steps, VTK output or not.
+/// The shared strip (tests/support/strip_case.hpp): `steps` steps, linear elements, VTK output or not.
 json strip_case(int steps, bool vtk) {
-  json j = json::parse(R"({
-    "name": "output_strip",
-    "analysis": {"type": "dynamic", "dt": 1e-3},
-    "gravity": [0, -9.81],
-    "bodies": [{
-      "name": "strip", "type": "solid",
-      "material": {"type": "svk", "young": 1e6, "poisson": 0.3, "density": 1000},
-      "geometry": {"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.1]},
-      "mesh": {"type": "structured", "size": 0.05, "order": 1},
-      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, 0.1]}}]
-    }],
-    "probes": [{"name": "tip", "type": "displacement", "body": "strip", "at": [1.0, 0.05], "component": "y"}]
-  })");
-  j["analysis"]["end_time"] = steps * 1e-3;
-  j["output"] = {{"every", 1}, {"vtk", vtk}};
-  return j;
+  return lagfsi::testing::strip_case("output_strip", steps, 1, {{"every", 1}, {"vtk", vtk}});
 }
 
 fs::path write_case(const fs::path& dir, const json& j) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "strip_case.hpp"
 #include "case_runner.hpp"
 #include "process.hpp"
 
@@ -16,24 +17,9 @@ namespace {
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-/// A small dynamic strip under gravity: `steps` steps of 1 ms.
+/// The shared strip (tests/support/strip_case.hpp): `steps` steps of 1 ms, quadratic elements, VTK output.
 json strip_case(long steps, int output_every) {
-  json j = json::parse(R"({
-    "name": "progress_strip",
-    "analysis": {"type": "dynamic", "dt": 1e-3},
-    "gravity": [0, -9.81],
-    "bodies": [{
-      "name": "strip", "type": "solid",
-      "material": {"type": "svk", "young": 1e6, "poisson": 0.3, "density": 1000},
-      "geometry": {"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.1]},
-      "mesh": {"type": "structured", "size": 0.05, "order": 2},
-      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, 0.1]}}]
-    }],
-    "probes": [{"name": "tip", "type": "displacement", "body": "strip", "at": [1.0, 0.05], "component": "y"}]
-  })");
-  j["analysis"]["end_time"] = steps * 1e-3;
-  j["output"] = {{"every", output_every}, {"vtk", true}};
-  return j;
+  return lagfsi::testing::strip_case("progress_strip", steps, 2, {{"every", output_every}, {"vtk", true}});
 }
 
 struct Outcome {

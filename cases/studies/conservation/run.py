@@ -1,0 +1,151 @@
+"""Study (issue #16): what each PFEM domain detection keeps of the fluid's area and energy, and what it costs.
+
+Domain detections: "alpha" (the classic alpha shape, with its default "surface" volume correction), "advected" and
+"level_set" (the previous mesh as the predicate, no volume correction), and "advected" with 30 degrees of hysteresis
+on the Delaunay flips ("keep_edges_angle": a tuned value, see the README). Flows, each at the case's own resolution,
+monolithic scheme:
+  - sloshing_free/case_remesh.json (the first mode of a 1 m tank, h = 0.03, 10 periods): largest area drift, the
+    wave's energy (kinetic + potential above the flat surface of the same area, plus viscous dissipation) at the end
+    against the start, and the largest kinetic energy against the wave's energy (it is 1 for an exact solution);
+  - sloshing_forced/case.json (small-amplitude shaking, h = 0.02, 6 s): the RMS error of the wall elevations
+    against linear modal theory over 0-3 s and over the run, relative to the linear peak (as its plot.py), and the
+    largest area drift;
+  - dam_break_tank/case.json (L/20, 1 s): the energy above the rest state at 0.25 s (before the wall impact: only
+    viscosity, 0.02 %, may take any), the largest area drift, the front RMS against Koshizuka & Oka (pysph).
+Wall times are the solver's (summary.json), one thread.
+Usage: /usr/bin/python3 run.py [--quick] [--exe PATH] [--out DIR] [--publish]"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import common  # noqa: E402
+from common import plt, read_csv  # noqa: E402
+
+S = common.Study("conservation", __doc__.splitlines()[0])
+DETECTIONS = [("alpha", {}), ("advected", {}), ("level_set", {}),
+              ("advected_keep30", {"bodies.0.domain_detection": "advected", "bodies.0.keep_edges_angle": 30})]
+T1 = 1.18182  # the free sloshing's linear period (cases/sloshing_free)
+if S.quick:   # two detections, short runs: the smoke test checks that the tables are written
+    DETECTIONS = DETECTIONS[:2]
+    SLOSH_END, FORCED_END, DAM_END = T1, 0.3, 0.3
+else:
+    SLOSH_END, FORCED_END, DAM_END = 10 * T1, 6.0, 1.0
+RHO, G = 1000.0, 9.81
+
+
+def settings(name, extra):
+    s = {"bodies.0.domain_detection": name} if not extra else dict(extra)
+    return s
+
+
+def energy_above_rest(p, width):
+    """KE + PE - PE of the flat layer of the same area in a tank of this width, per sample."""
+    return [ke + pe - RHO * G * a * a / (2 * width)
+            for ke, pe, a in zip(p["kinetic_energy"], p["potential_energy"], p["fluid_area"])]
+
+
+def at(ts, ys, t):
+    i = min(range(len(ts)), key=lambda k: abs(ts[k] - t))
+    return ys[i]
+
+
+
+rows, series = [], {}
+ref_forced = read_csv(os.path.join(S.cases, "sloshing_forced", "reference", "linear_modal_solution.csv"))
+for name, extra in DETECTIONS:
+    # 1. Free sloshing, remeshed twin.
+    r = S.run("sloshing_free/case_remesh.json", "sloshing_free_" + name,
+              dict(settings(name, extra), **{"analysis.end_time": SLOSH_END}), timeout=1800)
+    row = {"flow": "sloshing_free", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
+    if r.has_probes():
+        p = r.probes()
+        wave = energy_above_rest(p, 1.0)
+        diss = p.get("viscous_dissipation", [0.0] * len(wave))
+        row["area_drift_max_pct"] = common.area_drift(r)[1]
+        row["energy_end_ratio"] = (wave[-1] + diss[-1]) / wave[0]
+        row["ke_max_over_wave"] = max(p["kinetic_energy"]) / wave[0]
+        series[("sloshing_free", name)] = (p["time"], [(w + d) / wave[0] for w, d in zip(wave, diss)])
+    rows.append(row)
+    # 2. Forced sloshing against linear theory.
+    r = S.run("sloshing_forced/case.json", "sloshing_forced_" + name,
+              dict(settings(name, extra), **{"analysis.end_time": FORCED_END}), timeout=1800)
+    row = {"flow": "sloshing_forced", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
+    if r.has_probes():
+        p = r.probes()
+        for col in ("eta_left", "eta_right"):
+            for tag, t_end in (("3s", min(3.0, FORCED_END)), ("end", FORCED_END)):
+                e2 = [(v - 0.5 - common.interp_nan(t, ref_forced["time"], ref_forced[col])) ** 2
+                      for t, v in zip(p["time"], p[col]) if t <= t_end and math.isfinite(v)]
+                peak = max(abs(v) for t, v in zip(ref_forced["time"], ref_forced[col]) if t <= t_end)
+                row["%s_rms_%s" % (col, tag)] = math.sqrt(sum(e2) / len(e2)) / peak if e2 else float("nan")
+        row["area_drift_max_pct"] = common.area_drift(r)[1]
+    rows.append(row)
+    # 3. Dam break in a tank: energy before the impact.
+    r = S.run("dam_break_tank/case.json", "dam_break_tank_" + name,
+              dict(settings(name, extra), **{"analysis.end_time": DAM_END}), timeout=1800)
+    row = {"flow": "dam_break_tank", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
+    if r.has_probes():
+        p = r.probes()
+        e = energy_above_rest(p, 4 * 0.146)
+        row["energy_0.25s_ratio"] = at(p["time"], e, 0.25) / e[0]
+        row["area_drift_max_pct"] = common.area_drift(r)[1]
+        row.update(common.dam_break_tank_errors(r))
+        series[("dam_break_tank", name)] = (p["time"], [x / e[0] for x in e])
+    rows.append(row)
+
+cols = ["flow", "detection", "exit_code", "wall_time_s", "area_drift_max_pct", "energy_end_ratio",
+        "ke_max_over_wave", "eta_left_rms_3s", "eta_right_rms_3s", "eta_left_rms_end", "eta_right_rms_end",
+        "energy_0.25s_ratio", "front_rms_pysph"]
+S.table("conservation_runs.csv", rows, cols)
+
+fig, axes = plt.subplots(1, 2, figsize=(13, 4.2))
+for k, (flow, ax, title) in enumerate([("sloshing_free", axes[0], "free sloshing: wave energy / initial"),
+                                       ("dam_break_tank", axes[1], "dam break: energy above rest / initial")]):
+    for j, (name, _) in enumerate(DETECTIONS):
+        if (flow, name) in series:
+            t, y = series[(flow, name)]
+            ax.plot(t, y, color="C%d" % j, label=name)
+    ax.set_title(title)
+    ax.set_xlabel("t [s]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+axes[0].set_ylim(0, 2.0)
+fig.suptitle("PFEM domain detections: energy kept (monolithic scheme, one thread)")
+S.figure(fig, "conservation.png")
+
+
+def f(v, fmt):
+    return fmt % v if isinstance(v, float) and math.isfinite(v) else "–"
+
+
+def md_table():
+    out = ["| detection | free sloshing, 10 T: area drift / energy kept / KE max ÷ wave | wall s | "
+           "forced sloshing: RMS 0–3 s (left / right) / 0–6 s | area drift | wall s | "
+           "dam break: energy at 0.25 s / area drift (1 s) / front RMS | wall s |", "|---" * 7 + "|"]
+    by = {(r["flow"], r["detection"]): r for r in rows}
+    for name, _ in DETECTIONS:
+        a, b, c = by[("sloshing_free", name)], by[("sloshing_forced", name)], by[("dam_break_tank", name)]
+        out.append("| %s | %s %% / %s / %s | %s | %s / %s / %s / %s | %s %% | %s | %s / %s %% / %s | %s |" % (
+            name, f(a.get("area_drift_max_pct"), "%+.3f"), f(a.get("energy_end_ratio"), "%.3f"),
+            f(a.get("ke_max_over_wave"), "%.2f"), f(a["wall_time_s"], "%.0f"),
+            f(b.get("eta_left_rms_3s"), "%.3f"), f(b.get("eta_right_rms_3s"), "%.3f"),
+            f(b.get("eta_left_rms_end"), "%.3f"), f(b.get("eta_right_rms_end"), "%.3f"),
+            f(b.get("area_drift_max_pct"), "%+.3f"), f(b["wall_time_s"], "%.0f"),
+            f(c.get("energy_0.25s_ratio"), "%.3f"), f(c.get("area_drift_max_pct"), "%+.1f"),
+            f(c.get("front_rms_pysph"), "%.3f"), f(c["wall_time_s"], "%.0f")))
+    return "\n".join(out)
+
+
+if S.args.publish and not S.quick:  # the README table, generated
+    readme = os.path.join(os.path.dirname(os.path.abspath(__file__)), "README.md")
+    text = open(readme).read()
+    b, e = "<!-- study:begin (generated by run.py --publish; do not edit) -->", "<!-- study:end -->"
+    i, j = text.find(b), text.find(e)
+    if i >= 0 and j > i:
+        text = text[:i + len(b)] + "\n" + md_table() + "\n" + text[j:]
+        with open(readme, "w") as fh:
+            fh.write(text)
+        print("wrote the table of", readme)
+
+S.finish([("conservation_runs.csv", "area_drift_max_pct")])

@@ -1,6 +1,7 @@
 // Whole-case input checks (input_checks.hpp).
 #include "input_checks.hpp"
 
+#include "checkpoint.hpp"
 #include "output_lock.hpp"
 #include "overlap.hpp"
 
@@ -116,7 +117,9 @@ double diameter(const PlaneRegion& r) {
 void check_output_names(const Params& root) {
   // Owner of each output name (lower case): the run's own files, then each body's.
   std::map<std::string, std::string> owner;
-  const std::vector<std::string> run_files{"log.csv", "probes.csv", "summary.json", "resolved_case.json", kLockFileName};
+  const std::vector<std::string> run_files{"log.csv",        "probes.csv",       "summary.json",
+                                           "resolved_case.json", kCheckpointFile, kCheckpointPrevFile,
+                                           kLockFileName};
   for (const auto& f : run_files) owner[lower(f)] = "the run itself";
   const Params bodies = root.at("bodies");
   for (size_t i = 0; i < bodies.size(); ++i) {

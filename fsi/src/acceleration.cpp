@@ -36,6 +36,7 @@ class Aitken final : public Acceleration {
     r_prev_ = r;
     return x + w_ * r;
   }
+  void serialize(StateArchive& ar) override { ar.io(w_, r_prev_); }
 
  private:
   double w0_, w_ = 0;
@@ -99,6 +100,13 @@ class IqnIls final : public Acceleration {
   IqnIls(double w0, int reuse, double filter) : w0_(w0), reuse_(reuse), filter_(filter) {}
   std::string type() const override { return "iqn_ils"; }
   int model_columns() const override { return columns_; }
+  void serialize(StateArchive& ar) override {
+    ar.io(r_, xt_, columns_);
+    std::uint64_t n = old_.size();
+    ar.io(n);
+    if (ar.loading()) old_.resize(n);
+    for (Step& s : old_) ar.io(s.dr, s.dx);
+  }
 
   void begin_step() override {
     r_.clear();
@@ -170,6 +178,7 @@ class IqnImvj final : public Acceleration {
   IqnImvj(double w0, double filter) : w0_(w0), filter_(filter) {}
   std::string type() const override { return "iqn_imvj"; }
   int model_columns() const override { return columns_; }
+  void serialize(StateArchive& ar) override { ar.io(r_, xt_, J_, columns_); }
 
   void begin_step() override {
     r_.clear();

@@ -47,6 +47,15 @@ class DirichletNeumann final : public PhysicsModel {
   int coupling_iterations() const override { return last_iterations_; }
   double coupling_residual() const override { return last_residual_; }
   int coupling_restarts() const override { return restarts_; }
+  bool can_checkpoint() const override { return true; }
+  /// The loop's memory between steps: the last motion and step (the first guess), the forces of the last
+  /// solve (the "forces" predictor, the probes), the accelerator's columns or Jacobian, the counters.
+  void serialize(StateArchive& ar) override {
+    ar.section("coupling " + name_);
+    ar.io(t_new_, dt_, restarts_, last_motion_, dt_prev_, last_iterations_, last_residual_, node_forces_);
+    ar.section("acceleration " + acceleration_->type());
+    acceleration_->serialize(ar);
+  }
 
   Vec2 total_interface_force() const {
     Vec2 f = Vec2::Zero();

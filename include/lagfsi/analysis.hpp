@@ -5,7 +5,8 @@
 /// log.csv and summary.json. Output files are flushed after every step, so a run that stops (error,
 /// divergence, kill) leaves valid files behind; every write is checked (a full disk fails the run with exit
 /// code 5, never "completed"). SIGINT and SIGTERM end the current step, write the output and set
-/// summary.json's status to "interrupted".
+/// summary.json's status to "interrupted". With "output": {"checkpoint": ...} the run writes checkpoints, from
+/// which `--restart OUTDIR` continues it bit for bit (src/app/checkpoint.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ struct RunOptions {
   int threads = 0;                        ///< 0: OpenMP default
   bool quiet = false;
   std::string progress = "auto";         ///< auto | bar | lines | none (none when quiet)
+  bool restart = false;                   ///< continue from the last checkpoint in out_dir (--restart OUTDIR)
+  long stop_after_step = 0;               ///< > 0: end after this step as if interrupted, status "stopped", exit 0
 };
 
 /// Exit codes of `lagfsi`. An interrupted run (SIGINT, SIGTERM) exits with 128 + the signal's number.

@@ -57,6 +57,9 @@ const Json& case_defaults();
 /// "pattern": "crossed"|"right"|"left"} ("structured" for rectangles only).
 TriMesh build_mesh(Params geometry, Params mesh);
 
+/// The outline of a "circle_cut" geometry (counter-clockwise like its polygon), the arc in pieces of about h.
+std::vector<Vec2> circle_cut_outline(Params geometry, double h);
+
 /// Node selection: {"type": "point", "at": [x, y]} (the nearest node, which must lie within
 /// "tolerance" — default 1e-6 of the body size), {"type": "segment", "from": [..], "to": [..]} (nodes
 /// within tolerance of the segment), {"type": "box", "min": [..], "max": [..]}, {"type": "circle",

@@ -9,9 +9,12 @@
 ///   solve_iteration()           one Newton correction: assemble, factorize, solve, update; returns the norms
 ///   finalize_step()             the step converged: update velocities/accelerations, commit the state
 ///   write_output(t)             ParaView output of the committed state
+///   serialize(archive)          checkpoints: writes the state after finalize_step, or (restart) reads it back
+///                               after initialize(), so that the next step is the one the run would have taken
 ///
 /// Probes are created by the model that owns the quantity (make_probe) and sampled after finalize_step.
 #include <lagfsi/params.hpp>
+#include <lagfsi/state_archive.hpp>
 
 #include <memory>
 #include <string>
@@ -48,6 +51,8 @@ class Probe {
   virtual ~Probe() = default;
   virtual std::vector<std::string> columns() const = 0;
   virtual std::vector<double> sample() const = 0;
+  /// A probe that keeps something from step to step (a peak, a chosen particle) saves it here (checkpoints).
+  virtual void serialize(StateArchive&) {}
 };
 
 class PhysicsModel {
@@ -82,6 +87,14 @@ class PhysicsModel {
   virtual double coupling_residual() const { return 0.0; }
   /// A coupling: steps whose loop was restarted so far (after a failed loop).
   virtual int coupling_restarts() const { return 0; }
+
+  /// Checkpoints (`output.checkpoint`, `lagfsi run --restart`): whether serialize() is implemented.
+  virtual bool can_checkpoint() const { return false; }
+  /// Everything the time loop needs to continue bit for bit from the end of a step (after finalize_step):
+  /// the state, the integrator's and accumulators' history, counters, the output series (state_archive.hpp).
+  /// A restart builds the case, calls initialize() and then this with a reading archive, which overwrites
+  /// what initialize() set. The default throws std::logic_error (can_checkpoint() is false).
+  virtual void serialize(StateArchive& ar);
 
  protected:
   PhaseTimes times_;

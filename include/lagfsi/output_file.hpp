@@ -5,6 +5,7 @@
 /// that was cut off.
 #include <lagfsi/error.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -23,6 +24,10 @@ class AppendFile {
   AppendFile& operator=(const AppendFile&) = delete;
   ~AppendFile();
   void open(const std::filesystem::path& path);
+  /// Opens an existing file cut back to its first `size` bytes, to write on after them (a restart).
+  void resume(const std::filesystem::path& path, std::uint64_t size);
+  /// Bytes written into the file so far (its size).
+  std::uint64_t size() const { return size_; }
   void write(std::string_view text);
   bool is_open() const { return fd_ >= 0; }
   const std::filesystem::path& path() const { return path_; }
@@ -30,6 +35,7 @@ class AppendFile {
  private:
   std::filesystem::path path_;
   int fd_ = -1;
+  std::uint64_t size_ = 0;
 };
 
 /// The reason for errno `e` ("No space left on device").

@@ -5,9 +5,11 @@
 /// encoding). The .pvd is rewritten (to a temporary file, then renamed) after each
 /// step so that it is a complete, valid file whenever the run stops.
 #include <lagfsi/mesh.hpp>
+#include <lagfsi/state_archive.hpp>
 #include <lagfsi/types.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,11 +62,19 @@ class PvdSeries {
   void write(double t, const VtpData& data);
   int steps_written() const { return static_cast<int>(entries_.size()); }
   std::filesystem::path pvd_path() const;
+  /// Checkpoints: the entries written so far; reading them back rewrites the .pvd (what a run stopped after
+  /// the checkpoint added is dropped) and the next write continues the numbering.
+  void serialize(StateArchive& ar);
 
  private:
   std::filesystem::path dir_;
   std::string name_;
   std::vector<std::pair<double, std::string>> entries_;
 };
+
+/// Checkpoints of a series a model creates at its first output (null before): whether it exists, then its
+/// entries; reading creates it in `dir` with `name` when the checkpoint had one.
+void serialize_series(StateArchive& ar, std::unique_ptr<PvdSeries>& series, const std::filesystem::path& dir,
+                      const std::string& name);
 
 }  // namespace lagfsi

@@ -1,3 +1,5 @@
+#include "analysis_settings.hpp"
+#include "checkpoint.hpp"
 #include "input_checks.hpp"
 #include "interrupt.hpp"
 #include "output_lock.hpp"
@@ -82,55 +84,9 @@ struct Case {
   std::vector<std::unique_ptr<Probe>> probes;
   int output_every = 1;
   bool vtk = true;
+  CheckpointSettings checkpoint;
   std::vector<std::string> warnings;   ///< chosen on purpose (a conditionally stable integrator): stderr and summary.json
 };
-
-AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
-  a.validate({{"type", nullptr},
-              {"dt", 0.0},
-              {"end_time", 0.0},
-              {"load_steps", 10},
-              {"max_step_halvings", 4},
-              {"integrator", Json{{"type", "newmark"}}},
-              {"newton", Json::object()},
-              {"linear_solver", Json{{"type", "cholmod"}}}});
-  AnalysisSettings s;
-  s.type = a.choice("type", {"static", "dynamic"});
-  if (s.type == "static") {
-    const int n = a.integer("load_steps", 1);
-    s.dt = 1.0 / n;
-    s.end_time = 1.0;
-  } else {
-    s.dt = a.positive("dt");
-    s.end_time = a.positive("end_time");
-    if (s.end_time / s.dt > 1e8) a.fail("dt", "more than 1e8 steps requested");
-  }
-  s.max_step_halvings = a.integer("max_step_halvings", 0);
-  Params it = a.at("integrator");
-  if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
-  const std::string itype = it.choice("type", time_integrator_types());
-  if (itype == "newmark") {
-    it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}, {"allow_conditionally_stable", false}});
-  } else if (itype == "generalized_alpha") {
-    it.validate({{"type", "generalized_alpha"}, {"rho_inf", 0.8}});
-  } else {
-    it.validate({{"type", "central_difference"}});
-    it.fail("type", "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
-                    "(use newmark or generalized_alpha)");
-  }
-  warnings = check_integrator_stability(it);
-  (void)make_time_integrator(it);  // the models build theirs with the same factory: its errors show here first
-  s.integrator = it.json();
-  Params nw = a.at("newton");
-  nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});
-  s.newton.max_iterations = nw.integer("max_iterations", 1);
-  s.newton.residual_tolerance = nw.positive("residual_tolerance");
-  s.newton.position_tolerance = nw.positive("position_tolerance");
-  Params ls = a.at("linear_solver");
-  ls.validate({{"type", "cholmod"}});
-  s.linear_solver = ls.choice("type", linear_solver_types());
-  return s;
-}
 
 Case build_case(const RunOptions& opt, bool for_check) {
   Case c;
@@ -145,9 +101,10 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings);
   c.ctx.gravity = c.root.vec2("gravity");
   Params out = c.root.at("output");
-  out.validate({{"every", 1}, {"vtk", true}});
+  out.validate({{"every", 1}, {"vtk", true}, {"checkpoint", Json::object()}});
   c.output_every = out.integer("every", 1);
   c.vtk = out.boolean("vtk");
+  c.checkpoint = read_checkpoint_settings(out.at("checkpoint"));
   (void)for_check;
 
   Params bodies = c.root.at("bodies");
@@ -193,6 +150,12 @@ Case build_case(const RunOptions& opt, bool for_check) {
   }
   for (auto& m : c.models)
     if (std::find(coupled.begin(), coupled.end(), m.get()) == coupled.end()) c.steppers.push_back(m.get());
+  if (c.checkpoint.active() || opt.restart) {
+    std::vector<PhysicsModel*> all;
+    for (const auto* list : {&c.models, &c.couplings})
+      for (const auto& m : *list) all.push_back(m.get());
+    check_checkpointable(all, out, opt.restart, opt.case_file);
+  }
   for (auto& m : c.couplings) c.steppers.push_back(m.get());
 
   Params probes = c.root.at("probes");
@@ -229,19 +192,6 @@ Case build_case(const RunOptions& opt, bool for_check) {
 /// would be replaced).
 std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
-struct Totals {
-  PhaseTimes phases;
-  std::vector<PhaseTimes> body_phases;  // per model, in c.models' order
-  long iterations = 0;
-  int retries = 0;
-  int max_iterations = 0;
-  int steps = 0;
-  // Couplings: steps that iterated, their iterations, the largest final interface residual.
-  int coupled_steps = 0;
-  long coupling_iterations = 0;
-  int coupling_max = 0;
-  double coupling_residual_max = 0;
-};
 
 }  // namespace
 
@@ -278,15 +228,23 @@ int run_case(const RunOptions& opt) {
   const auto t_start = Clock::now();
 #ifdef LAGFSI_HAVE_OPENMP
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const int threads = omp_get_max_threads();
+#else
+  const int threads = 1;
 #endif
+  // From here on Ctrl-C ends the run at the next step (a second one stops at once); while the case is built
+  // (meshes), as soon as it is.
+  const InterruptGuard interrupt_guard;
   const std::unique_ptr<Case> cp = build_case_or_report(opt, false);
   if (!cp) return kInputError;
+  if (const int sig = InterruptGuard::received()) {
+    std::cerr << "lagfsi: interrupted by " << signal_name(sig) << " while the case was being built; nothing written\n";
+    return 128 + sig;
+  }
   Case& c = *cp;
-  // From here on Ctrl-C ends the current step and writes the output (a second one stops at once).
-  const InterruptGuard interrupt_guard;
   const fs::path out = c.ctx.out_dir;
   AppendFile probes_csv, log_csv;
-  Totals tot;
+  RunTotals tot;
   std::string status = "running", message;
   int code = kOk;
   double t = 0.0, last_output_t = -1.0;
@@ -295,6 +253,16 @@ int run_case(const RunOptions& opt) {
   ProgressMode mode = ProgressMode::none;
   parse_progress_mode(opt.progress, opt.quiet, mode);
   Progress progress(mode, c.name, !opt.quiet);
+  // Checkpoints: every model (bodies, then couplings) and probe, where the run is.
+  std::vector<PhysicsModel*> all_models;
+  for (const auto* list : {&c.models, &c.couplings})
+    for (const auto& m : *list) all_models.push_back(m.get());
+  std::vector<Probe*> all_probes;
+  for (const auto& p : c.probes) all_probes.push_back(p.get());
+  RunPosition pos;
+  pos.case_hash = case_hash(c.root.json());
+  long restarted_step = -1, checkpoint_step = -1;
+  double checkpoint_wall = 0;
 
   auto write_summary = [&]() {
     Json s;
@@ -309,7 +277,9 @@ int run_case(const RunOptions& opt) {
     s["steps_planned"] = nsteps;
     s["step_retries"] = tot.retries;
     s["time"] = t;
-    s["wall_time"] = since(t_start);
+    s["wall_time"] = tot.wall_before + since(t_start);
+    if (restarted_step >= 0) s["restarted_from_step"] = restarted_step;
+    if (checkpoint_step >= 0) s["checkpoint"] = {{"file", kCheckpointFile}, {"step", checkpoint_step}};
     s["newton_iterations"] = {{"total", tot.iterations},
                               {"mean", tot.steps ? double(tot.iterations) / tot.steps : 0.0},
                               {"max", tot.max_iterations}};
@@ -337,11 +307,7 @@ int run_case(const RunOptions& opt) {
       bodies.push_back(std::move(b));
     }
     s["bodies"] = bodies;
-#ifdef LAGFSI_HAVE_OPENMP
-    s["threads"] = omp_get_max_threads();
-#else
-    s["threads"] = 1;
-#endif
+    s["threads"] = threads;
     write_file_atomic(out / "summary.json", json_text(s));
   };
 
@@ -352,6 +318,11 @@ int run_case(const RunOptions& opt) {
     check_output_folder(opt.case_file, out);
   } catch (const InputError& e) {
     std::cerr << "lagfsi: error: " << e.what() << "\n";
+    return kInputError;
+  }
+  if (opt.restart && !fs::is_directory(out)) {
+    std::cerr << "lagfsi: error: " << opt.case_file.string() << ": --restart: " << out.string()
+              << " is not a folder of an earlier run\n";
     return kInputError;
   }
   try {
@@ -368,21 +339,24 @@ int run_case(const RunOptions& opt) {
               << (why.rfind("in use", 0) == 0 ? why : "not usable: " + why) << "\n";
     return kInputError;
   }
+  // A restart: the checkpoint must be of this case and the CSV files at least as long as it says; otherwise
+  // one line, and the earlier run's files stay as they are.
+  std::unique_ptr<StateArchive> restart;
+  if (opt.restart) {
+    try {
+      restart = std::make_unique<StateArchive>(open_restart(out, pos, tot, opt.case_file));
+    } catch (const InputError& e) {
+      std::cerr << "lagfsi: error: " << e.what() << "\n";
+      return kInputError;
+    }
+    if (pos.threads != threads && !opt.quiet)
+      std::cerr << "lagfsi: warning: the checkpoint was written with " << pos.threads << " threads, this run has "
+                << threads << ": the results may differ from an uninterrupted run in the last digits\n";
+  }
   for (const auto& w : c.warnings)
     if (!opt.quiet) std::cerr << "lagfsi: warning: " << w << "\n";
   long step = 0;
   try {
-    write_file_atomic(out / "resolved_case.json", json_text(c.root.json()));
-    probes_csv.open(out / "probes.csv");
-    log_csv.open(out / "log.csv");
-    {
-      std::string header = "time";
-      for (const auto& p : c.probes)
-        for (const auto& col : p->columns()) header += "," + col;
-      probes_csv.write(header + "\n");
-    }
-    log_csv.write("step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
-                  "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n");
     auto sample = [&]() {
       std::ostringstream row;
       row << std::setprecision(12) << t;
@@ -396,19 +370,57 @@ int run_case(const RunOptions& opt) {
       last_output_t = t;
       for (auto& m : c.models) m->write_output(t);
     };
+    auto checkpoint = [&]() {
+      pos = RunPosition{pos.case_hash, step, t, last_output_t, probes_csv.size(), log_csv.size(), threads};
+      RunTotals saved = tot;
+      saved.wall_before += since(t_start);
+      save_checkpoint(out, c.checkpoint.keep, pos, saved, all_models, all_probes, opt.case_file);
+      checkpoint_step = step;
+      checkpoint_wall = since(t_start);
+    };
 
     for (auto& m : c.models) m->initialize();
     for (auto& m : c.couplings) m->initialize();
-    output();
-    sample();
+    if (restart) {
+      // The state of the checkpoint over the initial one; the CSV files cut back to its step.
+      try {
+        serialize_run_models(*restart, all_models, all_probes);
+      } catch (const CheckpointError& e) {
+        throw InputError(opt.case_file.string(), "", std::string("--restart: the checkpoint does not fit the case (") +
+                                                         e.what() + ")");
+      }
+      restart.reset();
+      probes_csv.resume(out / "probes.csv", pos.probes_bytes);
+      log_csv.resume(out / "log.csv", pos.log_bytes);
+      step = restarted_step = checkpoint_step = pos.step;
+      t = pos.t;
+      last_output_t = pos.last_output_t;
+    } else {
+      // A new run: the checkpoints of an earlier one in the folder are not its own.
+      for (const char* f : {kCheckpointFile, kCheckpointPrevFile}) fs::remove(out / f);
+      write_file_atomic(out / "resolved_case.json", json_text(c.root.json()));
+      probes_csv.open(out / "probes.csv");
+      log_csv.open(out / "log.csv");
+      std::string header = "time";
+      for (const auto& p : c.probes)
+        for (const auto& col : p->columns()) header += "," + col;
+      probes_csv.write(header + "\n");
+      log_csv.write("step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
+                    "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n");
+      output();
+      sample();
+    }
     write_summary();
 
     const NewtonSettings& nw = an.newton;
+    auto stop_requested = [&]() {
+      return InterruptGuard::received() || (opt.stop_after_step > 0 && step >= opt.stop_after_step);
+    };
     // Step loop. A step whose Newton iterations fail (divergence, an element inverted, a singular
     // matrix) is retried from the same state with half the time step, up to max_step_halvings times;
     // the next step goes back to the nominal dt. A remainder shorter than 1e-6 dt at the end is dropped.
     // A signal (SIGINT, SIGTERM) is looked at between steps: the step under way ends first.
-    while (an.end_time - t > 1e-6 * an.dt && !InterruptGuard::received()) {
+    while (an.end_time - t > 1e-6 * an.dt && !stop_requested()) {
       ++step;
       const auto t_step = Clock::now();
       double dt = std::min(an.dt, an.end_time - t);
@@ -454,8 +466,7 @@ int run_case(const RunOptions& opt) {
       tot.iterations += iters_step;
       tot.max_iterations = std::max(tot.max_iterations, iters_step);
       sample();
-      // The last step's state is written too when a signal ends the run here.
-      if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt || InterruptGuard::received()) output();
+      if (step % c.output_every == 0 || an.end_time - t <= 1e-6 * an.dt) output();
       PhaseTimes ph;
       Index nn = 0, ne = 0;
       long particles = 0;
@@ -491,7 +502,17 @@ int run_case(const RunOptions& opt) {
       st.nodes = nn;
       st.wall = since(t_start);
       progress.step(st);
+      const CheckpointSettings& ck = c.checkpoint;
+      if ((ck.every_steps > 0 && step % ck.every_steps == 0) ||
+          (ck.every_minutes > 0 && since(t_start) - checkpoint_wall >= 60 * ck.every_minutes))
+        if (an.end_time - t > 1e-6 * an.dt) checkpoint();
       if (step % 50 == 0) write_summary();
+    }
+    if (an.end_time - t > 1e-6 * an.dt) {
+      // Ended early (a signal, --stop-after-step): a checkpoint of this step, then its state into the series
+      // (after the checkpoint, so that a restart continues the series as if the run had not stopped).
+      if (c.checkpoint.active() && checkpoint_step != step) checkpoint();
+      output();
     }
   } catch (const OutputError& e) {
     status = "failed";
@@ -526,13 +547,17 @@ int run_case(const RunOptions& opt) {
     }
   }
   const int sig = InterruptGuard::received();
-  if (code == kOk && sig != 0 && an.end_time - t > 1e-6 * an.dt) {
+  const bool early = an.end_time - t > 1e-6 * an.dt;
+  if (code == kOk && sig != 0 && early) {
     status = "interrupted";
     message = std::string("interrupted by ") + signal_name(sig) + " after step " + std::to_string(step) +
               " at t = " + std::to_string(t);
     code = 128 + sig;
+  } else if (code == kOk && early) {
+    status = "stopped";
+    message = "stopped after step " + std::to_string(step) + " at t = " + std::to_string(t) + " (--stop-after-step)";
   }
-  if (code == kOk) status = "completed";
+  if (code == kOk && !early) status = "completed";
   try {
     write_summary();
   } catch (const std::exception& e) {
@@ -545,15 +570,16 @@ int run_case(const RunOptions& opt) {
   if (code == kOk || code > 128) {
     TimeTable table;
     table.phases = tot.phases;
-    table.wall = since(t_start);
+    table.wall = tot.wall_before + since(t_start);
     table.steps = tot.steps;
     table.retries = tot.retries;
     table.iterations = tot.iterations;
     table.fsi_passes = tot.coupling_iterations;
     progress.table(table);
   }
-  if (code > 128) {
-    std::cerr << "lagfsi: " << message << "; output written to " << out.string() << "\n";
+  const std::string resume = checkpoint_step >= 0 && early ? "; continue it with --restart " + out.string() : "";
+  if (code > 128 || (code == kOk && early)) {
+    if (!opt.quiet || code > 128) std::cerr << "lagfsi: " << message << "; output written to " << out.string() << resume << "\n";
   } else if (code == kOk) {
     if (!opt.quiet)
       std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,

@@ -18,7 +18,7 @@ namespace {
 
 const char* kUsageText =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
-    "                            [--progress auto|bar|lines|none]\n"
+    "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n"
     "       lagfsi check CASE.json [--set key.path=value ...]\n"
     "       lagfsi --version | --help | COMMAND --help\n";
 
@@ -35,7 +35,7 @@ const char* kHelp =
 
 const char* kRunHelp =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
-    "                            [--progress auto|bar|lines|none]\n\n"
+    "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n\n"
     "Runs a case and writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu, probes.csv, log.csv,\n"
     "summary.json}. OUTDIR (default out/<case name>) is locked while the run writes into it and must not be\n"
     "the case file's own folder.\n\n"
@@ -47,9 +47,19 @@ const char* kRunHelp =
     "  --progress MODE         auto (default: a status line redrawn in place on a terminal, otherwise a\n"
     "                          line every 5 s and at each tenth of the run), bar, lines or none; a table of\n"
     "                          where the time went at the end\n"
-    "  -q, --quiet             no progress and no warnings on stderr (errors only)\n\n"
-    "Ctrl-C (SIGINT) or SIGTERM ends the current step, writes the output and exits with 130 (143);\n"
-    "a second Ctrl-C stops at once.\n"
+    "  -q, --quiet             no progress and no warnings on stderr (errors only)\n"
+    "  --restart OUTDIR        continue the run in OUTDIR from its last checkpoint: the same case file and\n"
+    "                          --set options (checked), probes.csv and log.csv cut back to the checkpoint's\n"
+    "                          step, the ParaView series continued; bit for bit like a run that was not\n"
+    "                          stopped when the threads are the same (e.g. --threads 1)\n"
+    "  --stop-after-step K     end the run after step K as if interrupted (a checkpoint is written when the\n"
+    "                          case asks for them), summary.json says \"stopped\", exit code 0\n\n"
+    "Checkpoints: \"output\": {\"checkpoint\": {\"every_steps\": N, \"every_minutes\": M, \"keep\": 2}} in the\n"
+    "case writes OUTDIR/checkpoint.bin every N steps and/or M minutes of wall time (atomically; keep 2 also\n"
+    "keeps the one before as checkpoint.prev.bin), and when a signal ends the run. Solids, shells, fluids,\n"
+    "MPM bodies and their couplings can be checkpointed (DEM and EFG bodies not yet).\n\n"
+    "Ctrl-C (SIGINT) or SIGTERM ends the current step, writes the output (and a checkpoint) and exits with\n"
+    "130 (143); a second Ctrl-C stops at once.\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure, 4 internal error, 5 output not written,\n"
     "            130 / 143 interrupted\n";
 
@@ -108,6 +118,7 @@ int app_main(int argc, char** argv) {
   const std::string see = " (see lagfsi " + cmd + " --help)";
   RunOptions opt;
   std::string progress = "auto";
+  std::string restart_dir;
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
@@ -149,6 +160,25 @@ int app_main(int argc, char** argv) {
       if (!parse_progress_mode(v, false, m))
         return usage_error("--progress: unknown mode '" + echo(v) + "' (auto, bar, lines or none)");
       progress = v;
+    } else if (a == "--restart" || a.rfind("--restart=", 0) == 0) {
+      if (!only_run()) return usage_error(a + " is an option of run, not of check" + see);
+      if (a == "--restart" && !value()) return usage_error("--restart needs the output folder of the run" + see);
+      if (a != "--restart") v = a.substr(10);
+      if (v.empty()) return usage_error("--restart needs the output folder of the run" + see);
+      restart_dir = v;
+    } else if (a == "--stop-after-step" || a.rfind("--stop-after-step=", 0) == 0) {
+      if (!only_run()) return usage_error(a + " is an option of run, not of check" + see);
+      if (a == "--stop-after-step" && !value()) return usage_error("--stop-after-step needs a step number" + see);
+      if (a != "--stop-after-step") v = a.substr(18);
+      size_t used = 0;
+      long n = -1;
+      try {
+        n = std::stol(v, &used);
+      } catch (...) {
+        n = -1;
+      }
+      if (used != v.size() || n < 1) return usage_error("--stop-after-step needs a positive integer (got '" + echo(v) + "')");
+      opt.stop_after_step = n;
     } else if (a == "--quiet" || a == "-q") {
       opt.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -160,6 +190,15 @@ int app_main(int argc, char** argv) {
     }
   }
   if (opt.case_file.empty()) return usage_error(cmd + " needs a case file" + see);
+  if (!restart_dir.empty()) {
+    std::error_code e1, e2;
+    if (!opt.out_dir.empty() && std::filesystem::weakly_canonical(std::filesystem::absolute(opt.out_dir), e1) !=
+                                    std::filesystem::weakly_canonical(std::filesystem::absolute(restart_dir), e2))
+      return usage_error("-o " + echo(opt.out_dir.string()) + " and --restart " + echo(restart_dir) +
+                         " name two folders (--restart writes into the run's own)" + see);
+    opt.out_dir = restart_dir;
+    opt.restart = true;
+  }
   // The same bound for OMP_NUM_THREADS (read by the OpenMP runtime when --threads is not given).
   if (const char* env = std::getenv("OMP_NUM_THREADS"); env && opt.threads == 0) {
     const long n = std::strtol(env, nullptr, 10);

@@ -1,15 +1,18 @@
 // Whole-case input checks (input_checks.hpp).
 #include "input_checks.hpp"
 
+#include "checkpoint.hpp"
 #include "output_lock.hpp"
 #include "overlap.hpp"
 
+#include <lagfsi/case.hpp>
 #include <lagfsi/text.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 namespace lagfsi {
@@ -38,8 +41,8 @@ std::vector<std::string> body_outputs(const std::string& name, const std::string
   return out;
 }
 
-/// A body's regions (fluid and MPM "regions", a solid's "geometry") as plane regions with their JSON paths;
-/// geometries the check does not model (circle_cut, shells) are left out.
+/// A body's regions (fluid and MPM "regions", a solid's "geometry", a shell's mid-line widened to its
+/// thickness: a rectangle per segment) as plane regions with their JSON paths.
 struct Shape {
   PlaneRegion region;
   std::string key;   // relative to the body: "regions/0", "geometry"
@@ -52,6 +55,12 @@ bool read_shape(const Json& g, PlaneRegion& r) {
   if (type == "rectangle") {
     const Vec2 o = g.contains("origin") ? point(g["origin"]) : Vec2::Zero(), s = point(g["size"]);
     r.rings = {{o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())}};
+    return true;
+  }
+  if (type == "circle_cut") {
+    // The arc in 128 pieces per turn: its chords cut off at most 0.03 % of the radius.
+    const double radius = g["radius"].get<double>();
+    r.rings = {circle_cut_outline(Params(g, "", ""), 2 * std::numbers::pi * radius / 128)};
     return true;
   }
   if (type != "polygon") return false;
@@ -72,6 +81,22 @@ std::vector<Shape> shapes_of(const Json& b) {
   const std::string type = b.value("type", "");
   PlaneRegion r;
   if (type == "solid" && b.contains("geometry") && read_shape(b["geometry"], r)) out.push_back({r, "geometry"});
+  if (type == "shell" && b.contains("geometry") && b.value("thickness", 0.0) > 0) {
+    const Json& g = b["geometry"];
+    auto point = [](const Json& p) { return Vec2(p[0].get<double>(), p[1].get<double>()); };
+    std::vector<Vec2> line;
+    if (g.value("type", "") == "line") line = {point(g["from"]), point(g["to"])};
+    if (g.value("type", "") == "polyline")
+      for (const auto& p : g["points"]) line.push_back(point(p));
+    const double half = 0.5 * b["thickness"].get<double>();
+    for (size_t s = 0; s + 1 < line.size(); ++s) {
+      const Vec2 d = line[s + 1] - line[s];
+      if (!(d.norm() > 0)) continue;
+      const Vec2 n = half * Vec2(-d.y(), d.x()) / d.norm();
+      r.rings = {{line[s] - n, line[s + 1] - n, line[s + 1] + n, line[s] + n}};
+      out.push_back({r, "geometry"});
+    }
+  }
   if ((type == "fluid" || type == "mpm") && b.contains("regions"))
     for (size_t j = 0; j < b["regions"].size(); ++j)
       if (read_shape(b["regions"][j], r)) out.push_back({r, "regions/" + std::to_string(j)});
@@ -92,7 +117,9 @@ double diameter(const PlaneRegion& r) {
 void check_output_names(const Params& root) {
   // Owner of each output name (lower case): the run's own files, then each body's.
   std::map<std::string, std::string> owner;
-  const std::vector<std::string> run_files{"log.csv", "probes.csv", "summary.json", "resolved_case.json", kLockFileName};
+  const std::vector<std::string> run_files{"log.csv",        "probes.csv",       "summary.json",
+                                           "resolved_case.json", kCheckpointFile, kCheckpointPrevFile,
+                                           kLockFileName};
   for (const auto& f : run_files) owner[lower(f)] = "the run itself";
   const Params bodies = root.at("bodies");
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -130,8 +157,8 @@ void check_overlaps(const Params& root) {
                               num(100 * common / smaller) + " % of the smaller)");
         }
     }
-    // A solid crossed by the rigid walls of a fluid (either order in the file).
-    if (all[i].value("type", "") != "solid") continue;
+    // A solid or shell crossed by the rigid walls of a fluid (either order in the file).
+    if (all[i].value("type", "") != "solid" && all[i].value("type", "") != "shell") continue;
     for (size_t k = 0; k < all.size(); ++k) {
       if (all[k].value("type", "") != "fluid" || !all[k].contains("walls")) continue;
       const Json& walls = all[k]["walls"];

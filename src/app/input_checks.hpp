@@ -16,9 +16,9 @@ namespace lagfsi {
 /// ("summary.json"), is an InputError at /bodies/i/name. Names are compared ignoring case.
 void check_output_names(const Params& root);
 
-/// Bodies that overlap at the start: the regions of fluid and MPM bodies and the geometry of solids
-/// (rectangles and polygons; shells and circle_cut geometries are not checked), and solids crossed by a
-/// fluid's rigid walls. InputError at the later body: "/bodies/i/regions/j: overlaps body 'plate'".
+/// Bodies that overlap at the start: the regions of fluid and MPM bodies, the geometry of solids
+/// (rectangles, polygons, circle_cut) and of shells (the mid-line widened to the thickness), and solids and
+/// shells crossed by a fluid's rigid walls. InputError at the later body: "/bodies/i/regions/j: overlaps body 'plate'".
 void check_overlaps(const Params& root);
 
 /// The integrator of a dynamic analysis must be unconditionally stable (linear analysis): Newmark needs

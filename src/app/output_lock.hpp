@@ -1,7 +1,8 @@
 #pragma once
 // The lock of an output folder (output_lock.cpp): a run holds an exclusive flock(2) on OUTDIR/.lagfsi.lock for
 // its whole life, so that a second run into the same folder fails at once instead of interleaving its rows
-// with the first one's. The lock goes with the process (also when it is killed); the file stays.
+// with the first one's. The run removes the file when it ends (on every path: completed, failed, interrupted);
+// the lock itself goes with the process, so the file left by a killed run (SIGKILL) blocks nobody.
 #include <filesystem>
 #include <string>
 
@@ -18,6 +19,7 @@ class OutputLock {
 
  private:
   int fd_ = -1;
+  std::filesystem::path file_;
 };
 
 /// The lock file's name (reserved: no output file may have it).

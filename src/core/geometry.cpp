@@ -82,6 +82,10 @@ std::vector<Vec2> circle_cut(const Params& g, const std::vector<Vec2>& poly, con
 
 }  // namespace
 
+std::vector<Vec2> circle_cut_outline(Params g, double h) {
+  return circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
+}
+
 TriMesh build_mesh(Params g, Params m) {
   if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
   const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace lagfsi {
 
@@ -14,6 +15,10 @@ std::string fmt(double x, int prec = 6) {
   return o.str();
 }
 }  // namespace
+
+void PhysicsModel::serialize(StateArchive&) {
+  throw std::logic_error("body '" + name() + "' (" + type() + "): checkpoints are not implemented for this type");
+}
 
 int iterate_to_convergence(PhysicsModel& m, int max_iterations, double t_new, double* relative) {
   int iterations = 0;

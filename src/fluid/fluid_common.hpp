@@ -5,6 +5,7 @@
 /// phase clock.
 #include <lagfsi/error.hpp>
 #include <lagfsi/fluid/fluid_params.hpp>
+#include <lagfsi/state_archive.hpp>
 #include <lagfsi/types.hpp>
 
 #include <chrono>

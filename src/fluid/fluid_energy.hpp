@@ -32,6 +32,8 @@ class FluidEnergy {
   double boundary_work() const { return boundary_work_; }
   bool enabled() const { return enabled_; }
   void enable() { enabled_ = true; }
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   const FluidConstants& c_;

@@ -31,6 +31,8 @@ struct FluidMesh {
   std::vector<char> in_element_with(Index np, const std::function<bool(Index)>& pred) const;
   /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.
   std::vector<char> beside_interior_fluid(const std::vector<ParticleKind>& kind) const;
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 };
 
 }  // namespace lagfsi::fluid

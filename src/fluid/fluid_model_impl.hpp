@@ -45,6 +45,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
+  bool can_checkpoint() const override { return true; }
+  void serialize(StateArchive& ar) override;   // fluid_checkpoint.cpp
 
   // InterfaceFluid (interface.hpp): ghost particles of a structure's wet boundary (ghosts.hpp).
   int add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) override;

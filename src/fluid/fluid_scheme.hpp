@@ -32,6 +32,8 @@ struct FluidStep {
   bool energy = false;      // an energy probe asks for the boundary work: the schemes set boundary_force
   Vec boundary_force;       // per non-fluid particle (walls, ghosts: stable indices), 2 each: the force it
                             // applies to the fluid in the step's solve
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 };
 
 /// The pieces of the fluid a scheme works on (owned by the model).
@@ -73,6 +75,8 @@ class FluidScheme {
   virtual Vec step_velocity() const = 0;
   /// Elements inverted within accepted steps (the fractional step with "inverted_elements": "remesh").
   virtual long inverted_kept() const { return 0; }
+  /// Checkpoints: what the scheme keeps from step to step (counters; its matrices are rebuilt every step).
+  virtual void serialize(StateArchive&) {}
 
   /// The PSPG element kernel's input for element e at positions x (also its geometry), velocities v,
   /// accelerations a, and the integrator's d a/dx = c_m, d v/dx = c_c (pspg_scheme.cpp). The monolithic

@@ -88,6 +88,8 @@ class FluidWalls {
   void keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t);
   /// Fluid particles put back inside a wall so far (keep_inside_walls).
   long crossings() const { return wall_crossings_; }
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   std::vector<Wall> walls_;

@@ -78,6 +78,7 @@ class FractionalStep final : public FluidScheme {
   /// v_{n+1}.
   Vec step_velocity() const override { return v_new_; }
   long inverted_kept() const override { return inverted_kept_; }
+  void serialize(StateArchive& ar) override { ar.io(inverted_kept_); }
 
  private:
   /// The viscous predictor is implicit (the automatic choice: when the explicit one would exceed its

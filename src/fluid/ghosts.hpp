@@ -61,6 +61,8 @@ class Ghosts {
   /// Forces the fluid exerts on the ghosts (2 per ghost), set by the scheme's solve.
   Vec& forces() { return ghost_force_; }
   const Vec& forces() const { return ghost_force_; }
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   Index ghost_begin_ = 0, ghost_particles_ = 0;

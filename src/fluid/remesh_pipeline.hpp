@@ -75,6 +75,8 @@ class RemeshPipeline {
   double kinetic_energy_change() const { return remesh_dKE_; }
   /// summary.json's "remeshing" block, but for the detection's name and the volume correction's energy.
   Json summary() const;
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   /// The mesh of the last step at the particles' present positions, as the predicate of the next domain

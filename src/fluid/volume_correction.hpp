@@ -48,6 +48,8 @@ class VolumeCorrection {
   double correction_energy() const { return correction_energy_; }
   /// summary.json's "fluid_area": initial, final, left the domain, drift without the latter.
   Json summary() const;
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   const FluidConstants& c_;

@@ -66,12 +66,24 @@ void AppendFile::open(const fs::path& path) {
   path_ = path;
   fd_ = open_for_writing(path);
   if (fd_ < 0) throw OutputError(path.string(), errno_reason(errno));
+  size_ = 0;
+}
+
+void AppendFile::resume(const fs::path& path, std::uint64_t size) {
+  if (fd_ >= 0) ::close(fd_);
+  path_ = path;
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd_ < 0) throw OutputError(path.string(), errno_reason(errno));
+  if (::ftruncate(fd_, static_cast<off_t>(size)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
+    throw OutputError(path.string(), errno_reason(errno));
+  size_ = size;
 }
 
 void AppendFile::write(std::string_view text) {
   if (fd_ < 0) throw OutputError(path_.string(), "the file is not open");
   const int err = write_all(fd_, text);
   if (err != 0) throw OutputError(path_.string(), errno_reason(err));
+  size_ += text.size();
 }
 
 }  // namespace lagfsi

@@ -300,4 +300,22 @@ void PvdSeries::write(double t, const VtpData& data) {
   rewrite_pvd(pvd_path(), entries_);
 }
 
+void PvdSeries::serialize(StateArchive& ar) {
+  ar.section("pvd " + name_);
+  ar.io(entries_);
+  if (ar.loading()) rewrite_pvd(pvd_path(), entries_);
+}
+
+void serialize_series(StateArchive& ar, std::unique_ptr<PvdSeries>& series, const fs::path& dir,
+                      const std::string& name) {
+  bool exists = series != nullptr;
+  ar.io(exists);
+  if (!exists) {
+    if (ar.loading()) series.reset();
+    return;
+  }
+  if (ar.loading()) series = std::make_unique<PvdSeries>(dir, name);
+  series->serialize(ar);
+}
+
 }  // namespace lagfsi

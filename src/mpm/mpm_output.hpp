@@ -17,6 +17,8 @@ class MpmWriter {
   MpmWriter(std::filesystem::path out_dir, bool particles_csv, bool grid_output)
       : out_dir_(std::move(out_dir)), particles_csv_(particles_csv), grid_output_(grid_output) {}
   void write(double t, const MpmBody& b);
+  /// Checkpoints: the series written so far (mpm_checkpoint.cpp).
+  void serialize(StateArchive& ar, const std::string& name);
 
  private:
   std::filesystem::path out_dir_;

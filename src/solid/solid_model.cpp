@@ -93,6 +93,23 @@ void SolidModel::write_output(double t) {
   times_.output += seconds_since(t0);
 }
 
+void SolidModel::serialize(StateArchive& ar) {
+  // The state (x, v, a, t) and what the next step reads of the last one; the integrators keep nothing
+  // between steps (begin_step takes the state).
+  ar.section("solid " + name_);
+  ar.io(state_.t, state_.x, state_.v, state_.a);
+  ar.io(strain_energy_, work_ext_, work_damp_, energy0_, work_iface_);
+  ar.io(f_iface_, f_iface_old_, reaction_, aug_factor_);
+  // A factorization that failed once switched the body to LU for the rest of the run.
+  std::string solver = solver_type_;
+  ar.io(solver, fallback_note_);
+  if (ar.loading() && solver != solver_type_) {
+    solver_type_ = solver;
+    solver_ = make_linear_solver(solver_type_);
+  }
+  serialize_series(ar, series_, ctx_.out_dir, name_);
+}
+
 // ------------------------------------------------------------------------------------------ coupling
 
 std::vector<std::vector<Index>> SolidModel::selected_surface_edges(Params select) const {

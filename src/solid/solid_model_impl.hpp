@@ -63,6 +63,8 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
+  bool can_checkpoint() const override { return true; }
+  void serialize(StateArchive& ar) override;
 
   // InterfaceStructure (interface.hpp)
   InterfaceBoundary make_interface(Params select) const override;

@@ -122,6 +122,48 @@ TEST(BadInputCase, OverlappingBodies) {
   EXPECT_EQ(check("overlap_mpm_apart", case_of({mpm_body("a", 0.0, 0), mpm_body("b", 0.5, 0.0)})).code, 0);
 }
 
+json shell_body(double x0, double y0, double x1, double y1, double thickness) {
+  json s = json::parse(R"({
+    "name": "gate", "type": "shell",
+    "material": {"type": "svk", "young": 1e7, "poisson": 0.0, "density": 1100},
+    "mesh": {"order": 2, "elements": 4}
+  })");
+  s["thickness"] = thickness;
+  s["geometry"] = {{"type", "line"}, {"from", {x0, y0}}, {"to", {x1, y1}}};
+  s["boundary_conditions"] = json::array({{{"type", "fixed"}, {"select", {{"type", "point"}, {"at", {x0, y0}}}}}});
+  return s;
+}
+
+TEST(BadInputCase, OverlappingShellsAndCircleCuts) {
+  // A shell standing in the water (its mid-line widened to its thickness), in either order; a shell whose face
+  // touches the water is not an overlap.
+  expect_input_error(check("overlap_shell", case_of({fluid_body(), shell_body(0.2, 0.0, 0.2, 0.3, 0.02)})),
+                     "/bodies/1/geometry: overlaps body 'water'");
+  expect_input_error(check("overlap_shell_first", case_of({shell_body(0.2, 0.0, 0.2, 0.3, 0.02), fluid_body()})),
+                     "/bodies/1/regions/0: overlaps body 'gate'");
+  EXPECT_EQ(check("overlap_shell_touching", case_of({fluid_body(), shell_body(0.41, 0.0, 0.41, 0.3, 0.02)})).code, 0);
+  // A shell through the tank's wall.
+  expect_input_error(check("overlap_shell_wall", case_of({fluid_body(), shell_body(0.8, 0.3, 1.2, 0.3, 0.02)})),
+                     "/bodies/1/geometry: is crossed by the wall 'tank' of body 'water'");
+  // A flag clamped on a cylinder (circle_cut) in the water; beside a plate that sits in the disc cut out of
+  // its polygon, which it does not overlap.
+  json flag = plate_body(0, 0, 1, 1);
+  flag["name"] = "flag";
+  flag["mesh"] = {{"size", 0.01}, {"order", 1}};
+  flag["geometry"] = json::parse(R"({"type": "circle_cut", "points": [[0.1, 0.05], [0.35, 0.05], [0.35, 0.07], [0.1, 0.07]],
+                                     "centre": [0.1, 0.06], "radius": 0.02})");
+  flag["boundary_conditions"][0]["select"] = {{"type", "circle"}, {"centre", {0.1, 0.06}}, {"radius", 0.02}};
+  expect_input_error(check("overlap_circle_cut", case_of({fluid_body(), flag})), "/bodies/1/geometry: overlaps body 'water'");
+  flag["geometry"]["points"] = json::parse("[[0.5, 0.3], [0.9, 0.3], [0.9, 0.32], [0.5, 0.32]]");
+  flag["geometry"]["centre"] = {0.5, 0.31};
+  flag["geometry"]["radius"] = 0.05;
+  flag["boundary_conditions"][0]["select"] = {{"type", "circle"}, {"centre", {0.5, 0.31}}, {"radius", 0.05}};
+  json plate = plate_body(0.5, 0.3, 0.03, 0.02);
+  EXPECT_EQ(check("overlap_circle_cut_disc", case_of({flag, plate})).code, 0) << "the plate is in the cut-out disc";
+  json wide = plate_body(0.5, 0.3, 0.2, 0.02);
+  expect_input_error(check("overlap_circle_cut_plate", case_of({flag, wide})), "/bodies/1/geometry: overlaps body 'flag'");
+}
+
 TEST(BadInputCase, MpmRegionOutsideItsGridAndLeavingIt) {
   // Partly outside: the region was cut silently.
   json m = mpm_body("block", 0.8, 0.0);

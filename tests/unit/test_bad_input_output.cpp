@@ -118,6 +118,35 @@ TEST(BadInputOutput, LockedOutputFolder) {
   r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet"}, dir);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(status_of(dir / "out"), "completed");
+  EXPECT_FALSE(fs::exists(dir / "out" / ".lagfsi.lock")) << "the run removes its lock file when it ends";
+}
+
+TEST(BadInputOutput, LockFileOfADeadRunAndEveryExit) {
+  // A lock file left by a run that was killed (it names a process that no longer exists, and nobody holds the
+  // lock) does not block the next run, which removes it at its end.
+  const fs::path dir = fresh_dir("output_stale_lock");
+  const fs::path c = write_case(dir, strip_case(5, false));
+  fs::create_directories(dir / "out");
+  write_text(dir / "out" / ".lagfsi.lock", "999999999\n");
+  Finished r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / ".lagfsi.lock"));
+  // A failed run (bad input found after the lock: a --restart without a checkpoint), an output error
+  // (summary.json is a folder) and a solver failure remove it too.
+  r = run_args({"run", c.string(), "--restart", (dir / "out").string(), "--quiet"}, dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / ".lagfsi.lock"));
+  fs::remove(dir / "out" / "summary.json");
+  fs::create_directories(dir / "out" / "summary.json");
+  r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet"}, dir);
+  EXPECT_NE(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / ".lagfsi.lock"));
+  fs::remove_all(dir / "out" / "summary.json");
+  r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet", "--set", "analysis.max_step_halvings=0",
+                "--set", "analysis.newton.max_iterations=1"},
+               dir);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / ".lagfsi.lock"));
 }
 
 TEST(BadInputOutput, OutputFolderIsNotTheCaseFilesFolder) {

@@ -133,6 +133,7 @@ void expect_interrupted(const Outcome& x, int sig, const std::string& name) {
   // One line says so, after the time table.
   EXPECT_NE(x.r.err.find("lagfsi: interrupted by " + name + " after step " + std::to_string(steps)), std::string::npos)
       << x.r.err;
+  EXPECT_FALSE(fs::exists(x.out / ".lagfsi.lock")) << "the run removes its lock file";
   expect_time_table(x.r.err);
 }
 

@@ -5,6 +5,7 @@
 /// rebuild). Implemented in src/fluid/particle_cloud.cpp.
 #include <lagfsi/fluid/fluid_params.hpp>
 
+#include <lagfsi/state_archive.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 #include <vector>
@@ -68,6 +69,8 @@ class ParticleCloud {
   /// The cloud rebuilt in a new order: entry k >= 0 of `order` is the present particle k, entry -1 - j is
   /// extra[j].
   void rebuild(const std::vector<Index>& order, const std::vector<Particle>& extra);
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   std::vector<ParticleKind> kind_;

@@ -56,6 +56,8 @@ class MpmModel final : public PhysicsModel {
   void finalize_step() override { step_open_ = false; }
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
+  bool can_checkpoint() const override { return true; }
+  void serialize(StateArchive& ar) override;   // mpm_checkpoint.cpp
 
   const Particles& particles() const;
   const Grid& grid() const;

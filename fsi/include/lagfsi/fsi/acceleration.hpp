@@ -30,6 +30,7 @@
 /// iteration; end_step() after the step converged (iqn_ils then keeps the step's columns for reuse, iqn_imvj
 /// its Jacobian).
 #include <lagfsi/params.hpp>
+#include <lagfsi/state_archive.hpp>
 #include <lagfsi/types.hpp>
 
 #include <memory>
@@ -52,6 +53,8 @@ class Acceleration {
   virtual void reset() {}
   /// Columns of the least-squares model in use (iqn_ils, iqn_imvj; 0 for the others), for logs and tests.
   virtual int model_columns() const { return 0; }
+  /// Checkpoints: what is kept from step to step (Aitken's factor, the reused columns, the Jacobian).
+  virtual void serialize(StateArchive&) {}
 };
 
 /// Builds an acceleration from its case-file object, validated against the type's defaults:

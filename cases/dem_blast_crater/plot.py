@@ -16,6 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from claims_record import record  # noqa: E402  (numbers for scripts/claims.py)
 # the paper's crater depths [m] and KE-peak delays 0.05 -> 0.10 m [ms], by kn (4 mm discs); B1/B2 by disc size
 PAPER = {2.75e5: ("A1", 0.027, 0.72), 2.75e4: ("A2", 0.053, 1.4412), 1.1e4: ("A3", 0.066, 2.2042)}
 FIELD = (0.045, 0.050)
@@ -40,13 +42,18 @@ def main():
         ke = [float(p[col]) for p in pr]
         i = max(range(len(ke)), key=lambda k: ke[k])
         peaks[depth] = t[i]
+        record("peak_time_%03d" % round(100 * depth), t[i])
         print(f"  KE at depth {depth:.2f} m: peak {ke[i]:.4g} J at {1e3 * t[i]:.3f} ms")
     delay = 1e3 * (peaks[0.10] - peaks[0.05])
+    record("delay_ms", delay)
     name, depth_ref, delay_ref = PAPER.get(kn, ("?", float("nan"), float("nan")))
     print(f"  KE-peak delay 0.05 -> 0.10 m: {delay:.3f} ms (paper {name}: {delay_ref} ms)")
     text = open(os.path.join(out, "crater.csv")).read()
     m = re.search(r"depth = ([-0-9.eE+]+) m .*diameter = ([-0-9.eE+]+) m", text)
     depth, diam = float(m.group(1)), float(m.group(2))
+    record("depth", depth)
+    record("diameter", diam)
+    record("blast_work", float(pr[-1]["blast_work"]))
     print(f"  crater at {1e3 * t_end:g} ms: depth {depth:.4f} m (paper {name}: {depth_ref} m; field tests "
           f"{FIELD[0]}-{FIELD[1]} m), diameter {diam:.3f} m (not reported by the paper; D = 0.8 W^(1/3) = 0.8 m "
           f"for a surface burst)")

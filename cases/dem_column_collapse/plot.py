@@ -14,6 +14,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from claims_record import record  # noqa: E402  (numbers for scripts/claims.py)
 L0 = 0.2
 THICK = 0.005          # "deposit at least 5 mm thick", as in mpm_granular_collapse
 MPM_RUNOUT = 0.415     # mpm_granular_collapse, 2.5 mm cells, deposit >= 5 mm to (its README)
@@ -64,6 +66,10 @@ def main():
     print(f"final: deposit >= 5 mm thick to x = {thick_to:.3f} m, front (6th farthest disc) {front:.3f} m, "
           f"height at the wall {h_end:.4f} m (H_inf/H0 = {h_end / h0:.3f})")
     ro = (thick_to - L0) / L0
+    record("h0", h0)
+    record("deposit_end", thick_to)
+    record("runout_ratio", ro / a)
+    record("height_ratio", h_end / h0)
     print(f"run-out (L_inf - L0)/L0 = {ro:.3f} (deposit >= 5 mm)")
     for name, c in (("Lube et al. 2005 (1.2 a)", 1.2), ("Lajeunesse et al. 2005 (1.8 a)", 1.8),
                     ("Kumar 2015 2D DEM (1.67 a)", 1.67)):

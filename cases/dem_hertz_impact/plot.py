@@ -14,6 +14,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from claims_record import record  # noqa: E402  (numbers for scripts/claims.py)
 
 
 def read(path):
@@ -51,6 +53,9 @@ def main():
         i = row[mat]
         tc_ref, f_ref, d_ref = float(ref["t_c_s"][i]), float(ref["F_max_N"][i]), float(ref["delta_max_m"][i])
         tc, fm, dm = impact(t, ov, fo)
+        record(f"{mat}_tc", tc)
+        record(f"{mat}_fmax", fm)
+        record(f"{mat}_dmax", dm)
         print(f"{title}: t_c {tc:.6g} s (Hertz {tc_ref:.6g}, {100 * (tc / tc_ref - 1):+.3f} %), "
               f"F_max {fm:.6g} N ({f_ref:.6g}, {100 * (fm / f_ref - 1):+.3f} %), "
               f"delta_max {dm:.6g} m ({d_ref:.6g}, {100 * (dm / d_ref - 1):+.3f} %)")

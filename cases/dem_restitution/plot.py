@@ -14,6 +14,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from claims_record import record  # noqa: E402  (numbers for scripts/claims.py)
 
 
 def main():
@@ -27,6 +29,7 @@ def main():
     for law, mk in (("linear", "o"), ("hertz", "s")):
         got = [float(last[f"{law}_{c}"]) / v for c, v in speeds]
         for (c, v), g in zip(speeds, got):
+            record(f"{law}_{c}", g)
             print(f"{law:7s} impact {v:5.2f} m/s: restitution {g:.5f} (asked {e}, {100 * (g / e - 1):+.3f} %)")
         ax.semilogx([v for _, v in speeds], got, mk + "-", label=law)
     ax.axhline(e, color="k", ls="--", lw=0.8, label="asked")

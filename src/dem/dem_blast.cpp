@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <numeric>
 
 namespace lagfsi::dem {
 
@@ -56,45 +57,99 @@ double Blast::pressure(double r, double t) const {
   return 1e3 * henrych_overpressure_kpa(r / w13_) * (1.0 - s) * std::exp(-beta_ * s);
 }
 
+namespace {
+
+/// A monotone stand-in for the angle atan2(y, x) in (-pi, pi]: values in (-2, 2], no trigonometry.
+inline double pseudo_angle(double x, double y) {
+  const double s = x / (std::abs(x) + std::abs(y));
+  return y >= 0 ? 1.0 - s : s - 1.0;
+}
+
+/// The angle of a pseudo-angle p (its inverse).
+inline double angle_of(double p) {
+  if (p >= 0) {
+    const double s = 1.0 - p;
+    return std::atan2(1.0 - std::abs(s), s);
+  }
+  const double s = 1.0 + p;
+  return -std::atan2(1.0 - std::abs(s), s);
+}
+
+}  // namespace
+
 void Blast::update_exposure(const double* x, int stride, const double* r, int n) {
   exposed_.assign(n, 0.0);
-  key_.resize(n);
-  for (int p = 0; p < n; ++p) key_[p] = {std::hypot(x[stride * p] - g_.x(), x[stride * p + 1] - g_.y()), p};
-  std::sort(key_.begin(), key_.end());
-  std::map<double, double> occ;  // blocked directions: disjoint [start, end]
-  const double pi = std::numbers::pi;
-  for (const auto& [d, pp] : key_) {
-    const int p = static_cast<int>(pp);
-    const double rp = r[p];
-    if (d <= rp) continue;  // the charge inside a disc: refused when the body is read
-    const double alpha = std::asin(rp / d);
-    const double phi = std::atan2(x[stride * p + 1] - g_.y(), x[stride * p] - g_.x());
-    auto theta = [&](double psi) { return std::asin(std::clamp(d / rp * std::sin(psi), -1.0, 1.0)) - psi; };
-    auto loaded = [&](double psi1, double psi2) {
-      const double t1 = theta(psi1), t2 = theta(psi2);
-      return projected_ ? rp * std::abs(std::sin(t2) - std::sin(t1)) : rp * std::abs(t2 - t1);
-    };
+  dist_.resize(n);
+  lo_.resize(n);
+  hi_.resize(n);
+  const double gx = g_.x(), gy = g_.y();
+  // per disc: distance from G and the directions of its two tangents (as pseudo-angles; see the header)
+#pragma omp parallel for schedule(static) if (n >= 20000)
+  for (int p = 0; p < n; ++p) {
+    const double cx = x[stride * p] - gx, cy = x[stride * p + 1] - gy, rp = r[p];
+    const double d2 = cx * cx + cy * cy;
+    dist_[p] = std::sqrt(d2);
+    if (d2 <= rp * rp) {  // the charge inside a disc: refused when the body is read
+      lo_[p] = hi_[p] = 0;
+      continue;
+    }
+    const double q = std::sqrt(d2 - rp * rp);  // |tangent| = d cos(alpha); r = d sin(alpha)
+    lo_[p] = pseudo_angle(cx * q + cy * rp, cy * q - cx * rp);  // the centre direction turned by -alpha
+    hi_[p] = pseudo_angle(cx * q - cy * rp, cy * q + cx * rp);  // by +alpha
+  }
+  // discs by increasing distance (ties by index): the order of the last update, repaired by insertion sort
+  // (discs move little between updates), or a full sort when the disc order changed
+  auto before = [this](int a, int b) { return dist_[a] < dist_[b] || (dist_[a] == dist_[b] && a < b); };
+  if (!order_valid_ || static_cast<int>(order_.size()) != n) {
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), 0);
+    std::sort(order_.begin(), order_.end(), before);
+    order_valid_ = true;
+  } else {
+    for (int k = 1; k < n; ++k) {
+      const int v = order_[k];
+      int m = k;
+      while (m > 0 && before(v, order_[m - 1])) {
+        order_[m] = order_[m - 1];
+        --m;
+      }
+      order_[m] = v;
+    }
+  }
+  std::map<double, double>& occ = occupied_;  // blocked directions: disjoint [start, end] in pseudo-angle
+  occ.clear();
+  for (const int p : order_) {
+    const double rp = r[p], d = dist_[p];
+    if (d <= rp) continue;
+    const double lo = lo_[p], hi = hi_[p];
+    // the interval [lo, hi], split where it crosses the direction -x (pseudo-angle +-2)
+    std::pair<double, double> parts[2];
+    int np = 0;
+    if (lo <= hi) {
+      parts[np++] = {lo, hi};
+    } else {
+      parts[np++] = {lo, 2.0};
+      parts[np++] = {-2.0, hi};
+    }
     double length = 0;
-    // the interval [phi - alpha, phi + alpha], split where it crosses +-pi; shift maps back to phi's frame
-    std::vector<std::pair<double, double>> parts;
-    std::vector<double> shifts;
-    double lo = phi - alpha, hi = phi + alpha;
-    if (lo < -pi) {
-      parts.push_back({lo + 2 * pi, pi});
-      shifts.push_back(-2 * pi);
-      lo = -pi;
-    }
-    if (hi > pi) {
-      parts.push_back({-pi, hi - 2 * pi});
-      shifts.push_back(2 * pi);
-      hi = pi;
-    }
-    parts.push_back({lo, hi});
-    shifts.push_back(0.0);
-    for (size_t q = 0; q < parts.size(); ++q) {
+    bool free = false;
+    double phi = 0;
+    auto loaded = [&](double p1, double p2) {
+      if (!free) phi = std::atan2(x[stride * p + 1] - gy, x[stride * p] - gx);
+      free = true;
+      auto psi = [&](double pa) {
+        double s = angle_of(pa) - phi;
+        if (s > std::numbers::pi) s -= 2 * std::numbers::pi;
+        if (s < -std::numbers::pi) s += 2 * std::numbers::pi;
+        return s;
+      };
+      auto theta = [&](double s) { return std::asin(std::clamp(d / rp * std::sin(s), -1.0, 1.0)) - s; };
+      const double t1 = theta(psi(p1)), t2 = theta(psi(p2));
+      length += projected_ ? rp * std::abs(std::sin(t2) - std::sin(t1)) : rp * std::abs(t2 - t1);
+    };
+    for (int q = 0; q < np; ++q) {
       const auto [a, b] = parts[q];
-      const double sh = shifts[q];
-      // free parts of [a, b]
+      // the free parts of [a, b]
       double cur = a;
       auto it = occ.upper_bound(a);
       if (it != occ.begin()) {
@@ -102,11 +157,14 @@ void Blast::update_exposure(const double* x, int stride, const double* r, int n)
         if (prev->second > cur) cur = prev->second;
       }
       for (; it != occ.end() && it->first < b && cur < b; ++it) {
-        if (it->first > cur) length += loaded(cur + sh - phi, it->first + sh - phi);
+        if (it->first > cur) loaded(cur, it->first);
         cur = std::max(cur, it->second);
       }
-      if (cur < b) length += loaded(cur + sh - phi, b + sh - phi);
-      // block [a, b]
+      if (cur < b) loaded(cur, b);
+    }
+    if (!free) continue;  // wholly in the shadow: the blocked set does not change
+    for (int q = 0; q < np; ++q) {
+      const auto [a, b] = parts[q];
       double na = a, nb = b;
       auto jt = occ.upper_bound(a);
       if (jt != occ.begin() && std::prev(jt)->second >= a) --jt;

@@ -22,7 +22,7 @@ namespace lagfsi::dem {
 /// Where and how the crater is measured (dem_output.hpp, crater_profile).
 struct CraterSettings {
   bool enabled = false;
-  double surface = 0;  ///< initial ground level (0 in the input: the top of the initial bed)
+  double surface = 0;  ///< initial ground level (0 in the input: the top of the bed at t = 0, after any settling)
   double bin = 0;      ///< bin width (0: 2 d_max)
   double centre = 0;   ///< x of the crater's centre (default: the charge's x)
   std::vector<double> offsets = {-0.05, 0.0, 0.05};  ///< where H1, H2, H3 are read (from the centre)

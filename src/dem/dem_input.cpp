@@ -11,7 +11,7 @@
 //   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors
 //   "blast": {}                    dem_blast.hpp (empty: none)
 //   "discs_csv": false             also write <name>_discs.csv at each output
-//   "crater": {}                   {"surface": 0 (top of the initial bed), "bin": 0 (2 d_max), "centre": x (default the
+//   "crater": {}                   {"surface": 0 (top of the bed at t = 0, after settling), "bin": 0 (2 d_max), "centre": x (default the
 //                                  charge's x), "offsets": [-0.05, 0, 0.05]}: crater.csv at each output (empty: none)
 //   "settle": {}                   {"time": T, "remove_walls": [names]}: settle under gravity for T before t = 0,
 //                                  then remove those walls and start from rest (empty: none)
@@ -165,12 +165,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
     cr.validate({{"surface", 0.0}, {"bin", 0.0}, {"centre", b.blast ? b.blast->charge().x() : 0.0},
                  {"offsets", Json::array({-0.05, 0.0, 0.05})}});
     b.crater.enabled = true;
-    b.crater.surface = cr.number("surface");
-    if (b.crater.surface == 0) {
-      double top = -1e300;
-      for (Index p = 0; p < n; ++p) top = std::max(top, b.position(p).y() + D.radius[p]);
-      b.crater.surface = top;
-    }
+    b.crater.surface = cr.number("surface");  // 0: set at t = 0 (DemModel::initialize), after any settling
     b.crater.bin = cr.non_negative("bin");
     b.crater.centre = cr.number("centre");
     b.crater.offsets = cr.numbers("offsets");

@@ -78,6 +78,11 @@ void DemModel::initialize() {
     b.substeps = 0;
     if (!ctx_.quiet) std::fprintf(stderr, "[%s] settled for %.4g s (%ld sub-steps)\n", b.name.c_str(), settle_time_, n);
   }
+  if (b.crater.enabled && b.crater.surface == 0) {  // the ground level: the top of the bed at t = 0
+    double top = -1e300;
+    for (Index p = 0; p < static_cast<Index>(b.size()); ++p) top = std::max(top, b.position(p).y() + b.discs.radius[p]);
+    b.crater.surface = top;
+  }
   b.blast_work = 0;
   b.energy0 = b.kinetic_energy() + b.elastic + b.gravity_potential();
   wall_time_ += seconds_since(t0);

@@ -8,11 +8,21 @@ spring with history (LAMMPS pair gran/hooke/history: Kn = 1e5 N/m, Kt = 2/7 Kn, 
 gamma_t = 25 1/s (damping force m_eff gamma v), mu = 0.5; lagfsi "law": "linear", "damping": "viscous" with the
 same numbers), rotation on (LAMMPS fix nve/sphere disc: I = m r^2/2), fix enforce2d, neighbour skin 0.5 mm
 checked every step. The bench writes both inputs, runs lagfsi with 1 and 2 OpenMP threads and LAMMPS with 1 and
-2 MPI ranks (mpirun), one after the other, and prints particle-steps per second (discs x steps / loop time:
-LAMMPS "Loop time", lagfsi the DEM body's wall time from summary.json) and the ratios.
+2 MPI ranks (mpirun), and prints particle-steps per second (discs x steps / loop time: LAMMPS "Loop time",
+lagfsi the DEM body's wall time from summary.json) and the ratios.
+
+The machine may be shared: each thread count is run --repeat times as pairs, lagfsi then LAMMPS, A B A B ..., so
+that both see the same load; every run also records its whole-process wall and CPU time (user + system, from
+the operating system's accounting of the finished child). Printed: the median of each figure and the median of
+the pairwise ratios lagfsi / LAMMPS (quote medians and ratios, not single times: on a loaded machine the absolute
+rates drop, the ratio much less). --wait passive makes idle threads and ranks sleep instead of spinning
+(lagfsi OMP_WAIT_POLICY=passive, OpenMPI --mca mpi_yield_when_idle 1): on a machine with more runnable processes
+than cores, a spinning OpenMP barrier waits for a descheduled thread several times per step (measured here at a
+load of 9 on 2 cores: 2 threads 19.4 s CPU with active waiting, 1.9 s passive). --print-commands prints the two commands of each thread count (to time them
+with another tool) and stops.
 
 usage: /usr/bin/python3 tests/bench/bench_dem.py [OUTDIR] [--build DIR] [--steps 2000] [--rows 150] [--cols 180]
-       [--only lagfsi|lammps] [--threads 1,2]
+       [--only lagfsi|lammps] [--threads 1,2] [--repeat 3] [--wait active|passive] [--print-commands]
 """
 import argparse
 import json
@@ -20,6 +30,8 @@ import math
 import os
 import random
 import re
+import resource
+import statistics
 import shutil
 import subprocess
 import sys
@@ -109,30 +121,50 @@ run {steps}
 """)
 
 
+def timed(cmd, cwd=None, env=None):
+    """Runs cmd; returns (wall, CPU) seconds of the whole process (CPU: user + system of the finished children)."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.time()
+    subprocess.run(cmd, cwd=cwd, env=env, check=True)
+    wall = time.time() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+
+
+WAIT = "active"
+
+
+def lagfsi_cmd(exe, case, out, threads):
+    return [exe, "run", case, "-o", out, "--quiet", "--threads", str(threads)]
+
+
 def run_lagfsi(exe, case, out, threads):
-    subprocess.run([exe, "run", case, "-o", out, "--quiet", "--threads", str(threads)], check=True)
+    env = dict(os.environ, OMP_WAIT_POLICY=WAIT.upper())
+    wall, cpu = timed(lagfsi_cmd(exe, case, out, threads), env=env)
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     b = s["bodies"][0]
-    return b["nodes"], b["substeps"], b["wall_time"], s["wall_time"]
+    return b["nodes"], b["substeps"], b["wall_time"], wall, cpu
 
 
-def run_lammps(folder, ranks):
+def lammps_cmd(ranks):
     lmp = shutil.which("lmp") or shutil.which("lmp_serial")
     if not lmp:
         sys.exit("bench_dem: LAMMPS not found (apt-get install -y --no-install-recommends lammps)")
     cmd = [lmp, "-in", "in.bench", "-log", f"log.{ranks}", "-screen", "none"]
     if ranks > 1:
-        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    t0 = time.time()
-    subprocess.run(cmd, cwd=folder, check=True, env=env)
-    whole = time.time() - t0
+        cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe"] + \
+            (["--mca", "mpi_yield_when_idle", "1"] if WAIT == "passive" else []) + ["-np", str(ranks)] + cmd
+    return cmd
+
+
+def run_lammps(folder, ranks):
+    wall, cpu = timed(lammps_cmd(ranks), cwd=folder, env=dict(os.environ, OMP_NUM_THREADS="1"))
     text = open(os.path.join(folder, f"log.{ranks}")).read()
     m = re.search(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms", text)
     if not m:
         sys.exit("bench_dem: no 'Loop time' in the LAMMPS log")
-    return int(m.group(4)), int(m.group(3)), float(m.group(1)), whole
+    return int(m.group(4)), int(m.group(3)), float(m.group(1)), wall, cpu
 
 
 def main():
@@ -144,8 +176,14 @@ def main():
     ap.add_argument("--cols", type=int, default=180)
     ap.add_argument("--only", choices=["lagfsi", "lammps"])
     ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--repeat", type=int, default=3, help="pairs (lagfsi, LAMMPS) per thread count")
+    ap.add_argument("--wait", choices=["active", "passive"], default="active",
+                    help="idle threads/ranks spin (the runtimes' default) or sleep (for a shared machine)")
     ap.add_argument("--write-only", action="store_true", help="write the inputs and stop")
+    ap.add_argument("--print-commands", action="store_true", help="print the commands of each thread count and stop")
     a = ap.parse_args()
+    global WAIT
+    WAIT = a.wait
     out = os.path.abspath(a.outdir or os.path.join(a.build, "bench_dem"))
     os.makedirs(out, exist_ok=True)
     pts, width, height = bed(a.rows, a.cols)
@@ -159,24 +197,40 @@ def main():
         return
     threads = [int(t) for t in a.threads.split(",")]
     exe = os.path.join(a.build, "lagfsi")
-    rate = {}
-    print("code     threads/ranks  discs  steps  loop[s]  process[s]  M particle-steps/s")
+    if a.print_commands:
+        for n in threads:
+            print(f"{n} thread(s)/rank(s):\n  lagfsi (OMP_WAIT_POLICY={WAIT}): {' '.join(lagfsi_cmd(exe, case, os.path.join(out, f'lagfsi_{n}'), n))}"
+                  f"\n  LAMMPS (in {lmp_dir}, OMP_NUM_THREADS=1): {' '.join(lammps_cmd(n))}")
+        return
+    if a.only != "lammps" and not os.access(exe, os.X_OK):
+        sys.exit(f"bench_dem: {exe} not found (build first)")
+    runs = {}  # (code, n) -> list of (rate, wall, cpu)
+    print("code     threads/ranks  run  discs  steps  loop[s]  process wall[s]  process CPU[s]  M particle-steps/s")
     for n in threads:
-        if a.only != "lammps":
-            if not os.access(exe, os.X_OK):
-                sys.exit(f"bench_dem: {exe} not found (build first)")
-            discs, steps, loop, whole = run_lagfsi(exe, case, os.path.join(out, f"lagfsi_{n}"), n)
-            rate[("lagfsi", n)] = discs * steps / loop
-            print(f"lagfsi   {n:13d}  {discs:5d}  {steps:5d}  {loop:7.2f}  {whole:10.2f}  {rate[('lagfsi', n)] / 1e6:18.2f}")
-        if a.only != "lagfsi":
-            discs, steps, loop, whole = run_lammps(lmp_dir, n)
-            rate[("lammps", n)] = discs * steps / loop
-            print(f"lammps   {n:13d}  {discs:5d}  {steps:5d}  {loop:7.2f}  {whole:10.2f}  {rate[('lammps', n)] / 1e6:18.2f}")
+        for k in range(a.repeat):
+            for code in ("lagfsi", "lammps"):
+                if a.only and a.only != code:
+                    continue
+                if code == "lagfsi":
+                    discs, steps, loop, wall, cpu = run_lagfsi(exe, case, os.path.join(out, f"lagfsi_{n}"), n)
+                else:
+                    discs, steps, loop, wall, cpu = run_lammps(lmp_dir, n)
+                rate = discs * steps / loop
+                runs.setdefault((code, n), []).append((rate, wall, cpu))
+                print(f"{code:8s} {n:13d}  {k + 1:3d}  {discs:5d}  {steps:5d}  {loop:7.2f}  {wall:15.2f}  {cpu:14.2f}  "
+                      f"{rate / 1e6:18.2f}", flush=True)
+    print("medians:")
+    for (code, n), v in sorted(runs.items()):
+        print(f"  {code:8s} {n} thread(s)/rank(s): {statistics.median(r for r, _, _ in v) / 1e6:.2f} M particle-steps/s,"
+              f" process wall {statistics.median(w for _, w, _ in v):.2f} s, CPU {statistics.median(c for _, _, c in v):.2f} s")
     for n in threads:
-        if ("lagfsi", n) in rate and ("lammps", n) in rate:
-            print(f"ratio lagfsi / LAMMPS at {n} thread(s)/rank(s): {rate[('lagfsi', n)] / rate[('lammps', n)]:.2f}"
-                  f" (goal >= 1.5)")
-
+        if ("lagfsi", n) in runs and ("lammps", n) in runs:
+            pairs = list(zip(runs[("lagfsi", n)], runs[("lammps", n)]))
+            rate = statistics.median(x[0] / y[0] for x, y in pairs)
+            wall = statistics.median(y[1] / x[1] for x, y in pairs)
+            cpu = statistics.median(y[2] / x[2] for x, y in pairs)
+            print(f"ratio lagfsi / LAMMPS at {n} thread(s)/rank(s), median of {len(pairs)} pairs: loop rate {rate:.2f},"
+                  f" process wall {wall:.2f}, process CPU {cpu:.2f} (LAMMPS time / lagfsi time; goal >= 1.5)")
 
 if __name__ == "__main__":
     main()

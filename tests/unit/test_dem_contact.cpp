@@ -254,6 +254,69 @@ TEST(DemBlast, ShadowingLoadsTheNearestDiscOnly) {
   EXPECT_NEAR(f[1], -b.pressure(0.5, t) * b.exposed()[0], 1e-9);
 }
 
+// The exposure of the shadowing sweep against brute-force ray casting on a random loose pack: 200 000 rays from the
+// charge; two consecutive rays that first meet the same disc load the width between their hit points, measured
+// across the line from the charge to the disc's centre ("area": "projected", whose width has no singularity at
+// the tangent points, unlike the arc).
+TEST(DemBlast, ExposureMatchesRayCasting) {
+  const Vec2 g(0.3, 0.5);
+  Blast b(Params(Json{{"charge_mass", 1.0}, {"position", {g.x(), g.y()}}, {"area", "projected"}}, "test"));
+  std::vector<double> rmin_rmax = {0.004, 0.012};
+  const auto pack = random_pack({{0.0, 0.0}, {0.6, 0.0}, {0.6, 0.2}, {0.0, 0.2}}, rmin_rmax[0], rmin_rmax[1], 0.5, 0,
+                                7, 2000);
+  const int n = static_cast<int>(pack.size());
+  ASSERT_GT(n, 100);
+  std::vector<double> x(3 * n, 0.0), rad(n), f(2 * n, 0.0);
+  for (int p = 0; p < n; ++p) {
+    x[3 * p] = pack[p].x.x();
+    x[3 * p + 1] = pack[p].x.y();
+    rad[p] = pack[p].r;
+  }
+  b.apply(x.data(), 3, rad.data(), n, 0.0, f);
+  // rays over the directions that can meet the pack (below the charge), each hitting its nearest disc at the
+  // point P(phi); the loaded arc of a disc is the sum of the arcs between the hit points of consecutive rays
+  std::vector<double> brute(n, 0.0);
+  const int rays = 200000;
+  const double a0 = -std::numbers::pi + 1e-6, a1 = -1e-6;
+  int prev = -1;
+  double prev_w = 0;  // offset of the previous hit point across the charge-centre line of its disc
+  for (int k = 0; k <= rays; ++k) {
+    const double a = a0 + (a1 - a0) * k / rays;
+    const Vec2 u(std::cos(a), std::sin(a));
+    int hit = -1;
+    double best = 1e300;
+    for (int p = 0; p < n; ++p) {
+      const Vec2 c = Vec2(x[3 * p], x[3 * p + 1]) - g;
+      const double proj = c.dot(u), perp2 = c.squaredNorm() - proj * proj, r2 = rad[p] * rad[p];
+      if (perp2 >= r2 || proj <= 0) continue;
+      const double s = proj - std::sqrt(r2 - perp2);
+      if (s < best) {
+        best = s;
+        hit = p;
+      }
+    }
+    double w = 0;
+    if (hit >= 0) {
+      const Vec2 c(x[3 * hit], x[3 * hit + 1]);
+      const Vec2 e = (g - c).normalized();
+      w = (g + best * u - c).dot(Vec2(-e.y(), e.x()));
+      if (hit == prev) brute[hit] += std::abs(w - prev_w);
+    }
+    prev = hit;
+    prev_w = w;
+  }
+  int exposed = 0;
+  double total = 0, err = 0;
+  for (int p = 0; p < n; ++p) {
+    if (b.exposed()[p] > 0) ++exposed;
+    total += brute[p];
+    err += std::abs(b.exposed()[p] - brute[p]);
+    EXPECT_NEAR(b.exposed()[p], brute[p], 0.01 * rad[p]) << "disc " << p;
+  }
+  EXPECT_GT(exposed, 10);
+  EXPECT_LT(err, 3e-3 * total);  // each change of disc between two rays loses up to one ray spacing
+}
+
 // The non-allocating step of the shared central difference (time_integrator.hpp) that the DEM body uses equals
 // explicit_step() up to rounding, with the half-step velocity handed to the force.
 TEST(DemIntegrator, ExplicitStepIntoMatchesExplicitStep) {

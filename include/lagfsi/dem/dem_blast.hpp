@@ -17,8 +17,13 @@
 ///    r |sin theta(psi2) - sin theta(psi1)| ("area": "projected").
 /// The load acts for t <= t_end (2.5 ms in the paper). The exposure (which arcs are free) depends on the
 /// positions only; it is recomputed every `exposure_every` steps (1 = every step, as the paper).
+/// Cost: the sweep keeps the distance order of the last update and repairs it by insertion sort (the discs move
+/// little between updates; a full sort after the discs were reordered), represents directions by a monotone
+/// pseudo-angle (no trigonometry for the discs in the shadow: the tangent directions from a square root), skips
+/// the blocked set's update for a disc wholly in the shadow, and computes the angles only for the loaded arcs.
 #include <lagfsi/params.hpp>
 
+#include <map>
 #include <vector>
 
 namespace lagfsi::dem {
@@ -46,7 +51,11 @@ class Blast {
   double mass() const { return w_; }
   /// The loaded length of each disc at the last exposure update (for output).
   const std::vector<double>& exposed() const { return exposed_; }
-  void invalidate() { calls_ = 0; }  // the disc order changed: recompute the exposure at the next call
+  /// The disc order changed: recompute the exposure (and sort the discs afresh) at the next call.
+  void invalidate() {
+    calls_ = 0;
+    order_valid_ = false;
+  }
 
  private:
   void update_exposure(const double* x, int stride, const double* r, int n);
@@ -54,9 +63,11 @@ class Blast {
   double w_, w13_, t_end_, beta_, p0_, a0_;
   bool integrated_, projected_;
   int every_, calls_ = 0;
-  std::vector<double> exposed_;   // loaded length per disc
-  std::vector<int> sorted_;
-  std::vector<std::pair<double, double>> key_;  // scratch
+  std::vector<double> exposed_;      // loaded length per disc
+  std::vector<int> order_;           // discs by distance from G at the last update
+  bool order_valid_ = false;
+  std::vector<double> dist_, lo_, hi_;  // scratch: distance, tangent directions (pseudo-angles)
+  std::map<double, double> occupied_;   // scratch: blocked directions
 };
 
 }  // namespace lagfsi::dem

@@ -122,6 +122,17 @@ int app_main(int argc, char** argv) {
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
+    // The integer the whole text spells (std::stol, nothing left over), or -1.
+    auto whole_number = [](const std::string& text) -> long {
+      size_t used = 0;
+      long n = -1;
+      try {
+        n = std::stol(text, &used);
+      } catch (...) {
+        return -1;
+      }
+      return used == text.size() ? n : -1;
+    };
     auto value = [&]() -> bool {
       if (i + 1 >= args.size()) return false;
       v = args[++i];
@@ -140,14 +151,7 @@ int app_main(int argc, char** argv) {
     } else if (a == "--threads" || a.rfind("--threads=", 0) == 0) {
       if (a == "--threads" && !value()) return usage_error("--threads needs a number" + see);
       if (a != "--threads") v = a.substr(10);
-      size_t used = 0;
-      long n = -1;
-      try {
-        n = std::stol(v, &used);
-      } catch (...) {
-        n = -1;
-      }
-      if (used != v.size()) n = -1;   // "1x", "2 threads"
+      const long n = whole_number(v);   // -1 for "1x", "2 threads"
       if (n < 1) return usage_error("--threads needs a positive integer (got '" + echo(v) + "')");
       if (n > max_threads())
         return usage_error("--threads " + echo(v) + ": at most " + std::to_string(max_threads()) + " (4 x the " +
@@ -170,14 +174,8 @@ int app_main(int argc, char** argv) {
       if (!only_run()) return usage_error(a + " is an option of run, not of check" + see);
       if (a == "--stop-after-step" && !value()) return usage_error("--stop-after-step needs a step number" + see);
       if (a != "--stop-after-step") v = a.substr(18);
-      size_t used = 0;
-      long n = -1;
-      try {
-        n = std::stol(v, &used);
-      } catch (...) {
-        n = -1;
-      }
-      if (used != v.size() || n < 1) return usage_error("--stop-after-step needs a positive integer (got '" + echo(v) + "')");
+      const long n = whole_number(v);
+      if (n < 1) return usage_error("--stop-after-step needs a positive integer (got '" + echo(v) + "')");
       opt.stop_after_step = n;
     } else if (a == "--quiet" || a == "-q") {
       opt.quiet = true;

@@ -318,6 +318,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
       if (previous->contains(centroid)) {
         if (lll > 2.0 * cr * settings.separation_alpha * he) {
           ++separated;
+          result.separated.push_back({a, b, c});
           continue;
         }
       } else {
@@ -351,6 +352,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
           continue;
         }
         ++added;
+        result.added_elements.push_back(static_cast<Index>(result.triangles.size()));
       }
     }
     if (walls == 3) {

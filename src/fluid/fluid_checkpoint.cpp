@@ -36,7 +36,7 @@ void RemeshPipeline::serialize(StateArchive& ar) {
   ar.section("remesh");
   ar.io(domain_lo_, domain_hi_, remesh_dA_, remesh_dKE_, remesh_area_added_, remesh_area_removed_, remesh_ke_total_,
         remesh_pe_total_);
-  ar.io(merged_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_);
+  ar.io(merged_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_, area_excess_);
 }
 
 void VolumeCorrection::serialize(StateArchive& ar) {

@@ -27,7 +27,8 @@ double FluidEnergy::potential() const {
   return e;
 }
 
-void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force) {
+void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force,
+                          const Vec& constraint_force) {
   // On the step's mesh at x_n (lumped masses m_i = sum rho A/3, walls and ghosts included: their share of
   // the fluid moves with them): work of gravity sum m_i g . (x_{n+1} - x_n) and viscous dissipation
   // dt sum_e 2 mu A eps(v):eps(v) of the step's velocity (v_{n+1} for the fractional step, the mean of
@@ -62,6 +63,14 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& 
     boundary_work_ += 0.5 * (boundary_force_prev_.segment<2>(2 * i) + boundary_force.segment<2>(2 * i))
                           .dot(x_new.segment<2>(2 * i) - x.segment<2>(2 * i));
   boundary_force_prev_ = boundary_force;
+  // Work of the walls through the constraints of the particles on them: the end-of-step force times the
+  // step's displacement (first order: the constrained particles change from step to step).
+  const auto& ks = walls_.constraints();
+  if (static_cast<size_t>(constraint_force.size()) == ks.size())
+    for (size_t k = 0; k < ks.size(); ++k) {
+      const Index j = 2 * ks[k].i + ks[k].c;
+      boundary_work_ += constraint_force[static_cast<Index>(k)] * (x_new[j] - x[j]);
+    }
 }
 
 }  // namespace lagfsi::fluid

@@ -20,8 +20,9 @@ class FluidEnergy {
   double potential() const;
   /// Adds the step's gravity work, viscous dissipation and boundary work (before the state is updated):
   /// x_new the step's new positions, v the step's velocity (the scheme's, FluidScheme::step_velocity), dt the
-  /// step, boundary_force the forces of the walls and ghosts on the fluid (FluidStep::boundary_force).
-  void account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force);
+  /// step, boundary_force the forces of the walls and ghosts on the fluid (FluidStep::boundary_force) and
+  /// constraint_force those of the walls through their constraints (FluidStep::constraint_force).
+  void account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force, const Vec& constraint_force);
   /// Work of gravity on the fluid and viscous dissipation since the start (summed only when a gravity_work,
   /// viscous_dissipation, total_energy or boundary_work probe exists: enabled()).
   double gravity_work() const { return gravity_work_; }

@@ -22,6 +22,8 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"separation_alpha", 2.5},
               {"level_set_band", 0.25},
               {"keep_edges_angle", 0.0},
+              {"wall_model", "particles"},
+              {"wall_snap_fraction", 0.1},
               {"domain_margin", 0.1},
               {"remesh", true},
               {"regions", nullptr},
@@ -54,6 +56,16 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (keep_deg >= 90.0) b.fail("keep_edges_angle", "must be below 90 degrees");
   rs.keep_edges_angle = keep_deg * std::numbers::pi / 180.0;
   rs.domain_margin = b.non_negative("domain_margin");
+  // How the rigid walls hold the fluid (fluid_walls.hpp): a layer of fixed particles, or constraints on the
+  // fluid particles that lie on them.
+  wall_constraints_ = b.choice("wall_model", {"particles", "constraints"}) == "constraints";
+  if (wall_constraints_ && !c_.remesh)
+    b.fail("wall_model", "\"constraints\" is for PFEM mode (a fixed mesh always constrains its nodes on walls)");
+  if (wall_constraints_ && rs.detection == meshing::DomainDetection::Alpha)
+    b.fail("wall_model", "\"constraints\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
+                         "shape's particle removal does not keep particles on walls)");
+  c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
+  if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
 
   Params s = b.at("scheme");
   if (!s.json().is_object()) s.fail("must be an object");
@@ -132,12 +144,12 @@ void FluidModel::build_particles(Params b) {
   const double h = c_.h;
   // Walls first (their particles take precedence over fluid particles at the same place).
   Params walls = b.at("walls");
-  walls_.read(walls, h, ctx_.base_dir);
+  walls_.read(walls, h, ctx_.base_dir, wall_constraints_);
 
   std::vector<Vec2> pts;
   std::vector<ParticleKind> kind;
   PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);   // the particles so far, for the proximity tests
-  if (c_.remesh) walls_.place_particles(walls, h, pts, kind, wall_grid);
+  if (c_.remesh && !wall_constraints_) walls_.place_particles(walls, h, pts, kind, wall_grid);
   const Index n_wall = static_cast<Index>(pts.size());
 
   // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay

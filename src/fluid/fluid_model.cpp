@@ -25,7 +25,7 @@ void FluidModel::set_dirichlet() {
     const bool free_surface = mesh_.free[i] && p_free_dirichlet;
     if (!mesh_.connected[i] || free_surface) fixed[3 * i + 2] = 1;
   }
-  for (const auto& [i, c] : walls_.constraints()) fixed[3 * i + c] = 1;
+  for (const auto& k : walls_.constraints()) fixed[3 * k.i + k.c] = 1;
   // Dry wall particles: a wall particle in no element with an interior (non-free-surface) fluid particle
   // is above or beside the free surface (a meniscus element between a surface particle and the wall);
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
@@ -45,11 +45,14 @@ void FluidModel::initialize() {
   const std::vector<ParticleKind>& kind = cloud_.kind();
   if (c_.remesh) {
     remesh_.initial_mesh();
+    if (walls_.constraint_model()) {  // the particles on the walls: constrained, and not free surface
+      walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h);
+      remesh_.mark_free_surface(walls_.on_wall(np));
+      walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h, &mesh_.free);
+    }
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
-    std::vector<char> on_wall(np, 0);
-    for (const auto& [i, c] : walls_.constraints()) on_wall[i] = 1;
-    remesh_.mark_free_surface(on_wall);
+    remesh_.mark_free_surface(walls_.on_wall(np));
   }
   remesh_.free_regions();   // only the initial domain needs them
   volume_.start(mesh_.area(cloud_.x()));
@@ -92,7 +95,7 @@ void FluidModel::initialize() {
     if (kind[i] != ParticleKind::Fluid) continue;
     s.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : c_.gravity;
   }
-  for (const auto& [i, c] : walls_.constraints()) s.a[2 * i + c] = s.v[2 * i + c] = 0.0;
+  for (const auto& k : walls_.constraints()) s.a[2 * k.i + k.c] = s.v[2 * k.i + k.c] = 0.0;
   walls_.set_wall_motion(0.0, s.v, s.a);
   times_.assembly += seconds_since(t0);
 }
@@ -115,7 +118,15 @@ void FluidModel::predict(double t_new, double dt) {
   step_.dt = dt;
   if (c_.remesh && solved_once_ && !keep_mesh) {
     step_meshed_ = false;
-    remesh_.remesh_step(t_new, volume_, energy_);
+    // The particles on walls (those put on one at the end of the last step included): merging keeps them there.
+    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
+    const std::vector<char> on_wall = walls_.constraint_model() ? walls_.on_wall(cloud_.n()) : std::vector<char>();
+    remesh_.remesh_step(t_new, volume_, energy_, on_wall);
+  }
+  if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface
+    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
+    remesh_.mark_free_surface(walls_.on_wall(cloud_.n()));
+    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h, &mesh_.free);
   }
   step_meshed_ = true;
   times_.remesh += seconds_since(t0);
@@ -139,8 +150,7 @@ void FluidModel::start_iterations() {
   Vec& p = cloud_.p();
   p = step_.p_old;
   x = s.x + step_.dt * s.v;  // constant-velocity predictor
-  walls_.place(step_.t_new, cloud_.X0(), x);  // prescribed wall motion
-  for (const auto& [i, c] : walls_.constraints()) x[2 * i + c] = s.x[2 * i + c];
+  walls_.place(step_.t_new, cloud_.X0(), x);  // prescribed wall motion, particles on walls
   ghosts_.place(x);
   for (Index i = 0; i < np; ++i)
     if (step_.fixed[3 * i + 2]) p[i] = 0.0;
@@ -151,10 +161,15 @@ IterationReport FluidModel::solve_iteration() { return scheme_->iterate(); }
 
 void FluidModel::finalize_step() {
   step_open_ = false;
-  if (energy_.enabled()) energy_.account(step_.x, scheme_->step_velocity(), step_.dt, step_.boundary_force);
+  if (energy_.enabled())
+    energy_.account(step_.x, scheme_->step_velocity(), step_.dt, step_.boundary_force, step_.constraint_force);
   const Vec x_start = cloud_.x();
   scheme_->end_step();
-  if (c_.remesh) walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
+  if (walls_.constraint_model()) {
+    walls_.snap_to_walls(cloud_, x_start, step_.t_new, c_.wall_snap_fraction);
+  } else if (c_.remesh) {
+    walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
+  }
   volume_.set_end(mesh_.area(cloud_.x()));
   step_.p_scale = std::max(step_.p_scale, cloud_.p().cwiseAbs().maxCoeff());
 }
@@ -184,7 +199,10 @@ Json FluidModel::summary() const {
   remeshing["domain_detection"] = c_.remesh ? detection : "none (fixed connectivity)";
   remeshing["volume_correction_energy"] = volume_.correction_energy();
   return {{"fluid_area", volume_.summary()},
+          {"wall_model", !c_.remesh ? "constraints (fixed connectivity)"
+                         : walls_.constraint_model() ? "constraints" : "particles"},
           {"wall_crossings", walls_.crossings()},
+          {"wall_snaps", walls_.snaps()},
           {"inverted_elements_kept", scheme_->inverted_kept()},
           {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
           {"remeshing", remeshing}};
@@ -229,6 +247,12 @@ void FluidModel::write_output(double t) {
         w.points.push_back(x.segment<2>(2 * j));
         wp.values.push_back(p[j]);
       }
+      if (wall.particles.empty())  // "wall_model": "constraints": the polyline (the pressures are the fluid's)
+        for (const Vec2& q : wall.polyline) {
+          line.push_back(static_cast<Index>(w.points.size()));
+          w.points.push_back(q + wall.offset(t));
+          wp.values.push_back(0.0);
+        }
       w.lines.push_back(line);
     }
     w.point_fields = {wp};

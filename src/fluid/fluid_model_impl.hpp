@@ -63,6 +63,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   bool is_fluid(Index i) const { return cloud_.is_fluid(i); }
   bool is_connected(Index i) const { return mesh_.connected[i] != 0; }
   double spacing() const { return c_.h; }
+  /// The walls' polylines' bounding box (lo > hi without walls).
+  void walls_box(Vec2& lo, Vec2& hi) const { walls_.bounding_box(lo, hi); }
   const std::vector<std::array<Index, 3>>& triangles() const { return mesh_.tri; }
   double kinetic_energy() const { return energy_.kinetic(); }
   /// Potential energy of gravity over the current mesh (FluidEnergy::potential).
@@ -108,6 +110,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::unique_ptr<FluidScheme> scheme_;
 
   Index n_initial_ = 0;             // particles at the start (summary.json)
+  bool wall_constraints_ = false;   // "wall_model": "constraints" (read by the constructor for build_particles)
   bool solved_once_ = false;
   bool step_open_ = false;          // predict called and the step not finalized yet (a retry if predicted again)
   bool step_meshed_ = false;        // the open step's remesh completed (a retry keeps that mesh)

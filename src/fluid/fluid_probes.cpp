@@ -34,9 +34,11 @@ std::unique_ptr<Probe> make_fluid_probe(const FluidModel& m, std::string name, s
 FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, Params p)
     : m_(m), name_(std::move(name)), type_(std::move(type)) {
   const double h = m.spacing();
-  // Where there is something to measure: the particles' extent (fluid and walls) at the start, plus h. A
-  // probe outside it is a typing error (x of another case, a flipped sign) that would write nan or 0 for ever.
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  // Where there is something to measure: the particles' extent (fluid and walls) at the start and the walls'
+  // polylines (without wall particles: "wall_model": "constraints"), plus h. A probe outside it is a typing
+  // error (x of another case, a flipped sign) that would write nan or 0 for ever.
+  Vec2 lo, hi;
+  m.walls_box(lo, hi);
   for (Index i = 0; i < m.n(); ++i) {
     lo = lo.cwiseMin(m.pos(i));
     hi = hi.cwiseMax(m.pos(i));

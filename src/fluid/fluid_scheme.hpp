@@ -32,6 +32,8 @@ struct FluidStep {
   bool energy = false;      // an energy probe asks for the boundary work: the schemes set boundary_force
   Vec boundary_force;       // per non-fluid particle (walls, ghosts: stable indices), 2 each: the force it
                             // applies to the fluid in the step's solve
+  Vec constraint_force;     // per wall constraint (FluidWalls::constraints): the force the wall applies
+                            // along its component
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
 };

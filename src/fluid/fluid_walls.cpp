@@ -1,5 +1,5 @@
 // The fluid's rigid walls (fluid_walls.hpp): reading them, their particles or constraints, their prescribed
-// motion, and keeping the fluid particles on their fluid side.
+// motion, and keeping the fluid particles on their fluid side (or putting them on the wall).
 #include "fluid_walls.hpp"
 
 #include <algorithm>
@@ -8,7 +8,8 @@
 
 namespace lagfsi::fluid {
 
-void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_dir) {
+void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_dir, bool constraints) {
+  constraint_model_ = constraints;
   for (size_t i = 0; i < walls.size(); ++i) {
     Params w = walls.at(i);
     w.validate({{"name", "wall" + std::to_string(i)},
@@ -24,6 +25,14 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
         w.fail("points", "segment " + std::to_string(k) + " has zero length (points " + std::to_string(k) + " and " +
                              std::to_string(k + 1) + " coincide)");
     wall.slip = w.boolean("slip");
+    if (constraints)
+      for (size_t k = 0; k + 1 < wall.polyline.size(); ++k) {
+        const Vec2 d = wall.polyline[k + 1] - wall.polyline[k];
+        if (std::abs(d.x()) > 1e-12 * d.norm() && std::abs(d.y()) > 1e-12 * d.norm())
+          w.fail("points", "segment " + std::to_string(k) +
+                               " is inclined: \"wall_model\": \"constraints\" needs horizontal or vertical segments "
+                               "in this version (use \"particles\")");
+      }
     Params mo = w.at("motion");
     if (!mo.json().empty()) {
       if (!mo.has("type")) mo.fail("type", "required key is missing");
@@ -89,7 +98,7 @@ void FluidWalls::set_fluid_sides(const std::vector<Vec2>& pts, const std::vector
       for (Index i = 0; i < np; ++i) {
         if (kind[i] != ParticleKind::Fluid) continue;
         const double u = (pts[i] - a).dot(e) / e.squaredNorm(), dist = (pts[i] - a).dot(nrm);
-        if (u < 0 || u > 1) continue;
+        if (u < 0 || u > 1 || std::abs(dist) <= 1e-9 * e.norm()) continue;  // (a particle on the wall)
         (dist > 0 ? pos : neg) += 1;
       }
       w.fluid_side[k] = pos > 0 && neg == 0 ? 1 : neg > 0 && pos == 0 ? -1 : 0;
@@ -107,11 +116,13 @@ void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2
       const bool horizontal = std::abs(d.y()) < 1e-12 * d.norm(), vertical = std::abs(d.x()) < 1e-12 * d.norm();
       if (w.slip && !horizontal && !vertical)
         body.fail("walls", "slip walls must be horizontal or vertical segments in this version");
+      const Vec2 off = w.offset(0.0);
       for (Index i = 0; i < np; ++i) {
         const double t = std::clamp((pts[i] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
         if ((pts[i] - (a + t * d)).norm() > 1e-6 * h) continue;
-        if (!w.slip || horizontal) slip_.push_back({i, 1});
-        if (!w.slip || vertical) slip_.push_back({i, 0});
+        const int wall = static_cast<int>(wi);
+        if (!w.slip || horizontal) constraints_.push_back({i, 1, pts[i].y() - off.y(), wall});
+        if (!w.slip || vertical) constraints_.push_back({i, 0, pts[i].x() - off.x(), wall});
       }
     }
   }
@@ -126,11 +137,109 @@ void FluidWalls::set_wall_motion(double t, Vec& v, Vec& a) const {
       a.segment<2>(2 * j) = aw;
     }
   }
+  // The constrained components, also on fixed walls (zero): a particle put on a wall by snap_to_walls
+  // arrives with its own velocity, which the constraint's first step would otherwise reflect (the
+  // trapezoidal rule's v_{n+1} = 2 (x_{n+1} - x_n) / dt - v_n).
+  for (const auto& k : constraints_) {
+    const Wall& w = walls_[static_cast<size_t>(k.wall)];
+    v[2 * k.i + k.c] = w.velocity_at(t)[k.c];
+    a[2 * k.i + k.c] = w.acceleration_at(t)[k.c];
+  }
 }
 
 void FluidWalls::place(double t, const Vec& X0, Vec& x) const {
   for (const auto& w : walls_)
     for (Index j : w.particles) x.segment<2>(2 * j) = X0.segment<2>(2 * j) + w.offset(t);
+  for (const auto& k : constraints_) x[2 * k.i + k.c] = constraint_position(k, t);
+}
+
+void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h,
+                               const std::vector<std::uint8_t>* free) {
+  if (!constraint_model_) return;
+  constraints_.clear();
+  const double tol = 1e-6 * h;
+  const Index np = static_cast<Index>(kind.size());
+  for (size_t wi = 0; wi < walls_.size(); ++wi) {
+    const Wall& w = walls_[wi];
+    const Vec2 off = w.offset(t);
+    for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
+      const Vec2 a = w.polyline[s] + off, b = w.polyline[s + 1] + off;
+      const int n = std::abs(b.y() - a.y()) < std::abs(b.x() - a.x()) ? 1 : 0;  // the normal component
+      const int m = 1 - n;
+      const double lo = std::min(a[m], b[m]) - tol, hi = std::max(a[m], b[m]) + tol;
+      for (Index i = 0; i < np; ++i) {
+        if (kind[i] != ParticleKind::Fluid) continue;
+        const Vec2 q = x.segment<2>(2 * i);
+        if (std::abs(q[n] - a[n]) > tol || q[m] < lo || q[m] > hi) continue;
+        const int wall = static_cast<int>(wi);
+        constraints_.push_back({i, n, a[n] - off[n], wall});
+        const bool contact_line = free != nullptr && i < static_cast<Index>(free->size()) && (*free)[i];
+        if (!w.slip && !contact_line) constraints_.push_back({i, m, q[m] - off[m], wall});  // held where it is
+      }
+    }
+  }
+  // A particle at a joint of two collinear segments (or of two walls) is found twice: one constraint per component.
+  std::sort(constraints_.begin(), constraints_.end(),
+            [](const WallConstraint& p, const WallConstraint& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; });
+  constraints_.erase(std::unique(constraints_.begin(), constraints_.end(),
+                                 [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
+                     constraints_.end());
+}
+
+std::vector<char> FluidWalls::on_wall(Index n) const {
+  std::vector<char> flag(static_cast<size_t>(n), 0);
+  for (const auto& k : constraints_)
+    if (k.i < n) ++flag[static_cast<size_t>(k.i)];
+  return flag;
+}
+
+void FluidWalls::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double t, double snap_fraction) {
+  // Walls without particles: a fluid particle is held off a wall only by the constraints of the particles on
+  // it, so one that arrives (an impact, a film reaching a wall) is put on the wall and constrained from the
+  // next step on. Beyond a segment (within its span, having started less than h beyond it) or within
+  // snap_fraction h of it and closer than at the start of the step: its normal coordinate becomes the
+  // wall's, and so do its normal velocity and acceleration (an inelastic impact).
+  const std::vector<ParticleKind>& kind = cloud.kind();
+  Vec& x = cloud.x();
+  Vec& vel = cloud.v();
+  for (Index i = 0; i < cloud.n(); ++i) {
+    if (kind[i] != ParticleKind::Fluid) continue;
+    const double h = cloud.h(i);
+    for (const auto& w : walls_) {
+      const Vec2 off = w.offset(t), vw = w.velocity_at(t);
+      for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
+        const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
+        const Vec2 p0 = x_start.segment<2>(2 * i), p1 = x.segment<2>(2 * i);
+        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        const double u = (p1 - a).dot(e) / e.squaredNorm(), slack = 1e-6 * h / e.norm();
+        if (!(u >= -slack && u <= 1 + slack)) continue;
+        if (w.fluid_side[k] != 0) {
+          nrm *= w.fluid_side[k];
+        } else if (nrm.dot(p0 - a) < 0) {
+          nrm = -nrm;  // a wall with fluid on both sides: towards the side the particle came from
+        }
+        const double d1 = nrm.dot(p1 - a), d0 = nrm.dot(p0 - a);
+        if (std::abs(d1) <= 1e-6 * h) continue;  // on it already
+        const bool beyond = d1 < 0 && d0 > -h, near = d1 > 0 && d1 < snap_fraction * h && d1 < d0;
+        if (!beyond && !near) continue;
+        x.segment<2>(2 * i) = p1 - d1 * nrm;
+        // The normal velocity and acceleration become the wall's (no-slip walls: the whole velocity, as the
+        // constraints of the next step will hold them).
+        Vec2 v = vel.segment<2>(2 * i), acc = cloud.a().segment<2>(2 * i);
+        const Vec2 aw = w.acceleration_at(t);
+        if (w.slip) {
+          v -= (v - vw).dot(nrm) * nrm;
+          acc -= (acc - aw).dot(nrm) * nrm;
+        } else {
+          v = vw;
+          acc = aw;
+        }
+        vel.segment<2>(2 * i) = v;
+        cloud.a().segment<2>(2 * i) = acc;
+        ++(beyond ? wall_crossings_ : wall_snaps_);
+      }
+    }
+  }
 }
 
 void FluidWalls::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t) {

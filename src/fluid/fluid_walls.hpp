@@ -1,8 +1,18 @@
 #pragma once
 /// @file fluid_walls.hpp (private to src/fluid)
-/// The fluid's rigid walls (/bodies/i/walls): their polylines, motions and slip flags, their particles (PFEM
-/// mode) or constraints (fixed connectivity), and the check that puts back the fluid particles that crossed
-/// one (keep_inside_walls).
+/// The fluid's rigid walls (/bodies/i/walls): their polylines, motions and slip flags, and how they hold the
+/// fluid:
+///  - PFEM mode, "wall_model": "particles" (the classic PFEM; Idelsohn, Oñate & Del Pin 2004): a line of fixed
+///    wall particles, spaced h, that the Delaunay mesh connects to the fluid; the fluid particles that crossed
+///    one are put back (keep_inside_walls);
+///  - PFEM mode, "wall_model": "constraints": no wall particles; the fluid particles lying on a wall carry its
+///    condition as constraints (the normal component on a slip wall, both on a no-slip one), found again at
+///    every step (find_contacts), and a particle whose step ends on or beyond a wall, or within
+///    snap_fraction h of it while approaching, is put on it (snap_to_walls). The wall-particle layer is a
+///    numerical friction in gentle flows (fluid sliding past a zero-velocity wall particle has a discrete
+///    divergence that the continuity equation resists: cases/studies/conservation); nodes on the wall with a
+///    normal constraint slide freely, as in a fixed mesh;
+///  - fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
 #include <lagfsi/fluid/particle_cloud.hpp>
@@ -12,6 +22,7 @@
 #include <lagfsi/time_function.hpp>
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -50,10 +61,21 @@ struct Wall {
   }
 };
 
+/// A constrained component of a fluid particle on a wall: x[2 i + c] = base + the wall's offset(t)[c].
+struct WallConstraint {
+  Index i;
+  int c;
+  double base;
+  int wall;
+};
+
 class FluidWalls {
  public:
-  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths.
-  void read(Params walls, double h, const std::filesystem::path& base_dir);
+  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths. With
+  /// `constraints` (PFEM mode, "wall_model": "constraints") every segment must be horizontal or vertical.
+  void read(Params walls, double h, const std::filesystem::path& base_dir, bool constraints = false);
+  /// PFEM mode with "wall_model": "constraints" (no wall particles; find_contacts, snap_to_walls).
+  bool constraint_model() const { return constraint_model_; }
   bool empty() const { return walls_.empty(); }
   const std::vector<Wall>& all() const { return walls_; }
 
@@ -68,8 +90,26 @@ class FluidWalls {
   /// Fixed-connectivity mode: the particles (at `pts`) on a wall are constrained (both components, or the
   /// normal one on a slip wall); `body` names the errors.
   void constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h);
-  /// Fixed-connectivity mode: the constrained (particle, component) pairs.
-  const std::vector<std::pair<Index, int>>& constraints() const { return slip_; }
+  /// The constrained components of fluid particles on walls: fixed connectivity's (constrain_fixed_mesh), or
+  /// the step's contacts ("wall_model": "constraints", find_contacts).
+  const std::vector<WallConstraint>& constraints() const { return constraints_; }
+  /// "wall_model": "constraints": the fluid particles (positions x at time t, of kinds `kind`) that lie on a
+  /// wall segment (within 1e-6 h of it) become the step's constraints; h the spacing. A no-op otherwise.
+  /// With `free` (the free-surface flags), a free-surface particle on a no-slip wall is held in the normal
+  /// direction only: the contact line moves (held, it would pin the water's edge where it first touched).
+  void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h,
+                     const std::vector<std::uint8_t>* free = nullptr);
+  /// Per particle (n of them): how many of its components are constrained (0, 1 or 2; free-surface marking:
+  /// an unshared edge between two particles on walls is a wall, not a free surface; particle management: a
+  /// particle on a wall keeps its place when merged).
+  std::vector<char> on_wall(Index n) const;
+  /// The prescribed position and velocity of a constrained component at time t.
+  double constraint_position(const WallConstraint& k, double t) const {
+    return k.base + walls_[static_cast<size_t>(k.wall)].offset(t)[k.c];
+  }
+  double constraint_velocity(const WallConstraint& k, double t) const {
+    return walls_[static_cast<size_t>(k.wall)].velocity_at(t)[k.c];
+  }
 
   /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
   /// wall transmits no shear (the free-slip condition, applied over the first layer of elements); the
@@ -79,23 +119,33 @@ class FluidWalls {
       if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
     return false;
   }
-  /// Velocity and acceleration of the moving walls' particles at time t (their prescribed motion).
+  /// Velocity and acceleration of the moving walls' particles, and of the constrained components of the
+  /// particles on them, at time t (their prescribed motion).
   void set_wall_motion(double t, Vec& v, Vec& a) const;
-  /// The wall particles' prescribed positions at time t into x (X0 their initial positions).
+  /// The wall particles' prescribed positions at time t into x (X0 their initial positions), and the
+  /// constrained components of the particles on walls.
   void place(double t, const Vec& X0, Vec& x) const;
   /// Fluid particles whose step crossed a wall segment go back to its fluid side (PFEM mode; x_start the
   /// positions at the start of the step, t the end of the step).
   void keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t);
-  /// Fluid particles put back inside a wall so far (keep_inside_walls).
+  /// "wall_model": "constraints": a fluid particle whose step (from x_start) ends beyond a wall segment, or
+  /// within snap_fraction h of it while approaching it, is put on the segment and loses its velocity into
+  /// the wall relative to the wall's (an inelastic impact); it is constrained from the next step on.
+  void snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double t, double snap_fraction);
+  /// Fluid particles put back inside a wall so far (keep_inside_walls, snap_to_walls from beyond a wall),
+  /// and put on a wall from its fluid side (snap_to_walls).
   long crossings() const { return wall_crossings_; }
+  long snaps() const { return wall_snaps_; }
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
 
  private:
   std::vector<Wall> walls_;
   std::vector<char> slip_particle_;          // per wall particle (wall particles come first and are never removed)
-  std::vector<std::pair<Index, int>> slip_;  // fixed-connectivity mode: (particle, component) constrained
+  std::vector<WallConstraint> constraints_;  // fixed connectivity, or the step's contacts ("constraints")
+  bool constraint_model_ = false;            // PFEM mode with "wall_model": "constraints"
   long wall_crossings_ = 0;                  // fluid particles put back inside a wall (keep_inside_walls)
+  long wall_snaps_ = 0;                      // fluid particles put on a wall from its fluid side
 };
 
 }  // namespace lagfsi::fluid

@@ -176,9 +176,9 @@ IterationReport FractionalStep::iterate() {
   for (const auto& w : f_.walls.all())  // moving walls: the prescribed velocity at the end of the step
     if (w.fn)
       for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
-  for (const auto& [i, c] : f_.walls.constraints()) {
-    vfixed[2 * i + c] = 1;
-    ustar[2 * i + c] = 0.0;
+  for (const auto& k : f_.walls.constraints()) {  // particles on walls: the wall's velocity component
+    vfixed[2 * k.i + k.c] = 1;
+    ustar[2 * k.i + k.c] = f_.walls.constraint_velocity(k, f_.step.t_new);
   }
   // Ghost particles: the mean velocity of the structure's boundary over the step, (x_new{n+1} - x_n)/dt. The
   // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
@@ -345,10 +345,29 @@ IterationReport FractionalStep::iterate() {
     for (Index i = 0; i < nb; ++i)
       boundary_force.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
                                          force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
+    // The same for the constrained components of the particles on walls.
+    const auto& ks = f_.walls.constraints();
+    Vec& kf = f_.step.constraint_force;
+    kf.resize(static_cast<Index>(ks.size()));
+    std::vector<char> on_wall = f_.walls.on_wall(np);
+    Vec Kw = Vec::Zero(2 * np);
+    if (implicit && !ks.empty())
+      for (Index e = 0; e < ne; ++e) {
+        const auto& t = tri[e];
+        if (f_.walls.inviscid(t) || !(on_wall[t[0]] || on_wall[t[1]] || on_wall[t[2]])) continue;
+        for (int a = 0; a < 3; ++a)
+          if (on_wall[t[a]])
+            for (int b = 0; b < 3; ++b)
+              Kw.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+      }
+    for (size_t k = 0; k < ks.size(); ++k) {
+      const Index j = 2 * ks[k].i + ks[k].c;
+      kf[static_cast<Index>(k)] = mass[ks[k].i] * (v_new_[j] - v[j]) / dt - force[j] - du[j] + Kw[j];
+    }
   }
   for (Index i = 0; i < np; ++i)
     if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
-  for (const auto& [i, c] : f_.walls.constraints()) x_new[2 * i + c] = x[2 * i + c];
+  for (const auto& k : f_.walls.constraints()) x_new[2 * k.i + k.c] = f_.walls.constraint_position(k, f_.step.t_new);
   if (!x_new.allFinite() || !pres.allFinite() || !v_new_.allFinite())
     throw SolverError("body '" + f_.c.name + "': non-finite solution of the fractional step at t = " + std::to_string(f_.step.t_new));
 

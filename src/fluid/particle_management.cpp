@@ -23,6 +23,7 @@
 //       both lie on or inside the advected domain, which they therefore do not change.
 //  3. what the remesh still changed is measured: the area and the kinetic energy of the same velocities on
 //     the new mesh against the old (log.csv remesh_dA, remesh_dKE; totals in summary.json).
+#include "point_grid.hpp"
 #include "remesh_pipeline.hpp"
 
 #include <algorithm>
@@ -78,7 +79,8 @@ meshing::PreviousDomain RemeshPipeline::advected_domain() const {
 
 bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
                                       std::vector<std::pair<Index, Index>>& boundary_edges,
-                                      std::vector<std::pair<Index, Index>>* all_edges) {
+                                      std::vector<std::pair<Index, Index>>* all_edges,
+                                      const std::vector<char>& on_wall) {
   const Index np = cloud_.n();
   std::vector<Vec2> pts(np);
   for (Index i = 0; i < np; ++i) pts[i] = cloud_.pos(i);
@@ -92,12 +94,20 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   std::vector<Index> alias(np);   // a merged particle's survivor (itself otherwise)
   for (Index i = 0; i < np; ++i) alias[i] = i;
   // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
+  const auto walled = [&](Index i) { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); };
   const auto merge = [&](Index i, Index j) {
+    // A particle on a wall ("wall_model": "constraints") survives where it is, the more constrained one of
+    // two (a corner's particle keeps the corner); two on one wall meet at their centre of mass, on it.
+    if (walled(j) > walled(i)) std::swap(i, j);
     const double wi = lumped[i], wj = lumped[j], w = wi + wj;
     const double si = w > 0 ? wi / w : 0.5, sj = 1.0 - si;
     Vec2 x = si * pts[i] + sj * pts[j];
     const bool bi = on_boundary(i), bj = on_boundary(j);
-    if (bi && !bj) {
+    if (walled(i) > walled(j) || walled(i) == 2) {
+      x = pts[i];
+    } else if (walled(i) == 1) {
+      // both on a wall: their centre of mass, on the wall when it is one wall
+    } else if (bi && !bj) {
       x = pts[i];
     } else if (bj && !bi) {
       x = pts[j];
@@ -129,6 +139,23 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     alias[j] = i;
     ++merged_;
   };
+  if (!on_wall.empty()) {
+    // Walls as constraints: a particle put on a wall (FluidWalls::snap_to_walls) may land on or next to a
+    // particle already there that the previous mesh does not connect it to (a drop sliding into a corner
+    // lands on the corner's particle): such pairs are merged too. Both may be out of the mesh (no mass):
+    // the merge then takes the mean state.
+    const double r = std::max(s_.close_fraction, 0.05) * c_.h;
+    PointGrid grid(std::max(r, 1e-300));
+    for (Index i = 0; i < np; ++i) {
+      if (cloud_.kind(i) != ParticleKind::Fluid) continue;
+      const Index j = grid.find(pts[i], r, pts);
+      if (j >= 0 && !touched[j] && !touched[i] && (walled(i) > 0 || walled(j) > 0)) {
+        merge(j, i);
+      } else {
+        grid.add(pts[i], i);
+      }
+    }
+  }
   if (s_.close_fraction > 0) {
     // A fluid particle pressed against a wall particle: inside the fluid it goes (the wall stands for it;
     // the domain does not change); on the free surface (where the surface meets the wall) it is merged with

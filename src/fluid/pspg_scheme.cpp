@@ -197,6 +197,9 @@ IterationReport PspgScheme::iterate() {
     boundary_force.resize(2 * f_.cloud.n_boundary_particles());
     for (Index i = 0; i < boundary_force.size() / 2; ++i)
       for (int c = 0; c < 2; ++c) boundary_force[2 * i + c] = R[3 * i + c];
+    const auto& ks = f_.walls.constraints();
+    step.constraint_force.resize(static_cast<Index>(ks.size()));
+    for (size_t k = 0; k < ks.size(); ++k) step.constraint_force[static_cast<Index>(k)] = R[3 * ks[k].i + ks[k].c];
   }
   double rm2 = 0;
   for (Index i = 0; i < 3 * np; ++i) {

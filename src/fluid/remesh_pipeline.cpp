@@ -60,8 +60,15 @@ void RemeshPipeline::initial_mesh() {
   added_outside_ = separated_ = 0;
 }
 
-void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy) {
-  drop_outside_domain(t_new, volume);
+void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy,
+                                 const std::vector<char>& on_wall_in) {
+  std::vector<char> on_wall = on_wall_in;
+  if (drop_outside_domain(t_new, volume) && !on_wall.empty()) {  // the flags follow the renumbering
+    std::vector<char> kept(static_cast<size_t>(cloud_.n()), 0);
+    for (size_t i = 0; i < on_wall.size() && i < renumber_.size(); ++i)
+      if (renumber_[i] >= 0) kept[static_cast<size_t>(renumber_[i])] = on_wall[i];
+    on_wall.swap(kept);
+  }
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
   const double area0 = mesh_.area(cloud_.x()), ke0 = energy.kinetic(), pe0 = energy.potential();
@@ -74,7 +81,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     meshing::PreviousDomain previous = advected_domain();
     std::vector<std::uint8_t> meshed;
     std::vector<std::pair<Index, Index>> edges, all_edges;
-    manage_particles(meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr);
+    manage_particles(meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr, on_wall);
     previous.set_topology(std::move(meshed), std::move(edges));
     previous.set_edges(std::move(all_edges));
     remesh_now(&previous);
@@ -109,6 +116,16 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
   added_outside_ += r.added_outside;
   kept_edges_ += r.kept_edges;
   separated_ += r.separated_inside;
+  if (previous != nullptr && !previous->empty()) {
+    // The area of the elements added outside the advected domain (surfaces meeting), less that of those torn
+    // off inside it (separation): summary.json, where a splash's area comes from.
+    const auto area = [&](const std::array<Index, 3>& t) {
+      const Vec2 a = pts[t[0]], b = pts[t[1]], c = pts[t[2]];
+      return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    };
+    for (Index e : r.added_elements) area_excess_ += area(r.triangles[static_cast<size_t>(e)]);
+    for (const auto& t : r.separated) area_excess_ -= area(t);
+  }
   auto& tri = mesh_.tri;
   tri = std::move(r.triangles);
   mesh_.free = std::move(r.free_surface);
@@ -282,7 +299,8 @@ Json RemeshPipeline::summary() const {
           {"particles_removed_at_walls", wall_removed_},
           {"elements_added_outside", added_outside_},
           {"edges_kept", kept_edges_},
-          {"elements_separated", separated_}};
+          {"elements_separated", separated_},
+          {"area_of_added_minus_separated_elements", area_excess_}};
 }
 
 }  // namespace lagfsi::fluid

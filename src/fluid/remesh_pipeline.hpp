@@ -53,8 +53,11 @@ class RemeshPipeline {
   /// The whole remeshing of a step (predict, t_new the end of the step): drop_outside_domain; with "alpha"
   /// remesh_now, remove_close_particles, insert_particles (each change remeshed again), otherwise particle
   /// management on the advected domain and one remesh; the change of area and energies it made (`energy`
-  /// measures them); then the "surface" correction.
-  void remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy);
+  /// measures them); then the "surface" correction. `on_wall` (empty, or per particle the number of its
+  /// components constrained by a wall: "wall_model": "constraints") keeps the particles on walls in place
+  /// when merged.
+  void remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy,
+                   const std::vector<char>& on_wall = {});
   /// Delaunay + domain detection of the present cloud: the alpha shape, or (advected / level set) the
   /// previous domain `previous` as predicate; then the meniscus, flat-element and structure-crossing filters;
   /// the free-surface flags of what is left.
@@ -91,7 +94,8 @@ class RemeshPipeline {
   /// `all_edges` is given, every edge of the previous mesh through merges (an edge of a removed particle goes;
   /// a split boundary edge gives its two halves).
   bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges,
-                        std::vector<std::pair<Index, Index>>* all_edges = nullptr);
+                        std::vector<std::pair<Index, Index>>* all_edges = nullptr,
+                        const std::vector<char>& on_wall = {});
   /// The boundary of the mesh as chains: next[i] / prev[i] the particle after / before i along a boundary
   /// edge (directed as in its element), -1 if none; pinched where two boundary edges leave one particle (two
   /// surfaces touching at it).
@@ -119,6 +123,7 @@ class RemeshPipeline {
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
   long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0, kept_edges_ = 0;
+  double area_excess_ = 0;  // area of the elements added outside the advected domain, less those torn off
 };
 
 }  // namespace lagfsi::fluid

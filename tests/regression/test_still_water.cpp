@@ -1,6 +1,7 @@
 // Still water stays still under remeshing (issue #16, item 5): a tank at rest, remeshed every step for 20 s;
 // the largest particle speed stays below 1e-4 sqrt(g H). Run with each domain detection: the alpha shape
-// with its surface volume correction (the default) and the advected previous domain without correction.
+// with its surface volume correction (the default) and the advected previous domain without correction, with
+// wall particles and with the walls as constraints on the particles on them ("wall_model": "constraints").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,14 +14,14 @@ namespace {
 
 using namespace lagfsi::testing;
 
-std::string still_tank(const std::string& detection, const std::string& correction) {
+std::string still_tank(const std::string& detection, const std::string& correction, const std::string& walls) {
   return R"({
     "name": "still_water",
     "analysis": {"type": "dynamic", "dt": 0.01, "end_time": 20.0},
     "gravity": [0.0, -9.81],
     "bodies": [{
       "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
-      "domain_detection": ")" + detection + R"(",
+      "domain_detection": ")" + detection + R"(", "wall_model": ")" + walls + R"(",
       "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.4, 0.2]}],
       "walls": [{"name": "tank", "points": [[0, 0.3], [0, 0], [0.4, 0], [0.4, 0.3]]}],
       "initial_pressure": {"type": "hydrostatic", "level": 0.2},
@@ -32,8 +33,10 @@ std::string still_tank(const std::string& detection, const std::string& correcti
   })";
 }
 
-void expect_still(const std::string& detection, const std::string& correction) {
-  const RunResult r = run_case_text(fresh_dir("still_water_" + detection), still_tank(detection, correction));
+void expect_still(const std::string& detection, const std::string& correction,
+                  const std::string& walls = "particles") {
+  const RunResult r =
+      run_case_text(fresh_dir("still_water_" + detection + "_" + walls), still_tank(detection, correction, walls));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv p = read_csv(r.out_dir / "probes.csv");
   const double limit = 1e-4 * std::sqrt(9.81 * 0.2);
@@ -46,5 +49,6 @@ void expect_still(const std::string& detection, const std::string& correction) {
 
 TEST(StillWater, AlphaShapeWithSurfaceCorrectionStaysStill) { expect_still("alpha", "surface"); }
 TEST(StillWater, AdvectedDomainStaysStill) { expect_still("advected", "none"); }
+TEST(StillWater, WallConstraintsStayStill) { expect_still("advected", "none", "constraints"); }
 
 }  // namespace

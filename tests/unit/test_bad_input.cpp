@@ -378,6 +378,34 @@ TEST(BadInput, FluidProbeOutsideTheFluid) {
   expect_one_line(o, "/probes/0/to", "lies outside the fluid and its walls");
 }
 
+TEST(BadInput, FluidWallModelConstraints) {
+  // "wall_model": "constraints" (particles on the walls constrained) needs PFEM mode, the advected or
+  // level-set detection, and horizontal or vertical wall segments.
+  json j = fluid_case();
+  j["bodies"][0]["wall_model"] = "constraints";
+  j["bodies"][0]["domain_detection"] = "advected";
+  EXPECT_EQ(run_json("wall_constraints", j).code, 0);
+  j["bodies"][0]["domain_detection"] = "alpha";
+  Outcome o = run_json("wall_constraints_alpha", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/wall_model", "advected");
+  j["bodies"][0]["domain_detection"] = "advected";
+  j["bodies"][0]["remesh"] = false;
+  o = run_json("wall_constraints_fixed", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/wall_model", "PFEM mode");
+  j["bodies"][0].erase("remesh");
+  j["bodies"][0]["walls"][0]["points"] = {{0, 0.3}, {0, 0}, {0.4, 0.05}, {0.4, 0.3}};
+  o = run_json("wall_constraints_inclined", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/walls/0/points", "segment 1 is inclined");
+  j = fluid_case();
+  j["bodies"][0]["wall_model"] = "glue";
+  o = run_json("wall_model_unknown", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/wall_model", "constraints");
+}
+
 TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a

@@ -20,6 +20,8 @@ struct FluidConstants {
   double bulk = 2.2e9;           // bulk modulus of the slight compressibility (0: incompressible)
   Vec2 gravity = Vec2::Zero();
   double analysis_dt = 0;        // the analysis' time step (what the kernels use before the first step)
+  double wall_snap_fraction = 0.1;  // "wall_model": "constraints": a particle approaching a wall closer than
+                                    // this * h is put on it (FluidWalls::snap_to_walls)
 };
 
 /// The remeshing's settings (/bodies/i and /bodies/i/scheme; RemeshPipeline, remesh_pipeline.hpp).

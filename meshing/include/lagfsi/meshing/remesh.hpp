@@ -66,6 +66,9 @@ struct RemeshResult {
   int lost_edges = 0;                           ///< Advected / LevelSet: previous boundary edges left out (crossed
                                                 ///< by more than one Delaunay edge)
   int kept_edges = 0;                           ///< keep_edges_angle > 0: previous interior edges flipped back in
+  std::vector<Index> added_elements;            ///< Advected / LevelSet: indices (in `triangles`) of the kept
+                                                ///< elements outside the previous domain
+  std::vector<std::array<Index, 3>> separated;  ///< Advected / LevelSet: the elements inside it deleted
 };
 
 /// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its

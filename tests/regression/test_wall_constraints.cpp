@@ -1,0 +1,87 @@
+// Walls as constraints on the fluid particles on them ("wall_model": "constraints", issue #16): the PFEM wall
+// particles have zero velocity, and fluid sliding past them has a discrete divergence that the continuity
+// equation resists, a numerical friction that drained 1.2 % of a standing wave's energy a period. With the
+// particles on a slip wall held in the normal direction only, the wave keeps its energy as a fixed mesh does.
+//  - the first sloshing mode, remeshed every step with the advected domain (cases/sloshing_free/
+//    case_advected.json), 3 periods: measured 0.9981 of the wave's energy kept (0.9655 with wall particles),
+//    area drift 8e-8;
+//  - a blob dropped into a tank lands on the floor and stays in the tank (each scheme): the particles that reach
+//    a wall are put on it (wall_snaps) or back from beyond it (wall_crossings), none falls through, and one that
+//    lands where another particle sits (a corner) is merged with it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "case_runner.hpp"
+
+namespace {
+
+using namespace lagfsi::testing;
+
+/// The wave's energy: kinetic + potential above the still water of the same area (a 1 m tank) + dissipated.
+double wave_energy(const Csv& c, size_t i) {
+  const double rho = 1000.0, g = 9.81, W = 1.0, A = c["fluid_area"][i];
+  return c["kinetic_energy"][i] + c["potential_energy"][i] - rho * g * A * A / (2 * W) + c["viscous_dissipation"][i];
+}
+
+TEST(WallConstraints, StandingWaveKeepsItsEnergy) {
+  const double T = 1.18182;  // the first mode's linear period
+  const RunResult r = run_case_file("cases/sloshing_free/case_advected.json", "wall_constraints_sloshing",
+                                    {"analysis.end_time=" + std::to_string(3 * T), "output.vtk=false"});
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv c = probes_of(r);
+  const auto s = summary_of(r);
+  ASSERT_EQ(s["bodies"][0]["wall_model"].get<std::string>(), "constraints");
+  const double e0 = wave_energy(c, 0);
+  size_t k = 0;
+  for (size_t i = 0; i < c.rows(); ++i)
+    if (std::abs(c["time"][i] - 3 * T) < std::abs(c["time"][k] - 3 * T)) k = i;
+  const double kept = wave_energy(c, k) / e0;
+  double drift = 0;
+  for (double a : c["fluid_area"]) drift = std::max(drift, std::abs(a / c["fluid_area"][0] - 1));
+  std::printf("standing wave, walls as constraints: energy kept after 3 periods %.4f, area drift %.1e\n", kept, drift);
+  EXPECT_GT(kept, 0.995) << "the wall-particle layer lost 3.5 % in 3 periods";
+  EXPECT_LT(kept, 1.001);
+  EXPECT_LT(drift, 1e-5);
+}
+
+std::string blob_in_tank(const std::string& scheme) {
+  return R"({
+    "name": "blob_in_tank",
+    "analysis": {"type": "dynamic", "dt": 2e-3, "end_time": 0.5},
+    "gravity": [0.0, -9.81],
+    "bodies": [{
+      "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
+      "domain_detection": "advected", "wall_model": "constraints",
+      "regions": [{"type": "rectangle", "origin": [0.1, 0.1], "size": [0.1, 0.1]}],
+      "walls": [{"points": [[0, 0.4], [0, 0], [0.3, 0], [0.3, 0.4]], "slip": true}],
+      "initial_velocity": [1.0, 0.0],
+      "scheme": {"type": ")" + scheme + R"("}
+    }],
+    "probes": [{"name": "area", "type": "fluid_area", "body": "water"}],
+    "output": {"every": 50}
+  })";
+}
+
+TEST(WallConstraints, ABlobLandsAndStaysInTheTank) {
+  for (const std::string scheme : {"monolithic_pspg", "fractional_step"}) {
+    const RunResult r = run_case_text(fresh_dir("wall_constraints_blob_" + scheme), blob_in_tank(scheme));
+    ASSERT_EQ(r.exit_code, 0) << scheme << ": " << r.stderr_text;
+    const auto s = summary_of(r);
+    const auto& b = s["bodies"][0];
+    EXPECT_GT(b["wall_snaps"].get<long>() + b["wall_crossings"].get<long>(), 0) << scheme << ": it reached the floor";
+    EXPECT_EQ(b["fluid_area"]["left_domain"].get<double>(), 0.0) << scheme << ": none fell through a wall";
+    const Csv c = probes_of(r);
+    double drift = 0;
+    for (double a : c["area"]) drift = std::max(drift, std::abs(a / c["area"][0] - 1));
+    // A sanity bound only: the impact of a 5 x 5 particle blob is not resolved (measured 27.5 % and 26.1 %; with
+    // wall particles, monolithic scheme, 85 % of the blob's area is lost by 0.5 s).
+    EXPECT_LT(drift, 0.4) << scheme;
+    std::printf("%s: %ld put on a wall, %ld put back from beyond one, largest area drift %.2f %%\n", scheme.c_str(),
+                b["wall_snaps"].get<long>(), b["wall_crossings"].get<long>(), 100 * drift);
+  }
+}
+
+}  // namespace

@@ -80,7 +80,7 @@ def main():
     a2.set_ylim(0.3, 0.45)
     a2.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "comparison.png"), dpi=110)
+    fig.savefig(os.path.join(out, "comparison.png"), dpi=110)  # (the README's copy is the full run's, copied by hand)
 
 
 if __name__ == "__main__":

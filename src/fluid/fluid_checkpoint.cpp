@@ -23,7 +23,7 @@ void FluidMesh::serialize(StateArchive& ar) {
 
 void FluidWalls::serialize(StateArchive& ar) {
   ar.section("walls");
-  ar.io(wall_crossings_);
+  ar.io(wall_crossings_, wall_snaps_, wall_releases_);
 }
 
 void Ghosts::serialize(StateArchive& ar) {

@@ -166,6 +166,8 @@ void FluidModel::finalize_step() {
   const Vec x_start = cloud_.x();
   scheme_->end_step();
   if (walls_.constraint_model()) {
+    // A ceiling that pulls lets go (more than 1 % of a particle's weight: not the noise of a contact line).
+    walls_.release_pulled(cloud_, step_.constraint_force, c_.gravity, 0.01 * c_.rho * c_.gravity.norm() * c_.h * c_.h);
     walls_.snap_to_walls(cloud_, x_start, step_.t_new, c_.wall_snap_fraction);
   } else if (c_.remesh) {
     walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
@@ -203,6 +205,7 @@ Json FluidModel::summary() const {
                          : walls_.constraint_model() ? "constraints" : "particles"},
           {"wall_crossings", walls_.crossings()},
           {"wall_snaps", walls_.snaps()},
+          {"wall_releases", walls_.releases()},
           {"inverted_elements_kept", scheme_->inverted_kept()},
           {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
           {"remeshing", remeshing}};

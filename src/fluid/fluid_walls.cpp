@@ -166,13 +166,18 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
       const Vec2 a = w.polyline[s] + off, b = w.polyline[s + 1] + off;
       const int n = std::abs(b.y() - a.y()) < std::abs(b.x() - a.x()) ? 1 : 0;  // the normal component
       const int m = 1 - n;
+      // The fluid side along n: the fluid side of the segment is that of perp(b - a) = (-(b - a).y, (b - a).x)
+      // times fluid_side.
+      const Vec2 e = b - a;
+      const double perp_n = n == 0 ? -e.y() : e.x();
+      const int side = s < w.fluid_side.size() && w.fluid_side[s] != 0 ? (perp_n * w.fluid_side[s] > 0 ? 1 : -1) : 0;
       const double lo = std::min(a[m], b[m]) - tol, hi = std::max(a[m], b[m]) + tol;
       for (Index i = 0; i < np; ++i) {
         if (kind[i] != ParticleKind::Fluid) continue;
         const Vec2 q = x.segment<2>(2 * i);
         if (std::abs(q[n] - a[n]) > tol || q[m] < lo || q[m] > hi) continue;
         const int wall = static_cast<int>(wi);
-        constraints_.push_back({i, n, a[n] - off[n], wall});
+        constraints_.push_back({i, n, a[n] - off[n], wall, side});
         const bool contact_line = free != nullptr && i < static_cast<Index>(free->size()) && (*free)[i];
         if (!w.slip && !contact_line) constraints_.push_back({i, m, q[m] - off[m], wall});  // held where it is
       }
@@ -184,6 +189,20 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
   constraints_.erase(std::unique(constraints_.begin(), constraints_.end(),
                                  [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
                      constraints_.end());
+}
+
+long FluidWalls::release_pulled(ParticleCloud& cloud, const Vec& force, const Vec2& gravity, double threshold) {
+  if (!constraint_model_ || static_cast<size_t>(force.size()) != constraints_.size()) return 0;
+  long released = 0;
+  Vec& x = cloud.x();
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const WallConstraint& q = constraints_[k];
+    if (q.side == 0 || !(q.side * gravity[q.c] > 0) || !(q.side * force[static_cast<Index>(k)] < -threshold)) continue;
+    x[2 * q.i + q.c] += q.side * 1e-3 * cloud.h(q.i);
+    ++released;
+  }
+  wall_releases_ += released;
+  return released;
 }
 
 std::vector<char> FluidWalls::on_wall(Index n) const {
@@ -211,8 +230,11 @@ void FluidWalls::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double 
         const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
         const Vec2 p0 = x_start.segment<2>(2 * i), p1 = x.segment<2>(2 * i);
         Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
-        const double u = (p1 - a).dot(e) / e.squaredNorm(), slack = 1e-6 * h / e.norm();
-        if (!(u >= -slack && u <= 1 + slack)) continue;
+        // Within the segment's span, or (beyond it) within half a spacing past one of its ends: a particle
+        // leaving through a corner is past both segments' ends (it lands on the end, the corner).
+        const double u = (p1 - a).dot(e) / e.squaredNorm(), slack = 1e-6 * h / e.norm(), reach = 0.5 * h / e.norm();
+        if (!(u >= -reach && u <= 1 + reach)) continue;
+        const bool in_span = u >= -slack && u <= 1 + slack;
         if (w.fluid_side[k] != 0) {
           nrm *= w.fluid_side[k];
         } else if (nrm.dot(p0 - a) < 0) {
@@ -220,9 +242,9 @@ void FluidWalls::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double 
         }
         const double d1 = nrm.dot(p1 - a), d0 = nrm.dot(p0 - a);
         if (std::abs(d1) <= 1e-6 * h) continue;  // on it already
-        const bool beyond = d1 < 0 && d0 > -h, near = d1 > 0 && d1 < snap_fraction * h && d1 < d0;
+        const bool beyond = d1 < 0 && d0 > -h, near = in_span && d1 > 0 && d1 < snap_fraction * h && d1 < d0;
         if (!beyond && !near) continue;
-        x.segment<2>(2 * i) = p1 - d1 * nrm;
+        x.segment<2>(2 * i) = in_span ? Vec2(p1 - d1 * nrm) : Vec2(u < 0 ? a : b);
         // The normal velocity and acceleration become the wall's (no-slip walls: the whole velocity, as the
         // constraints of the next step will hold them).
         Vec2 v = vel.segment<2>(2 * i), acc = cloud.a().segment<2>(2 * i);

@@ -345,7 +345,10 @@ IterationReport FractionalStep::iterate() {
     for (Index i = 0; i < nb; ++i)
       boundary_force.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
                                          force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
-    // The same for the constrained components of the particles on walls.
+  }
+  if (!f_.walls.constraints().empty()) {
+    // The same for the constrained components of the particles on walls (the energy balance, and whether the
+    // wall pushes or pulls: FluidWalls::release_pulled).
     const auto& ks = f_.walls.constraints();
     Vec& kf = f_.step.constraint_force;
     kf.resize(static_cast<Index>(ks.size()));

@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace lagfsi::fluid {
 
@@ -190,6 +191,24 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   };
   std::vector<NewParticle> fresh;
   std::vector<Index> split_at(np, -1);   // boundary edge from a (to chain.next[a]) split by new particle k
+  // Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
+  // or landed) may sit on a boundary edge between two others: no new particle within close_fraction h of an
+  // existing one.
+  std::unique_ptr<PointGrid> taken;
+  const double r_taken = std::max(s_.close_fraction, 0.05) * c_.h;
+  if (!on_wall.empty()) {
+    taken = std::make_unique<PointGrid>(r_taken);
+    for (Index i = 0; i < np; ++i)
+      if (!drop[i]) taken->add(pts[i], i);
+  }
+  std::vector<Vec2> taken_pts = taken ? pts : std::vector<Vec2>();
+  const auto free_spot = [&](const Vec2& x) {
+    if (!taken) return true;
+    if (taken->find(x, r_taken, taken_pts) >= 0) return false;
+    taken->add(x, static_cast<Index>(taken_pts.size()));
+    taken_pts.push_back(x);
+    return true;
+  };
   const auto between = [&](const std::vector<Index>& ids, const std::vector<double>& w) {
     NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
     for (size_t k = 0; k < ids.size(); ++k) {
@@ -208,8 +227,10 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
       if (cloud_.kind(a) != ParticleKind::Fluid && cloud_.kind(c) != ParticleKind::Fluid) continue;
       const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
       if ((pts[a] - pts[c]).norm() > s_.split_factor * he) {
+        const NewParticle q = between({a, c}, {0.5, 0.5});
+        if (!free_spot(q.x)) continue;
         split_at[a] = np + static_cast<Index>(fresh.size());
-        fresh.push_back(between({a, c}, {0.5, 0.5}));
+        fresh.push_back(q);
         ++split_;
       }
     }
@@ -217,7 +238,9 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     for (Index e : meshing::oversized_elements(pts, cloud_.h(), mesh_.tri, s_.insert_factor)) {
       const auto& t = mesh_.tri[e];
       if (touched[t[0]] || touched[t[1]] || touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
-      fresh.push_back(between({t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3}));
+      const NewParticle q = between({t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3});
+      if (!free_spot(q.x)) continue;
+      fresh.push_back(q);
       ++inserted_;
     }
   // The previous mesh's topology through the changes: boundary edges follow merges (to the survivor) and

@@ -191,12 +191,15 @@ IterationReport PspgScheme::iterate() {
     for (int c = 0; c < 2; ++c)
       ghost_force[2 * gi + c] = f_.ghosts.merged(gi) ? 0.0 : -R[3 * f_.ghosts.index(gi) + c];
   // The force each wall or ghost particle applies to the fluid (its prescribed momentum row's residual):
-  // the boundary work of the energy balance.
+  // the boundary work of the energy balance; that of each wall constraint also tells whether the wall
+  // pushes or pulls (FluidWalls::release_pulled).
   if (step.energy) {
     Vec& boundary_force = step.boundary_force;
     boundary_force.resize(2 * f_.cloud.n_boundary_particles());
     for (Index i = 0; i < boundary_force.size() / 2; ++i)
       for (int c = 0; c < 2; ++c) boundary_force[2 * i + c] = R[3 * i + c];
+  }
+  {
     const auto& ks = f_.walls.constraints();
     step.constraint_force.resize(static_cast<Index>(ks.size()));
     for (size_t k = 0; k < ks.size(); ++k) step.constraint_force[static_cast<Index>(k)] = R[3 * ks[k].i + ks[k].c];

@@ -1,6 +1,7 @@
 // Interrupt and resume (issue #21, item 3): a run with "output": {"checkpoint": ...} stopped part way
 // (--stop-after-step, or Ctrl-C) and continued with `lagfsi run CASE --restart OUTDIR` ends with the probes.csv of
-// the run that was not stopped, to the last digit (one thread), for a solid, a remeshed PFEM fluid, an FSI case
+// the run that was not stopped, to the last digit (one thread), for a solid, a remeshed PFEM fluid (with wall
+// particles, and with the walls as constraints), an FSI case
 // with a quasi-Newton coupling that keeps its Jacobian between steps, and an MPM body with plastic history;
 // log.csv's rows (but for the wall times) and the ParaView series are the same too. A restart of another case,
 // or without a checkpoint, is refused in one line and leaves the earlier run's files as they are.
@@ -97,6 +98,13 @@ TEST(Restart, RemeshedFluidContinuesBitForBit) {
   // The dam break in a tank (PFEM, remeshed every step, monolithic PSPG): 40 steps, stopped after 23.
   expect_restart_is_seamless("fluid", "cases/dam_break_tank/case.json", {"analysis.end_time=0.04", "output.every=4"},
                              10, 23, {"water", "water_walls"});
+}
+
+TEST(Restart, FluidWithWallConstraintsContinuesBitForBit) {
+  // The shaken tank (advected domain, moving slip walls as constraints on the particles on them, found again
+  // at every step): 20 steps, stopped after 11.
+  expect_restart_is_seamless("fluid_constraints", "cases/sloshing_forced/case.json",
+                             {"analysis.end_time=0.05", "output.every=4"}, 5, 11, {"water", "water_walls"});
 }
 
 TEST(Restart, FsiContinuesBitForBit) {

@@ -66,6 +66,7 @@ for name, extra in DETECTIONS:
     row = {"flow": "sloshing_free", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
     if r.has_probes():
         p = r.probes()
+        row["t_end"] = p["time"][-1]
         wave = energy_above_rest(p, 1.0)
         diss = p.get("viscous_dissipation", [0.0] * len(wave))
         row["area_drift_max_pct"] = common.area_drift(r)[1]
@@ -83,6 +84,7 @@ for name, extra in DETECTIONS:
     row = {"flow": "sloshing_forced", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
     if r.has_probes():
         p = r.probes()
+        row["t_end"] = p["time"][-1]
         for col in ("eta_left", "eta_right"):
             for tag, t_end in (("3s", min(3.0, FORCED_END)), ("end", FORCED_END)):
                 e2 = [(v - 0.5 - common.interp_nan(t, ref_forced["time"], ref_forced[col])) ** 2
@@ -97,6 +99,7 @@ for name, extra in DETECTIONS:
     row = {"flow": "dam_break_tank", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
     if r.has_probes():
         p = r.probes()
+        row["t_end"] = p["time"][-1]
         e = energy_above_rest(p, 4 * 0.146)
         row["energy_0.25s_ratio"] = at(p["time"], e, 0.25) / e[0]
         row["area_drift_max_pct"] = common.area_drift(r)[1]
@@ -104,7 +107,7 @@ for name, extra in DETECTIONS:
         series[("dam_break_tank", name)] = (p["time"], [x / e[0] for x in e])
     rows.append(row)
 
-cols = ["flow", "detection", "exit_code", "wall_time_s", "area_drift_max_pct", "energy_end_ratio",
+cols = ["flow", "detection", "exit_code", "t_end", "wall_time_s", "area_drift_max_pct", "energy_end_ratio",
         "ke_max_over_wave", "eta_left_rms_3s", "eta_right_rms_3s", "eta_left_rms_end", "eta_right_rms_end",
         "energy_0.25s_ratio", "front_rms_pysph"]
 S.table("conservation_runs.csv", rows, cols)
@@ -136,15 +139,21 @@ def md_table():
     by = {(r["flow"], r["detection"]): r for r in rows}
     for name, _ in DETECTIONS:
         a, b, c = by[("sloshing_free", name)], by[("sloshing_forced", name)], by[("dam_break_tank", name)]
-        out.append("| %s | %s %% / %s / %s | %s | %s / %s / %s / %s | %s %% | %s | %s / %s %% / %s | %s |" % (
+        out.append("| %s | %s %% / %s / %s | %s | %s / %s / %s / %s | %s %%%s | %s | %s / %s %% / %s | %s |" % (
             name, f(a.get("area_drift_max_pct"), "%+.3f"), f(a.get("energy_end_ratio"), "%.3f"),
-            f(a.get("ke_max_over_wave"), "%.2f"), f(a["wall_time_s"], "%.0f"),
+            f(a.get("ke_max_over_wave"), "%.2f") + failed(a), f(a["wall_time_s"], "%.0f"),
             f(b.get("eta_left_rms_3s"), "%.3f"), f(b.get("eta_right_rms_3s"), "%.3f"),
             f(b.get("eta_left_rms_end"), "%.3f"), f(b.get("eta_right_rms_end"), "%.3f"),
-            f(b.get("area_drift_max_pct"), "%+.3f"), f(b["wall_time_s"], "%.0f"),
+            f(b.get("area_drift_max_pct"), "%+.3f"), failed(b), f(b["wall_time_s"], "%.0f"),
             f(c.get("energy_0.25s_ratio"), "%.3f"), f(c.get("area_drift_max_pct"), "%+.1f"),
-            f(c.get("front_rms_pysph"), "%.3f"), f(c["wall_time_s"], "%.0f")))
+            f(c.get("front_rms_pysph"), "%.3f") + failed(c), f(c["wall_time_s"], "%.0f")))
     return "\n".join(out)
+
+
+def failed(row):
+    """A run that stopped early: its numbers cover only the part it ran."""
+    return "" if row.get("exit_code") == 0 else " (**failed** at t = %s s: the numbers cover 0 to that time)" % \
+        f(row.get("t_end"), "%.3f")
 
 
 S.readme_table(md_table())

@@ -13,6 +13,7 @@
 
 #include "case_runner.hpp"
 #include "process.hpp"
+#include "strip_case.hpp"
 
 namespace {
 
@@ -121,24 +122,10 @@ TEST(Restart, MpmContinuesBitForBit) {
                              {"analysis.end_time=0.1", "bodies.0.grid.cell=0.005", "output.every=4"}, 5, 11, {"bars"});
 }
 
-/// A small dynamic strip under gravity, with checkpoints.
+/// The shared strip (tests/support/strip_case.hpp) with quadratic elements and checkpoints, `steps` steps of 1 ms.
 json strip_case(long steps) {
-  json j = json::parse(R"({
-    "name": "restart_strip",
-    "analysis": {"type": "dynamic", "dt": 1e-3},
-    "gravity": [0, -9.81],
-    "bodies": [{
-      "name": "strip", "type": "solid",
-      "material": {"type": "svk", "young": 1e6, "poisson": 0.3, "density": 1000},
-      "geometry": {"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.1]},
-      "mesh": {"type": "structured", "size": 0.05, "order": 2},
-      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, 0.1]}}]
-    }],
-    "probes": [{"name": "tip", "type": "displacement", "body": "strip", "at": [1.0, 0.05], "component": "y"}],
-    "output": {"every": 7, "checkpoint": {"every_steps": 1000}}
-  })");
-  j["analysis"]["end_time"] = steps * 1e-3;
-  return j;
+  return lagfsi::testing::strip_case("restart_strip", steps, 2,
+                                     {{"every", 7}, {"checkpoint", {{"every_steps", 1000}}}});
 }
 
 TEST(Restart, AfterCtrlC) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bad_input.hpp"
 #include "case_runner.hpp"
 #include "process.hpp"
 
@@ -16,21 +17,13 @@ namespace {
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-/// A static strip whose tip load follows a table function from `table` (relative to the case).
+/// The bad-input tests' static strip (tests/support/bad_input.hpp) without probes or VTK output, whose tip load
+/// follows a table function from `table` (relative to the case).
 json table_case(const std::string& table) {
-  json j = json::parse(R"({
-    "name": "files_strip",
-    "analysis": {"type": "static", "load_steps": 2},
-    "bodies": [{
-      "name": "strip", "type": "solid",
-      "material": {"type": "svk", "young": 1e6, "poisson": 0.3, "density": 1000},
-      "geometry": {"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.1]},
-      "mesh": {"type": "structured", "size": 0.05, "order": 1},
-      "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, 0.1]}}],
-      "loads": [{"type": "point_load", "select": {"type": "point", "at": [1.0, 0.1]}, "value": [0, -1.0]}]
-    }],
-    "output": {"vtk": false}
-  })");
+  json j = bad_input::base_case();
+  j["name"] = "files_strip";
+  j.erase("probes");
+  j["output"] = {{"vtk", false}};
   j["bodies"][0]["loads"][0]["function"] = {{"type", "table"}, {"file", table}};
   return j;
 }

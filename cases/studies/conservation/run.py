@@ -51,6 +51,17 @@ def energy_above_rest(p, width):
             for ke, pe, a in zip(p["kinetic_energy"], p["potential_energy"], p["fluid_area"])]
 
 
+def new_row(flow, name, r):
+    """The table row of run `r` (its flow, variant, exit code, solver wall time and, with probes, the time it
+    reached) and its probes (None without them)."""
+    row = {"flow": flow, "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
+    if not r.has_probes():
+        return row, None
+    p = r.probes()
+    row["t_end"] = p["time"][-1]
+    return row, p
+
+
 def at(ts, ys, t):
     i = min(range(len(ts)), key=lambda k: abs(ts[k] - t))
     return ys[i]
@@ -63,10 +74,8 @@ for name, extra in DETECTIONS:
     # 1. Free sloshing, remeshed twin.
     r = S.run("sloshing_free/case_remesh.json", "sloshing_free_" + name,
               dict(settings(name, extra), **{"analysis.end_time": SLOSH_END}), timeout=1800)
-    row = {"flow": "sloshing_free", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
-    if r.has_probes():
-        p = r.probes()
-        row["t_end"] = p["time"][-1]
+    row, p = new_row("sloshing_free", name, r)
+    if p is not None:
         wave = energy_above_rest(p, 1.0)
         diss = p.get("viscous_dissipation", [0.0] * len(wave))
         row["area_drift_max_pct"] = common.area_drift(r)[1]
@@ -81,10 +90,8 @@ for name, extra in DETECTIONS:
     if forced["bodies.0.wall_model"] == "particles":
         forced["bodies.0.walls.0.slip"] = False
     r = S.run("sloshing_forced/case.json", "sloshing_forced_" + name, forced, timeout=1800)
-    row = {"flow": "sloshing_forced", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
-    if r.has_probes():
-        p = r.probes()
-        row["t_end"] = p["time"][-1]
+    row, p = new_row("sloshing_forced", name, r)
+    if p is not None:
         for col in ("eta_left", "eta_right"):
             for tag, t_end in (("3s", min(3.0, FORCED_END)), ("end", FORCED_END)):
                 e2 = [(v - 0.5 - common.interp_nan(t, ref_forced["time"], ref_forced[col])) ** 2
@@ -96,10 +103,8 @@ for name, extra in DETECTIONS:
     # 3. Dam break in a tank: energy before the impact.
     r = S.run("dam_break_tank/case.json", "dam_break_tank_" + name,
               dict(settings(name, extra), **{"analysis.end_time": DAM_END}), timeout=1800)
-    row = {"flow": "dam_break_tank", "detection": name, "exit_code": r.rc, "wall_time_s": r.solver_wall}
-    if r.has_probes():
-        p = r.probes()
-        row["t_end"] = p["time"][-1]
+    row, p = new_row("dam_break_tank", name, r)
+    if p is not None:
         e = energy_above_rest(p, 4 * 0.146)
         row["energy_0.25s_ratio"] = at(p["time"], e, 0.25) / e[0]
         row["area_drift_max_pct"] = common.area_drift(r)[1]

@@ -48,7 +48,7 @@ void FluidModel::initialize() {
     if (walls_.constraint_model()) {  // the particles on the walls: constrained, and not free surface
       walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h);
       remesh_.mark_free_surface(walls_.on_wall(np));
-      walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h, &mesh_.free);
+      walls_.free_contact_line(mesh_.free);
     }
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
@@ -126,7 +126,7 @@ void FluidModel::predict(double t_new, double dt) {
   if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface
     walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
     remesh_.mark_free_surface(walls_.on_wall(cloud_.n()));
-    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h, &mesh_.free);
+    walls_.free_contact_line(mesh_.free);
   }
   step_meshed_ = true;
   times_.remesh += seconds_since(t0);

@@ -153,8 +153,7 @@ void FluidWalls::place(double t, const Vec& X0, Vec& x) const {
   for (const auto& k : constraints_) x[2 * k.i + k.c] = constraint_position(k, t);
 }
 
-void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h,
-                               const std::vector<std::uint8_t>* free) {
+void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h) {
   if (!constraint_model_) return;
   constraints_.clear();
   const double tol = 1e-6 * h;
@@ -178,16 +177,25 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
         if (std::abs(q[n] - a[n]) > tol || q[m] < lo || q[m] > hi) continue;
         const int wall = static_cast<int>(wi);
         constraints_.push_back({i, n, a[n] - off[n], wall, side});
-        const bool contact_line = free != nullptr && i < static_cast<Index>(free->size()) && (*free)[i];
-        if (!w.slip && !contact_line) constraints_.push_back({i, m, q[m] - off[m], wall});  // held where it is
+        if (!w.slip) constraints_.push_back({i, m, q[m] - off[m], wall, 0, true});  // held where it is
       }
     }
   }
-  // A particle at a joint of two collinear segments (or of two walls) is found twice: one constraint per component.
-  std::sort(constraints_.begin(), constraints_.end(),
-            [](const WallConstraint& p, const WallConstraint& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; });
+  // A particle at a joint of two collinear segments (or of two walls) is found twice: one constraint per
+  // component, a wall's normal one rather than another wall's tangential one (free_contact_line drops those).
+  std::sort(constraints_.begin(), constraints_.end(), [](const WallConstraint& p, const WallConstraint& q) {
+    return p.i != q.i ? p.i < q.i : p.c != q.c ? p.c < q.c : p.tangential < q.tangential;
+  });
   constraints_.erase(std::unique(constraints_.begin(), constraints_.end(),
                                  [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
+                     constraints_.end());
+}
+
+void FluidWalls::free_contact_line(const std::vector<std::uint8_t>& free) {
+  constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(),
+                                    [&](const WallConstraint& k) {
+                                      return k.tangential && k.i < static_cast<Index>(free.size()) && free[k.i];
+                                    }),
                      constraints_.end());
 }
 

@@ -71,6 +71,7 @@ struct WallConstraint {
   double base;
   int wall;
   int side = 0;
+  bool tangential = false;  // the tangential component of a particle on a no-slip wall
 };
 
 class FluidWalls {
@@ -99,10 +100,10 @@ class FluidWalls {
   const std::vector<WallConstraint>& constraints() const { return constraints_; }
   /// "wall_model": "constraints": the fluid particles (positions x at time t, of kinds `kind`) that lie on a
   /// wall segment (within 1e-6 h of it) become the step's constraints; h the spacing. A no-op otherwise.
-  /// With `free` (the free-surface flags), a free-surface particle on a no-slip wall is held in the normal
-  /// direction only: the contact line moves (held, it would pin the water's edge where it first touched).
-  void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h,
-                     const std::vector<std::uint8_t>* free = nullptr);
+  void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h);
+  /// A free-surface particle (`free`) on a no-slip wall is held in the normal direction only: the contact
+  /// line moves (held, it would pin the water's edge where it first touched).
+  void free_contact_line(const std::vector<std::uint8_t>& free);
   /// Per particle (n of them): how many of its components are constrained (0, 1 or 2; free-surface marking:
   /// an unshared edge between two particles on walls is a wall, not a free surface; particle management: a
   /// particle on a wall keeps its place when merged).

@@ -4,6 +4,7 @@
 // See include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/system_assembly.hpp>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -121,13 +122,12 @@ void EfgModel::factorize() {
   Vec uref = Vec::Zero(nsys_);
   for (size_t i = 0; i < fixed_dofs_.size(); ++i) uref[fixed_dofs_[i]] = fixed_ref_[i];
   if (essential_ == "coupling" && !fixed_dofs_.empty()) {
-    for (int col = 0; col < K_.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(K_, col); it; ++it) {
-        const bool fr = is_fixed_[it.row()], fc = is_fixed_[col];
-        if (!fr && !fc) continue;
-        if (fc && !fr) Kfix_ref_[it.row()] += it.value() * uref[col];
-        it.valueRef() = it.row() == col ? 1.0 : 0.0;
-      }
+    for (int col = 0; col < K_.outerSize(); ++col) {
+      if (!is_fixed_[col]) continue;
+      for (SparseMatrix::InnerIterator it(K_, col); it; ++it)
+        if (!is_fixed_[it.row()]) Kfix_ref_[it.row()] += it.value() * uref[col];
+    }
+    dirichlet_identity(K_, [&](Index i) { return is_fixed_[static_cast<size_t>(i)] != 0; });
   }
   if (!K_.valuePtr() || !Eigen::Map<const Vec>(K_.valuePtr(), K_.nonZeros()).allFinite())
     throw SolverError("body '" + name_ + "': non-finite stiffness");

@@ -306,7 +306,15 @@ void FluidWalls::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, 
         if (w.fluid_side[k] != 0) {
           nrm *= w.fluid_side[k];
           u = (p1 - a).dot(e) / e.squaredNorm();
-          if (!(u >= 0 && u <= 1) || nrm.dot(p1 - a) >= -tol || nrm.dot(p0 - a) <= -tol) continue;
+          // Past an end of the segment by less than tol, at a corner whose other segment the particle is
+          // beyond as well (the outer quadrant of a tank's corner): a film sliding along the floor a little
+          // below it would otherwise leave through the corner, in neither segment's span (dam_break_tank with
+          // the level-set detection lost particles there). Put back at the corner.
+          const double reach = tol / e.norm();
+          const bool past_end = (u < 0 && u >= -reach && k > 0 && w.beyond_line(k - 1, p1, off)) ||
+                                (u > 1 && u <= 1 + reach && k + 2 < w.polyline.size() && w.beyond_line(k + 1, p1, off));
+          if (!((u >= 0 && u <= 1) || past_end) || nrm.dot(p1 - a) >= -tol || nrm.dot(p0 - a) <= -tol) continue;
+          u = std::clamp(u, 0.0, 1.0);
         } else {
           const Vec2 d = p1 - p0;
           const double den = cross(d, e);

@@ -55,6 +55,13 @@ struct Wall {
     const double d = 1e-6;
     return (offset(t + d) - offset(t - d)) / (2 * d);
   }
+  /// Whether p lies strictly beyond the line of segment k, on the side away from its fluid (false for a
+  /// segment with fluid on both sides or none); `off` is the wall's offset at the time.
+  bool beyond_line(size_t k, const Vec2& p, const Vec2& off) const {
+    if (k >= fluid_side.size() || fluid_side[k] == 0) return false;
+    const Vec2 a = polyline[k] + off, e = polyline[k + 1] - polyline[k];
+    return fluid_side[k] * (e.x() * (p.y() - a.y()) - e.y() * (p.x() - a.x())) < 0;
+  }
   Vec2 acceleration_at(double t) const {
     if (!fn) return Vec2::Zero();
     const double d = 1e-4;

@@ -1,0 +1,75 @@
+// The PFEM fluid's wall particles keep the fluid in (FluidWalls::keep_inside_walls, a white-box test of the
+// private src/fluid/fluid_walls.hpp): a particle whose step ends beyond a wall segment by more than the
+// tolerance (0.5 h for a particle in no element with a wall particle) is put back on the segment's fluid side.
+//  - A film sliding along a tank's floor a little below it leaves through the corner, where it is past the end
+//    of both segments: it goes back to the corner (before, it was in neither span and left the tank: the
+//    dam break with the level-set detection lost water there).
+//  - A particle falling past the outside corner of an obstacle is not pulled onto the obstacle's top: past a
+//    segment's end only counts where the particle is beyond the neighbouring segment too.
+#include <gtest/gtest.h>
+
+#include "fluid_mesh.hpp"
+#include "fluid_walls.hpp"
+
+#include <vector>
+
+namespace lagfsi::fluid {
+namespace {
+
+constexpr double kH = 0.0073;
+
+struct WallScene {
+  FluidWalls walls;
+  ParticleCloud cloud;
+  FluidMesh mesh;  // no elements: no particle is held by a wall particle's element
+};
+
+// Walls from JSON; the fluid side of each segment from the fluid particles `fluid` (the tested particle is the
+// cloud's last, at `start`).
+void make(WallScene& s, const Json& walls, const std::vector<Vec2>& fluid, const Vec2& start) {
+  s.walls.read(Params(walls, "test.json", "/bodies/0/walls"), kH, ".");
+  std::vector<Vec2> pts = fluid;
+  std::vector<ParticleKind> kind(fluid.size(), ParticleKind::Fluid);
+  s.walls.set_fluid_sides(pts, kind);
+  pts.push_back(start);
+  kind.push_back(ParticleKind::Fluid);
+  s.cloud.assign(pts, kind, kH);
+}
+
+// The tested particle's step from `start` to `end`; returns where keep_inside_walls leaves it.
+Vec2 step(WallScene& s, const Vec2& end) {
+  const Index i = s.cloud.n() - 1;
+  const Vec x_start = s.cloud.x();
+  s.cloud.x().segment<2>(2 * i) = end;
+  s.cloud.v().segment<2>(2 * i) = Vec2(2.8, -0.2);
+  s.walls.keep_inside_walls(s.cloud, s.mesh, x_start, 0.0);
+  return s.cloud.x().segment<2>(2 * i);
+}
+
+TEST(FluidWalls, AFilmBelowTheFloorDoesNotLeaveThroughTheTanksCorner) {
+  WallScene s;
+  const Json tank = Json::array({{{"name", "tank"}, {"points", {{0, 0.584}, {0, 0}, {0.584, 0}, {0.584, 0.584}}}}});
+  // Below the floor by 2 mm (< 0.5 h: left alone), ending 5 mm beyond the right wall's line and below the
+  // floor (past the right wall's lower end).
+  make(s, tank, {{0.1, 0.1}, {0.3, 0.2}, {0.5, 0.05}}, {0.581, -0.002});
+  const Vec2 p = step(s, {0.589, -0.002});
+  EXPECT_LT(p.x(), 0.584);
+  EXPECT_GE(p.y(), -0.002);
+  EXPECT_NEAR(p.x(), 0.584 - 0.05 * kH, 1e-12);  // at the corner, 0.05 h on the fluid side
+  EXPECT_NEAR(s.cloud.v()[2 * (s.cloud.n() - 1)], 0.0, 1e-12);  // its velocity into the wall is gone
+  EXPECT_EQ(s.walls.crossings(), 1);
+}
+
+TEST(FluidWalls, AParticleFallingPastAnObstaclesCornerStaysBesideIt) {
+  WallScene s;
+  const Json box = Json::array({{{"name", "box"}, {"points", {{0.3, 0.0}, {0.3, 0.1}, {0.4, 0.1}, {0.4, 0.0}}}}});
+  // Fluid above the box and on both sides of it.
+  make(s, box, {{0.35, 0.2}, {0.2, 0.05}, {0.5, 0.05}}, {0.403, 0.102});
+  const Vec2 p = step(s, {0.403, 0.09});  // 3 mm right of the top's end, 10 mm below its line
+  EXPECT_DOUBLE_EQ(p.x(), 0.403);
+  EXPECT_DOUBLE_EQ(p.y(), 0.09);
+  EXPECT_EQ(s.walls.crossings(), 0);
+}
+
+}  // namespace
+}  // namespace lagfsi::fluid

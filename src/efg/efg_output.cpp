@@ -105,6 +105,12 @@ Json EfgModel::summary() const {
   s["load_factor"] = lambda0_;
   s["load_factor_peak"] = lambda_peak_;
   s["load_steps"] = steps_;
+  if (control_.type() == ControlType::arc_length) {
+    const ArcLengthStats& a = control_.stats();
+    s["arc_length"] = {{"complex_root_iterations", a.complex_root_iterations},
+                       {"steps_off_constraint", a.steps_off_constraint},
+                       {"max_increment_ratio", a.max_increment_ratio}};
+  }
   double dmax = 0;
   for (size_t i = 0; i < hist0_.size(); ++i) {
     const Material& mat = cell_material_[gps_[i].cell] < 0 ? *material_ : *region_materials_[cell_material_[gps_[i].cell]];

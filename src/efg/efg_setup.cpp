@@ -493,7 +493,8 @@ void EfgModel::read_loads(Params b) {
 
 void EfgModel::read_control(Params b) {
   Params c = b.at("control");
-  c.validate({{"type", "load"}, {"form", "V"}, {"increment", 0.0}, {"at", Json::array({0.0, 0.0})}, {"component", "y"}});
+  c.validate({{"type", "load"}, {"form", "V"}, {"increment", 0.0}, {"at", Json::array({0.0, 0.0})}, {"component", "y"},
+              {"complex_roots", "real_part"}});
   const ControlType t = PathFollowing::parse(
       c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
   control_u_form_ = c.choice("form", {"U", "V"}) == "U";
@@ -510,7 +511,9 @@ void EfgModel::read_control(Params b) {
     if (std::find(fixed_dofs_.begin(), fixed_dofs_.end(), control_dof_) != fixed_dofs_.end())
       c.fail("at", "the controlled dof is held by a boundary condition");
   }
-  control_ = PathFollowing(t, inc, control_dof_);
+  const ComplexRoots cr =
+      PathFollowing::parse_complex_roots(c.choice("complex_roots", {"real_part", "normal_plane", "cut_back"}));
+  control_ = PathFollowing(t, inc, control_dof_, cr);
 }
 
 void EfgModel::build_pattern() {

@@ -1,8 +1,9 @@
 // Load, displacement, generalized displacement control and cylindrical arc length (Yang & Kuo 1994; Crisfield
-// 1981/1983), in the form used by the INSANE EFG thesis. See include/lagfsi/efg/path_following.hpp.
+// 1981/1983), in the form used by the INSANE EFG thesis, with a remedy for the arc length's complex roots. See include/lagfsi/efg/path_following.hpp.
 #include <lagfsi/efg/path_following.hpp>
 #include <lagfsi/error.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,6 +15,13 @@ ControlType PathFollowing::parse(const std::string& name) {
   if (name == "generalized_displacement") return ControlType::generalized_displacement;
   if (name == "arc_length") return ControlType::arc_length;
   throw std::invalid_argument("unknown control '" + name + "'");
+}
+
+ComplexRoots PathFollowing::parse_complex_roots(const std::string& name) {
+  if (name == "real_part") return ComplexRoots::real_part;
+  if (name == "normal_plane") return ComplexRoots::normal_plane;
+  if (name == "cut_back") return ComplexRoots::cut_back;
+  throw std::invalid_argument("unknown complex_roots remedy '" + name + "'");
 }
 
 double PathFollowing::predictor(const Vec& dUP, double scale) {
@@ -63,7 +71,21 @@ double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
       const Vec w = DU + dUQ;
       const double a = dUP.squaredNorm(), b = 2 * dUP.dot(w), c = w.squaredNorm() - l * l;
       const double disc = b * b - 4 * a * c;
-      if (disc < 0) throw SolverError("arc length: the constraint has no real root (step too long)");
+      if (disc < 0) {
+        switch (complex_roots_) {
+          case ComplexRoots::cut_back:
+            throw SolverError("arc length: the constraint has no real root (step too long)");
+          case ComplexRoots::real_part:
+            ++stats_.complex_root_iterations;
+            return -b / (2 * a);
+          case ComplexRoots::normal_plane: {
+            const double den = DU.dot(dUP);
+            if (std::abs(den) < 1e-300) throw SolverError("arc length: complex roots and a normal plane parallel to dUP");
+            ++stats_.complex_root_iterations;
+            return -DU.dot(dUQ) / den;
+          }
+        }
+      }
       const double r1 = (-b + std::sqrt(disc)) / (2 * a), r2 = (-b - std::sqrt(disc)) / (2 * a);
       // The root whose new increment makes the smaller angle with the current one.
       const double c1 = (w + r1 * dUP).dot(DU), c2 = (w + r2 * dUP).dot(DU);
@@ -74,6 +96,11 @@ double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
 }
 
 void PathFollowing::commit(const Vec& DU) {
+  if (type_ == ControlType::arc_length && dl_ > 0) {
+    const double ratio = DU.norm() / (dl_ * scale_);
+    if (std::abs(ratio - 1) > 1e-6) ++stats_.steps_off_constraint;
+    stats_.max_increment_ratio = std::max(stats_.max_increment_ratio, ratio);
+  }
   dUP1_prev_ = dUP1_cur_;
   DU_prev_ = DU;
   sign_ = sign_cur_;

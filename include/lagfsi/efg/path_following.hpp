@@ -12,6 +12,24 @@
 ///  - cylindrical arc length (Crisfield): |DU|^2 = Dl^2 with Dl = dlambda_1^1 |dUP_1^1| from the first step;
 ///    predictor +-Dl/|dUP| with the sign of DU_{i-1} . dUP; corrector the root of a dl^2 + b dl + c = 0,
 ///    a = dUP.dUP, b = 2 dUP.(DU + dUQ), c = |DU + dUQ|^2 - Dl^2, closest to the step direction.
+///    Complex roots (b^2 - 4ac < 0): the line of iterates DU + dUQ + dl dUP misses the constraint sphere. It happens
+///    at sharp snap-backs where the operator does not see the softening branch (a secant operator: positive definite,
+///    its dUP always points up the elastic loading path). The option `complex_roots` chooses the remedy:
+///     - "real_part" (default): dl = -b/2a, the real part of the complex pair, the load change that brings the
+///       iterate closest to the constraint surface (the minimum of |DU + dUQ + dl dUP|^2). The constraint is relaxed
+///       for that iteration only; the next ones solve the quadratic again when it has real roots, so a step that
+///       converges off the sphere is one where no equilibrium point near the iterates lies on it (it crosses the
+///       snap-back in one step, as generalized displacement control does). Such steps are counted (stats()).
+///       Relaxing the constraint to its closest point is the remedy for sharp snap-backs attributed to
+///       Hellweg & Crisfield (1998), "A new arc-length method for handling sharp snap-backs", Comput. Struct.
+///       66(5):705-709, and reviewed by Ritto-Correa & Camotim (2008), Comput. Struct. 86:1353-1368; implemented
+///       here from that description, not from the papers' text;
+///     - "normal_plane": the linearised constraint of Ramm's updated normal plane (Ramm 1981, "Strategies for
+///       tracing the nonlinear response near limit points"; Crisfield 1991, Vol. 1, §9.3): DU.(dl dUP + dUQ) = 0,
+///       dl = -(DU.dUQ)/(DU.dUP), for that iteration;
+///     - "cut_back": no remedy (the behaviour before this option): SolverError, the driver halves the step
+///       (Crisfield 1981), and the run stops after max_step_halvings.
+///    The steps where no complex root occurs are the same, bit for bit, with every option.
 /// The vectors given are those of the control space: nodal displacements U = f(V) ("U form", Algorithm 1) or the
 /// MLS parameters V ("V form", parameter control, Algorithm 6); the model maps them. A step cut back by the
 /// driver scales the step's increment (dlambda, du or Dl) by `scale`.
@@ -22,23 +40,35 @@
 namespace lagfsi::efg {
 
 enum class ControlType { load, displacement, generalized_displacement, arc_length };
+enum class ComplexRoots { real_part, normal_plane, cut_back };
+
+/// What the arc length met on its way (zero for the other controls).
+struct ArcLengthStats {
+  long complex_root_iterations = 0;  ///< corrector iterations that took the remedy
+  int steps_off_constraint = 0;      ///< committed steps with | |DU| / Dl - 1 | > 1e-6
+  double max_increment_ratio = 0;    ///< largest |DU| / Dl of a committed step (1 on the constraint)
+};
 
 class PathFollowing {
  public:
   PathFollowing() = default;
-  PathFollowing(ControlType type, double increment, Index dof) : type_(type), inc_(increment), dof_(dof) {}
+  PathFollowing(ControlType type, double increment, Index dof, ComplexRoots complex_roots = ComplexRoots::real_part)
+      : type_(type), complex_roots_(complex_roots), inc_(increment), dof_(dof) {}
   ControlType type() const { return type_; }
+  const ArcLengthStats& stats() const { return stats_; }
   /// Load-factor increment of the first iteration of a step from the tangent response dUP.
   double predictor(const Vec& dUP, double scale);
   /// Load-factor correction of iteration j > 1; DU: the step's increment so far. Throws SolverError when the
-  /// constraint has no solution (the step is then cut back).
+  /// arc-length constraint has complex roots and complex_roots = cut_back (the step is then cut back).
   double corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU);
   /// The step converged with increment DU.
   void commit(const Vec& DU);
   static ControlType parse(const std::string& name);
+  static ComplexRoots parse_complex_roots(const std::string& name);
 
  private:
   ControlType type_ = ControlType::load;
+  ComplexRoots complex_roots_ = ComplexRoots::real_part;
   double inc_ = 0.1;
   Index dof_ = -1;
   double scale_ = 1;
@@ -48,6 +78,7 @@ class PathFollowing {
   Vec DU_prev_;                // increment of the last committed step (arc length)
   double sign_ = 1, sign_cur_ = 1;
   double dl_ = 0;              // arc length
+  ArcLengthStats stats_;
 };
 
 }  // namespace lagfsi::efg

@@ -48,7 +48,6 @@ struct DemBody {
   bool rotation = true;
   double inertia_factor = 0.5;
   double dt = 0, dt_critical = 0;  // sub-step, critical step 2 / omega_max
-  double t = 0;
   long substeps = 0;
 
   // neighbour search

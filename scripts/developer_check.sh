@@ -3,6 +3,10 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer, in ./build-dev; then the unit and verification tiers under the
 # sanitizers (a sanitizer report fails the test: halt_on_error). CI keeps the Release build (scripts/test.sh).
 # Usage: scripts/developer_check.sh [ctest arguments, e.g. -R Retry]; LAGFSI_JOBS sets the build's parallelism.
+# Measured (main at 6122d3c + the DEM retry, 2 cores shared with other jobs, load ~5): the build 63 min from a
+# partly warm ccache, with no warning; the tests 24 min wall: 368 tests (275 unit, 93 verification), all passed, no
+# sanitizer report. Slowest under the sanitizers: MpmFreeField.LayerMovesAsTheOneDimensionalSiteResponse 322 s and
+# FsiCoupling.TheConvergedStepDoesNotDependOnTheAccelerator 316 s (5 s and 11 s in Release; timeout 600 s).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${LAGFSI_JOBS:-$(nproc)}

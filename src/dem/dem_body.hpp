@@ -28,21 +28,26 @@ struct CraterSettings {
   std::vector<double> offsets = {-0.05, 0.0, 0.05};  ///< where H1, H2, H3 are read (from the centre)
 };
 
+/// Everything a step changes is a plain member, so that a copy of the body is the retry snapshot of
+/// DemModel::predict (the discs' order and properties, the dofs, the lists and their histories, the walls'
+/// offsets, the blast's exposure, the energy counters); the work counters (substeps, rebuilds, timings) keep
+/// counting across a retry.
 struct DemBody {
   std::string name;
   std::string file;     // case file (errors)
   Discs discs;
   KinematicState state;  // 3 n dofs
   Vec inv_mass, force;   // 3 n
-  std::unique_ptr<TimeIntegrator> integrator;
-  std::unique_ptr<ContactLaw> law;
+  // Shared and immutable (the integrator and the law keep no state): a copy of the body is a snapshot of the
+  // whole state (DemModel::predict).
+  std::shared_ptr<const TimeIntegrator> integrator;
+  std::shared_ptr<const ContactLaw> law;
   std::vector<Wall> walls;
   std::vector<std::pair<int, int>> segments;  // (wall, segment) of every wall segment
   Vec2 gravity = Vec2::Zero();
   bool rotation = true;
   double inertia_factor = 0.5;
   double dt = 0, dt_critical = 0;  // sub-step, critical step 2 / omega_max
-  double t = 0;
   long substeps = 0;
 
   // neighbour search

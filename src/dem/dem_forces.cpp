@@ -252,7 +252,7 @@ bool DemBody::needs_rebuild(double h) const {
   if (2 * md > skin) return true;
   for (size_t w = 0; w < walls.size(); ++w) {
     if (!walls[w].moving()) continue;
-    const double wd = (walls[w].displacement(t + h) - wall_offset_build[w]).norm();
+    const double wd = (walls[w].displacement(state.t + h) - wall_offset_build[w]).norm();
     if (md + wd > skin) return true;
   }
   return false;

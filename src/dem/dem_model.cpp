@@ -88,6 +88,29 @@ void DemModel::initialize() {
   wall_time_ += seconds_since(t0);
 }
 
+void DemModel::predict(double t_new, double dt) {
+  DemBody& b = *body_;
+  if (!step_open_) {
+    if (snapshot_)
+      *snapshot_ = b;
+    else
+      snapshot_ = std::make_unique<DemBody>(b);
+  } else {
+    // a retry: back to the start of the step; the work counters keep the failed attempt's work
+    const long substeps = b.substeps, rebuilds = b.rebuilds;
+    const double t_force = b.t_force, t_rebuild = b.t_rebuild, t_blast = b.t_blast;
+    b = *snapshot_;
+    b.substeps = substeps;
+    b.rebuilds = rebuilds;
+    b.t_force = t_force;
+    b.t_rebuild = t_rebuild;
+    b.t_blast = t_blast;
+  }
+  step_open_ = true;
+  t_new_ = t_new;
+  dt_ = dt;
+}
+
 IterationReport DemModel::solve_iteration() {
   DemBody& b = *body_;
   const auto t0 = Clock::now();

@@ -104,6 +104,29 @@ TEST(DemCases, MovingWallPushesADisc) {
   EXPECT_TRUE(fs::exists(r.out_dir / "disc_walls.pvd"));
 }
 
+/// The same floor starting 2 cm below the disc, beyond the neighbour skin (0.5 r = 5 mm): the lists must be rebuilt
+/// when the wall has moved more than the skin since the last build (DemBody::needs_rebuild measures the wall's
+/// travel from the current time), or the floor passes through the disc.
+TEST(DemCases, MovingWallReachesADiscBeyondTheSkin) {
+  const fs::path dir = fresh_dir("dem_moving_wall_far");
+  const RunResult r = run_case_text(dir, R"({
+    "name": "dem_moving_wall_far",
+    "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 0.3},
+    "bodies": [{
+      "name": "disc", "type": "dem", "material": {"density": 2500},
+      "contact": {"law": "linear", "kn": 1e6, "damping": "restitution", "restitution": 1.0},
+      "discs": [{"type": "list", "discs": [[0.0, 0.03, 0.01]]}],
+      "walls": [{"name": "piston", "points": [[-0.05, 0.0], [0.05, 0.0]], "velocity": [0.0, 0.1]}],
+      "time_step": {"dt": 1e-5}
+    }],
+    "probes": [{"name": "vy", "type": "disc", "body": "disc", "id": 0, "quantity": "vy"}],
+    "output": {"every": 100}
+  })", "--quiet --threads 1");
+  const Csv c = probes_of(r);
+  ASSERT_GT(c.rows(), 10u);
+  EXPECT_NEAR(c["vy"].back(), 0.2, 0.002);
+}
+
 /// cases/dem_column_collapse at half size (a 0.1 m column of discs r 1.5-2 mm, 0.5 s): the column collapses and
 /// comes to rest with a run-out in the band of the scalings and of the full case.
 TEST(DemCases, ColumnCollapseCi) {

@@ -47,13 +47,13 @@ class DemModel final : public PhysicsModel {
   Index num_nodes() const override;     ///< the discs
   Index num_elements() const override;  ///< the contacts
   void initialize() override;
-  void predict(double t_new, double dt) override {
-    t_new_ = t_new;
-    dt_ = dt;
-  }
+  /// Begins a step: snapshots the body (a copy of the DemBody), or, when the last step was not finalized (the
+  /// driver retries a failed step with a smaller dt), restores the snapshot first, so that the retry starts
+  /// from the step's start and not from the failed attempt's end.
+  void predict(double t_new, double dt) override;
   /// Advances the body over the driver's step in sub-steps; always converged, inner_iterations = sub-steps.
   IterationReport solve_iteration() override;
-  void finalize_step() override {}
+  void finalize_step() override { step_open_ = false; }
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   Json summary() const override;
@@ -70,6 +70,8 @@ class DemModel final : public PhysicsModel {
   CaseContext ctx_;
   std::unique_ptr<DemBody> body_;
   std::unique_ptr<DemWriter> writer_;
+  std::unique_ptr<DemBody> snapshot_;  // the body at the start of the open step (predict)
+  bool step_open_ = false;
   double t_new_ = 0, dt_ = 0;
   double settle_time_ = 0;
   double wall_time_ = 0;

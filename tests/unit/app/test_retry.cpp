@@ -1,7 +1,8 @@
 // Retry-safe predict (issue #18): the driver retries a failed step from the same state with half the step
 // (analysis.cpp: predict again before finalize_step). For each model the test makes an attempt that fails
 // part of the way (a first predict with dt and one solve_iteration, which for the solid and the fluid is one
-// Newton correction and for the MPM the whole sub-stepped step: the most the attempt can have advanced), then
+// Newton correction and for the MPM and the DEM the whole sub-stepped step: the most the attempt can have
+// advanced), then
 // retries with dt / 2, and checks that the retried step and the step after it give exactly (bit for bit) the
 // probes of a clean run at dt / 2. A predict that did not restore the start of the step fails it.
 #include <lagfsi/case.hpp>
@@ -108,6 +109,29 @@ TEST(Retry, MpmRetriedStepEqualsACleanStep) {
       body,
       {Json{{"name", "uy"}, {"type", "particle"}, {"body", "column"}, {"at", {0.00125, 0.09875}}, {"quantity", "displacement_y"}},
        Json{{"name", "ke"}, {"type", "energy"}, {"body", "column"}, {"kind", "kinetic"}}},
+      2e-3);
+}
+
+TEST(Retry, DemRetriedStepEqualsACleanStep) {
+  // A bed falling on a floor with friction (tangential histories), pushed by a moving wall and loaded by a blast
+  // whose exposure is recomputed every third call: the failed attempt rebuilds and reorders the lists, moves the
+  // wall, advances the blast's call count and the energy counters, all of which the retry must undo.
+  const Json body = Json::parse(R"({"name": "bed", "type": "dem", "material": {"density": 2500},
+    "contact": {"law": "linear", "kn": 1e5, "damping_ratio": 0.1, "friction": 0.5},
+    "discs": [{"type": "hex_lattice", "region": {"type": "rectangle", "origin": [0, 0], "size": [0.05, 0.02]},
+               "radius": 0.002, "velocity": [0, -0.5]}],
+    "walls": [{"name": "box", "points": [[0, 0.2], [0, 0], [0.1, 0]]},
+              {"name": "piston", "points": [[0.0505, 0], [0.0505, 0.05]], "velocity": [-0.5, 0]}],
+    "blast": {"charge_mass": 0.001, "position": [0.025, 0.5], "exposure_every": 3},
+    "time_step": {"dt": 2e-5}})");
+  expect_retry_equals_clean(
+      body,
+      {Json{{"name", "y0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "y"}},
+       Json{{"name", "w0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "omega"}},
+       Json{{"name", "vx"}, {"type", "disc"}, {"body", "bed"}, {"id", 11}, {"quantity", "vx"}},
+       Json{{"name", "fmax"}, {"type", "max_contact_force"}, {"body", "bed"}},
+       Json{{"name", "balance"}, {"type", "energy"}, {"body", "bed"}, {"kind", "balance"}},
+       Json{{"name", "blast"}, {"type", "energy"}, {"body", "bed"}, {"kind", "blast_work"}}},
       2e-3);
 }
 

@@ -2,6 +2,7 @@
 # The Developer build (CMakePresets.json, issue #18): warnings as errors (-Wall -Wextra -Werror) and
 # AddressSanitizer + UndefinedBehaviorSanitizer, in ./build-dev; then the unit and verification tiers under the
 # sanitizers (a sanitizer report fails the test: halt_on_error). CI keeps the Release build (scripts/test.sh).
+# First of all, the tree must be formatted as .clang-format says (clang-format --dry-run -Werror; a few seconds).
 # Usage: scripts/developer_check.sh [ctest arguments, e.g. -R Retry]; LAGFSI_JOBS sets the build's parallelism.
 # Measured (main at 6122d3c + the DEM retry, 2 cores shared with other jobs, load ~5): the build 63 min from a
 # partly warm ccache, with no warning; the tests 24 min wall: 368 tests (275 unit, 93 verification), all passed, no
@@ -11,6 +12,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${LAGFSI_JOBS:-$(nproc)}
 cd "$root"
+if command -v clang-format >/dev/null; then
+  git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run -Werror ||
+    { echo "developer_check: sources not formatted; run: git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i" >&2; exit 1; }
+fi
 cmake --preset Developer >/dev/null
 cmake --build --preset Developer -j "$jobs"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}

@@ -86,7 +86,8 @@ struct FilteredLeastSquares {
 };
 
 /// This step's difference columns, newest first: dr_i = r_i - r_{i-1}, dx_i = x~_i - x~_{i-1}.
-void step_differences(const std::vector<Vec>& r, const std::vector<Vec>& xt, std::vector<Vec>& dr, std::vector<Vec>& dx) {
+void step_differences(const std::vector<Vec>& r, const std::vector<Vec>& xt, std::vector<Vec>& dr,
+                      std::vector<Vec>& dx) {
   dr.clear();
   dx.clear();
   for (size_t i = r.size(); i-- > 1;) {
@@ -130,7 +131,8 @@ class IqnIls final : public Acceleration {
 
   Vec update(const Vec& x, const Vec& x_tilde) override {
     const Vec r = x_tilde - x;
-    if (!r_.empty() && r_.back().size() != r.size()) throw SolverError("iqn_ils: the interface changed size within a step");
+    if (!r_.empty() && r_.back().size() != r.size())
+      throw SolverError("iqn_ils: the interface changed size within a step");
     if (!old_.empty() && old_.front().dr.front().size() != r.size()) old_.clear();  // new interface: old model void
     r_.push_back(r);
     xt_.push_back(x_tilde);
@@ -213,7 +215,8 @@ class IqnImvj final : public Acceleration {
 
   Vec update(const Vec& x, const Vec& x_tilde) override {
     const Vec r = x_tilde - x;
-    if (!r_.empty() && r_.back().size() != r.size()) throw SolverError("iqn_imvj: the interface changed size within a step");
+    if (!r_.empty() && r_.back().size() != r.size())
+      throw SolverError("iqn_imvj: the interface changed size within a step");
     if (J_.size() && J_.rows() != r.size()) J_.resize(0, 0);  // new interface: old Jacobian void
     r_.push_back(r);
     xt_.push_back(x_tilde);

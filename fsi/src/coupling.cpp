@@ -16,8 +16,8 @@ CouplingReport dirichlet_neumann_step(const DirichletSide& dirichlet, const Neum
     const Vec f = dirichlet(x);
     const Vec xt = neumann(f);
     if (xt.size() != x.size())
-      throw SolverError("coupling: the Neumann side returned " + std::to_string(xt.size()) + " interface values, expected " +
-                        std::to_string(x.size()));
+      throw SolverError("coupling: the Neumann side returned " + std::to_string(xt.size()) +
+                        " interface values, expected " + std::to_string(x.size()));
     ++rep.iterations;
     rep.residual = (xt - x).norm();
     const Vec& origin = settings.origin.size() == x.size() ? settings.origin : x0;

@@ -82,7 +82,7 @@ class DirichletNeumann final : public PhysicsModel {
   CouplingSettings settings_;
   double t_new_ = 0, dt_ = 0;
   int inner_ = 0;
-  int restarts_ = 0;  // coupled steps whose loop was restarted with the accelerator's memory cleared
+  int restarts_ = 0;      // coupled steps whose loop was restarted with the accelerator's memory cleared
   int fluid_passes_ = 0;  // fluid solves of the current loop
   Vec last_motion_;       // interface motion of the last step (x_n - x_{n-1}), for the first guess
   double dt_prev_ = 0;
@@ -116,7 +116,8 @@ DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsMode
   fluid_ = dynamic_cast<InterfaceFluid*>(&fluid);
   structure_ = dynamic_cast<InterfaceStructure*>(&structure);
   if (!fluid_) p.fail("fluid", "body '" + fluid.name() + "' is a " + fluid.type() + ", not a fluid");
-  if (!structure_) p.fail("structure", "body '" + structure.name() + "' is a " + structure.type() + ", not a structure");
+  if (!structure_)
+    p.fail("structure", "body '" + structure.name() + "' is a " + structure.type() + ", not a structure");
   if (ctx.analysis.type != "dynamic") p.fail("type", "a coupling needs a dynamic analysis");
   settings_.max_iterations = p.integer("max_iterations", 1);
   settings_.tolerance = p.positive("tolerance");
@@ -258,7 +259,8 @@ std::unique_ptr<Probe> DirichletNeumann::make_probe(Params p) {
   const std::string t = p.choice("type", {"interface_force", "iterations"});
   if (t == "interface_force") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"component", "x"}});
-    return std::make_unique<CouplingProbe>(*this, p.string("name"), t, p.choice("component", {"x", "y"}) == "x" ? 0 : 1);
+    return std::make_unique<CouplingProbe>(*this, p.string("name"), t,
+                                           p.choice("component", {"x", "y"}) == "x" ? 0 : 1);
   }
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
   return std::make_unique<CouplingProbe>(*this, p.string("name"), t, 0);
@@ -277,7 +279,8 @@ InterfaceMap::InterfaceMap(const InterfaceBoundary& boundary, double spacing)
   for (size_t k = 0; k < boundary.nodes.size(); ++k) local[boundary.nodes[k]] = static_cast<Index>(k);
   auto index_of = [&](Index node) {
     const auto it = local.find(node);
-    if (it == local.end()) throw std::invalid_argument("interface edge node " + std::to_string(node) + " is not an interface node");
+    if (it == local.end())
+      throw std::invalid_argument("interface edge node " + std::to_string(node) + " is not an interface node");
     return it->second;
   };
   if (spacing == 0) {

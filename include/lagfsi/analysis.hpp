@@ -15,13 +15,13 @@ namespace lagfsi {
 
 struct RunOptions {
   std::filesystem::path case_file;
-  std::filesystem::path out_dir;          ///< default: out/<case name>
-  std::vector<std::string> overrides;     ///< "key.path=value"
-  int threads = 0;                        ///< 0: OpenMP default
+  std::filesystem::path out_dir;       ///< default: out/<case name>
+  std::vector<std::string> overrides;  ///< "key.path=value"
+  int threads = 0;                     ///< 0: OpenMP default
   bool quiet = false;
-  std::string progress = "auto";         ///< auto | bar | lines | none (none when quiet)
-  bool restart = false;                   ///< continue from the last checkpoint in out_dir (--restart OUTDIR)
-  long stop_after_step = 0;               ///< > 0: end after this step as if interrupted, status "stopped", exit 0
+  std::string progress = "auto";  ///< auto | bar | lines | none (none when quiet)
+  bool restart = false;           ///< continue from the last checkpoint in out_dir (--restart OUTDIR)
+  long stop_after_step = 0;       ///< > 0: end after this step as if interrupted, status "stopped", exit 0
 };
 
 /// Exit codes of `lagfsi`. An interrupted run (SIGINT, SIGTERM) exits with 128 + the signal's number.
@@ -31,7 +31,7 @@ enum ExitCode : int {
   kInputError = 2,
   kSolverError = 3,
   kInternalError = 4,
-  kOutputError = 5,   ///< an output file could not be written (disk full, file-size limit, permissions)
+  kOutputError = 5,  ///< an output file could not be written (disk full, file-size limit, permissions)
 };
 
 /// Runs a case; returns an exit code. Errors are reported on stderr as one line; never throws.

@@ -22,28 +22,28 @@ namespace lagfsi {
 
 struct NewtonSettings {
   int max_iterations = 25;
-  double residual_tolerance = 1e-6;   ///< relative to the largest force term of the step (inertia, internal, external)
-  double position_tolerance = 1e-9;   ///< relative to the body size
+  double residual_tolerance = 1e-6;  ///< relative to the largest force term of the step (inertia, internal, external)
+  double position_tolerance = 1e-9;  ///< relative to the body size
 };
 
 struct AnalysisSettings {
-  std::string type;            ///< "static" (load factor = time from 0 to 1) or "dynamic"
-  double dt = 0;               ///< time step (dynamic) or 1/load_steps (static)
-  double end_time = 0;         ///< 1 for static
-  Json integrator;             ///< {"type": "newmark"|"generalized_alpha"|"central_difference", ...}
+  std::string type;     ///< "static" (load factor = time from 0 to 1) or "dynamic"
+  double dt = 0;        ///< time step (dynamic) or 1/load_steps (static)
+  double end_time = 0;  ///< 1 for static
+  Json integrator;      ///< {"type": "newmark"|"generalized_alpha"|"central_difference", ...}
   NewtonSettings newton;
-  std::string linear_solver;   ///< linear_solver.hpp type
-  int max_step_halvings = 4;   ///< retries of a failed step with dt/2, dt/4, ...
+  std::string linear_solver;  ///< linear_solver.hpp type
+  int max_step_halvings = 4;  ///< retries of a failed step with dt/2, dt/4, ...
 };
 
 /// What a model builder gets besides its own parameters.
 struct CaseContext {
   std::filesystem::path case_file;
-  std::filesystem::path base_dir;   ///< folder of the case file (relative paths start here)
+  std::filesystem::path base_dir;  ///< folder of the case file (relative paths start here)
   std::filesystem::path out_dir;
   AnalysisSettings analysis;
   Vec2 gravity = Vec2::Zero();
-  bool quiet = false;   ///< --quiet: no progress and no warnings on stderr (errors only; notes go to summary.json)
+  bool quiet = false;  ///< --quiet: no progress and no warnings on stderr (errors only; notes go to summary.json)
 };
 
 /// Top-level defaults of a case file (null = required).

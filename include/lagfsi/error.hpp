@@ -11,7 +11,9 @@ class InputError : public std::runtime_error {
  public:
   InputError(const std::string& file, const std::string& path, const std::string& reason)
       : std::runtime_error(file + ": " + (path.empty() ? std::string("/") : path) + ": " + reason),
-        file_(file), path_(path), reason_(reason) {}
+        file_(file),
+        path_(path),
+        reason_(reason) {}
   const std::string& file() const { return file_; }
   const std::string& json_path() const { return path_; }
   const std::string& reason() const { return reason_; }

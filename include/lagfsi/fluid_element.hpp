@@ -21,12 +21,12 @@
 namespace lagfsi {
 
 struct PspgElementInput {
-  Vec2 x[3], v[3], a[3];    ///< geometry (evaluation configuration), velocities, accelerations
-  double p[3], p_old[3];    ///< pressures (iterate and start of step)
+  Vec2 x[3], v[3], a[3];  ///< geometry (evaluation configuration), velocities, accelerations
+  double p[3], p_old[3];  ///< pressures (iterate and start of step)
   double rho = 1000, mu = 1e-3, dt = 1e-3;
-  double tau_U = 0;         ///< 0: automatic tau; > 0: Tezduyar's user velocity scale
-  double bulk = 0;          ///< bulk modulus of the slight compressibility (0: none)
-  double c_vol = 0;         ///< global volume-correction source
+  double tau_U = 0;  ///< 0: automatic tau; > 0: Tezduyar's user velocity scale
+  double bulk = 0;   ///< bulk modulus of the slight compressibility (0: none)
+  double c_vol = 0;  ///< global volume-correction source
   Vec2 g = Vec2::Zero();
   bool lumped = true;
   double c_m = 0, c_c = 0;  ///< d a / d x and d v / d x of the time integrator

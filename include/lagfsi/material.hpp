@@ -26,11 +26,11 @@ namespace lagfsi {
 enum class PlaneHypothesis { PlaneStrain, PlaneStress };
 
 struct MaterialResponse {
-  double psi = 0.0;                       ///< strain energy per unit reference volume
-  Mat2 S = Mat2::Zero();                  ///< second Piola-Kirchhoff stress (in-plane)
+  double psi = 0.0;                             ///< strain energy per unit reference volume
+  Mat2 S = Mat2::Zero();                        ///< second Piola-Kirchhoff stress (in-plane)
   Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  ///< dS/dE (Voigt 11, 22, 12; engineering shear)
-  double S33 = 0.0;                       ///< out-of-plane S (plane strain; 0 in plane stress)
-  double F33 = 1.0;                       ///< out-of-plane stretch (1 in plane strain)
+  double S33 = 0.0;                             ///< out-of-plane S (plane strain; 0 in plane stress)
+  double F33 = 1.0;                             ///< out-of-plane stretch (1 in plane strain)
 };
 
 class SolidMaterial {
@@ -54,7 +54,7 @@ class SolidMaterial {
 };
 
 /// Builds "svk" or "neo_hookean"; throws std::invalid_argument for an unknown type.
-std::unique_ptr<SolidMaterial> make_solid_material(const std::string& type, double E, double nu,
-                                                   double rho, PlaneHypothesis h);
+std::unique_ptr<SolidMaterial> make_solid_material(const std::string& type, double E, double nu, double rho,
+                                                   PlaneHypothesis h);
 
 }  // namespace lagfsi

@@ -14,9 +14,9 @@
 namespace lagfsi {
 
 struct TriMesh {
-  int order = 1;                 ///< 1 (T3), 2 (T6) or 3 (T10)
-  std::vector<Vec2> nodes;       ///< nodal coordinates
-  std::vector<Index> conn;       ///< nodes_per_element() indices per element, element after element
+  int order = 1;            ///< 1 (T3), 2 (T6) or 3 (T10)
+  std::vector<Vec2> nodes;  ///< nodal coordinates
+  std::vector<Index> conn;  ///< nodes_per_element() indices per element, element after element
 
   static constexpr int nodes_per_element(int order) { return (order + 1) * (order + 2) / 2; }
   int nodes_per_element() const { return nodes_per_element(order); }

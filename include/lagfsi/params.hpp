@@ -40,18 +40,19 @@ class Params {
   void validate(const Json& defaults);
 
   bool has(const std::string& key) const;
-  Params at(const std::string& key) const;   ///< child object (error if absent)
-  Params at(size_t i) const;                 ///< array element
-  size_t size() const;                        ///< array length (error if not an array)
+  Params at(const std::string& key) const;  ///< child object (error if absent)
+  Params at(size_t i) const;                ///< array element
+  size_t size() const;                      ///< array length (error if not an array)
   bool is_null() const { return node_->is_null(); }
 
-  double number(const std::string& key) const;            ///< finite number
-  double positive(const std::string& key) const;          ///< > 0
-  double non_negative(const std::string& key) const;      ///< >= 0
+  double number(const std::string& key) const;        ///< finite number
+  double positive(const std::string& key) const;      ///< > 0
+  double non_negative(const std::string& key) const;  ///< >= 0
   int integer(const std::string& key, int min_value = std::numeric_limits<int>::min()) const;
   bool boolean(const std::string& key) const;
   std::string string(const std::string& key) const;
-  /// A name that becomes part of file names or a CSV column (cases, bodies, couplings, probes): 1-64 characters from letters, digits,
+  /// A name that becomes part of file names or a CSV column (cases, bodies, couplings, probes): 1-64 characters from
+  /// letters, digits,
   /// '_', '-', '.' and '+', not starting with '.' (no paths, no hidden files, no '.' or '..').
   std::string identifier(const std::string& key) const;
   /// A string that must be one of `options` (error lists them).

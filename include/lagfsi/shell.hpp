@@ -38,14 +38,14 @@
 namespace lagfsi {
 
 struct ShellSection {
-  double thickness = 0.0;         ///< reference thickness t (m)
-  double width = 1.0;             ///< out-of-plane width b (m)
-  double young = 0.0;             ///< E
-  double poisson = 0.0;           ///< nu
-  double density = 0.0;           ///< rho
-  bool plane_strain = true;       ///< Eb = E/(1 - nu^2) (plate strip) instead of E (beam)
+  double thickness = 0.0;    ///< reference thickness t (m)
+  double width = 1.0;        ///< out-of-plane width b (m)
+  double young = 0.0;        ///< E
+  double poisson = 0.0;      ///< nu
+  double density = 0.0;      ///< rho
+  bool plane_strain = true;  ///< Eb = E/(1 - nu^2) (plate strip) instead of E (beam)
   double shear_correction = 5.0 / 6.0;
-  bool reduced_shear = true;      ///< shear integrated with p points along the element
+  bool reduced_shear = true;  ///< shear integrated with p points along the element
 };
 
 class ShellBody final : public StructuralBody {
@@ -91,10 +91,10 @@ class ShellBody final : public StructuralBody {
   void build_points();
 
   struct QuadPoint {
-    Eigen::MatrixX2d G;  ///< d Phi / dX in the section's reference frame (npe x 2)
-    Eigen::VectorXd Phi; ///< the shape functions {N_a, eta N_a} (mass)
+    Eigen::MatrixX2d G;   ///< d Phi / dX in the section's reference frame (npe x 2)
+    Eigen::VectorXd Phi;  ///< the shape functions {N_a, eta N_a} (mass)
     double dV;
-    bool shear_only;     ///< a point of the reduced shear rule
+    bool shear_only;  ///< a point of the reduced shear rule
   };
 
   int order_;
@@ -103,7 +103,7 @@ class ShellBody final : public StructuralBody {
   Eigen::Matrix3d Dfull_, Dshear_;
   std::vector<std::vector<QuadPoint>> points_;  ///< per element
   std::vector<Vec2> mid_;
-  std::vector<Vec2> normal_;      ///< unit reference normals at the mid-line nodes
+  std::vector<Vec2> normal_;  ///< unit reference normals at the mid-line nodes
   Vec X_;
   ElementPattern assembly_;
   SparseMatrix mass_;

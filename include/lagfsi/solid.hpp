@@ -8,7 +8,8 @@
 /// force and its exact Hessian are
 ///
 ///   f_{a alpha} = int_{Omega0} F_{alpha I} S_{IJ} N_{a,J} dV,
-///   K_{a alpha, b gamma} = int_{Omega0} [ B_{a alpha} : D : B_{b gamma} + delta_{alpha gamma} N_{a,I} S_{IJ} N_{b,J} ] dV,
+///   K_{a alpha, b gamma} = int_{Omega0} [ B_{a alpha} : D : B_{b gamma} + delta_{alpha gamma} N_{a,I} S_{IJ} N_{b,J} ]
+///   dV,
 ///
 /// with B_{a alpha} = dE/dx_{a alpha} = sym(N_{a,I} F_{alpha J}); dV carries the thickness (plane stress) or a
 /// unit thickness (plane strain, unless one is given). The consistent mass M_ab = int rho0 N_a N_b dV I is
@@ -135,9 +136,9 @@ class SolidBody final : public StructuralBody {
   /// Nodal fields at x (averaged over the elements around each node, evaluated at the nodes):
   /// Cauchy stress (xx, yy, xy, zz), von Mises, Green strain (xx, yy, xy).
   struct NodalStress {
-    std::vector<double> cauchy;      // 4 per node
-    std::vector<double> von_mises;   // 1 per node
-    std::vector<double> green;       // 3 per node
+    std::vector<double> cauchy;     // 4 per node
+    std::vector<double> von_mises;  // 1 per node
+    std::vector<double> green;      // 3 per node
   };
   NodalStress nodal_stress(const Vec& x) const;
 
@@ -166,9 +167,9 @@ class SolidBody final : public StructuralBody {
   double thickness_;
   Vec X_;
   SparseMatrix pattern_, mass_;
-  ElementPattern assembly_;                  // pattern, scatter map and element colours
-  std::vector<Eigen::MatrixX2d> qdN_;        // parent derivatives at the quadrature points
-  std::vector<double> qw_;                   // quadrature weights
+  ElementPattern assembly_;            // pattern, scatter map and element colours
+  std::vector<Eigen::MatrixX2d> qdN_;  // parent derivatives at the quadrature points
+  std::vector<double> qw_;             // quadrature weights
 };
 
 }  // namespace lagfsi

@@ -48,10 +48,8 @@ class StateArchive {
   void section(const std::string& name);
 
   template <class T>
-    requires std::is_arithmetic_v<T> || std::is_enum_v<T>
-  void io(T& v) {
-    raw(&v, sizeof v);
-  }
+  requires std::is_arithmetic_v<T> || std::is_enum_v<T>
+  void io(T& v) { raw(&v, sizeof v); }
   void io(std::string& s);
   /// Eigen vectors and matrices of doubles, fixed or dynamic size.
   template <int R, int C, int O, int MR, int MC>
@@ -79,7 +77,7 @@ class StateArchive {
       raw(v.data(), n * sizeof(T));
     } else {
       if (loading_) {
-        check_left(n);   // every element takes at least a byte
+        check_left(n);  // every element takes at least a byte
         v.resize(n);
       }
       for (auto& e : v) io(e);

@@ -98,16 +98,15 @@ class TimeIntegrator {
   /// force(x, v, t) returns f_ext - f_int - C v (the out-of-balance force); inv_mass is 1/M_ii
   /// (0 for prescribed dofs, whose motion the caller imposes afterwards).
   using ForceFunction = std::function<Vec(const Vec& x, const Vec& v, double t)>;
-  virtual void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt,
-                             KinematicState& s) const;
+  virtual void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt, KinematicState& s) const;
 
   /// Explicit integrators only: the non-allocating form of explicit_step(). force(x_{n+1}, v_{n+1/2},
   /// t_{n+1}, f) writes the out-of-balance force into f (sized like x by the step, reused from call to
   /// call: no allocation once the size is set). In place: x_{n+1} = x_n + dt v_n + dt^2/2 a_n,
   /// v_{n+1/2} = v_n + dt/2 a_n, a_{n+1} = inv_mass f, v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}.
   using ForceIntoFunction = std::function<void(const Vec& x, const Vec& v, double t, Vec& f)>;
-  virtual void explicit_step_into(const ForceIntoFunction& force, const Vec& inv_mass, double dt,
-                                  KinematicState& s, Vec& f) const;
+  virtual void explicit_step_into(const ForceIntoFunction& force, const Vec& inv_mass, double dt, KinematicState& s,
+                                  Vec& f) const;
 };
 
 /// The integrator a case names: {"type": "newmark", "beta": 0.25, "gamma": 0.5} |

@@ -8,7 +8,7 @@
 
 namespace lagfsi {
 
-using Index = std::int32_t;                    ///< node / element / dof index (sparse matrices use int)
+using Index = std::int32_t;  ///< node / element / dof index (sparse matrices use int)
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 using Vec = Eigen::VectorXd;

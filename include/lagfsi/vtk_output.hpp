@@ -26,8 +26,8 @@ struct Field {
 /// 3: VTK_LAGRANGE_TRIANGLE); a mesh with zero cells and `vertices_as_cells` = true writes each point as a
 /// VTK_VERTEX (particle clouds).
 struct VtuData {
-  const TriMesh* mesh = nullptr;          ///< connectivity and order; its nodes are ignored if points given
-  std::vector<Vec2> points;               ///< current positions (empty: use mesh->nodes)
+  const TriMesh* mesh = nullptr;  ///< connectivity and order; its nodes are ignored if points given
+  std::vector<Vec2> points;       ///< current positions (empty: use mesh->nodes)
   std::vector<Field> point_fields;
   std::vector<Field> cell_fields;
   bool vertices_as_cells = false;

@@ -55,9 +55,7 @@ constexpr double kSecondPassSize = 1.5;
 constexpr double kAreaPerElement = 0.43;
 constexpr double kMaxElements = 5e6;
 
-[[noreturn]] void fail(const std::string& why) {
-  throw std::invalid_argument("mesh_polygon: " + why);
-}
+[[noreturn]] void fail(const std::string& why) { throw std::invalid_argument("mesh_polygon: " + why); }
 
 std::string loop_name(std::size_t loop) {
   return loop == 0 ? std::string("outer loop") : "hole " + std::to_string(loop - 1);
@@ -100,8 +98,8 @@ void check_simple(const std::vector<const std::vector<Vec2>*>& loops) {
         os << loop_name(l) << " has a repeated point (index " << i << ")";
         fail(os.str());
       }
-      segs.push_back({l, i, n, to_point(a), to_point(b), std::min(a.x(), b.x()),
-                      std::max(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.y(), b.y())});
+      segs.push_back({l, i, n, to_point(a), to_point(b), std::min(a.x(), b.x()), std::max(a.x(), b.x()),
+                      std::min(a.y(), b.y()), std::max(a.y(), b.y())});
     }
   }
   std::sort(segs.begin(), segs.end(), [](const Seg& s, const Seg& t) { return s.xmin < t.xmin; });
@@ -124,8 +122,8 @@ void check_simple(const std::vector<const std::vector<Vec2>*>& loops) {
       }
       if (bad) {
         std::ostringstream os;
-        os << "self-intersecting boundary: segment " << a.i << " of the " << loop_name(a.loop)
-           << " and segment " << b.i << " of the " << loop_name(b.loop) << " intersect";
+        os << "self-intersecting boundary: segment " << a.i << " of the " << loop_name(a.loop) << " and segment " << b.i
+           << " of the " << loop_name(b.loop) << " intersect";
         fail(os.str());
       }
     }
@@ -198,13 +196,13 @@ void check_feature_size(const std::vector<const std::vector<Vec2>*>& loops, doub
 /// coordinate 1000 times too large) took minutes to insert (long chains of edge flips between its two
 /// nearly parallel sides) before the refinement's point limit stopped it.
 void check_angles(const std::vector<const std::vector<Vec2>*>& loops) {
-  constexpr double kMinAngle = 1e-3;   // rad, 0.057 degrees
+  constexpr double kMinAngle = 1e-3;  // rad, 0.057 degrees
   for (std::size_t l = 0; l < loops.size(); ++l) {
     const auto& loop = *loops[l];
     const std::size_t n = loop.size();
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2 a = loop[(i + n - 1) % n] - loop[i], b = loop[(i + 1) % n] - loop[i];
-      if (!(a.squaredNorm() > 0 && b.squaredNorm() > 0)) continue;   // repeated points: check_simple's
+      if (!(a.squaredNorm() > 0 && b.squaredNorm() > 0)) continue;  // repeated points: check_simple's
       const double angle = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
       if (angle < kMinAngle) {
         std::ostringstream os;
@@ -239,8 +237,8 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements)
     ymax = std::max(ymax, p.y());
   }
   // Relative threshold: a loop whose area is at round-off level of its bounding box is degenerate.
-  const double scale2 = std::max((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin),
-                                 std::numeric_limits<double>::min());
+  const double scale2 =
+      std::max((xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin), std::numeric_limits<double>::min());
   double area = 0.0;
   for (std::size_t l = 0; l < loops.size(); ++l) {
     const double a = std::abs(signed_area(*loops[l]));
@@ -269,11 +267,11 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements)
   const double expected = area / (kAreaPerElement * h * h);
   if (!(expected <= std::min(max_elements, kMaxElements))) {
     std::ostringstream os;
-    os << "about " << expected << " elements expected (area " << area << ", h " << h
-       << "), more than the limit " << std::min(max_elements, kMaxElements);
+    os << "about " << expected << " elements expected (area " << area << ", h " << h << "), more than the limit "
+       << std::min(max_elements, kMaxElements);
     fail(os.str());
   }
-  check_feature_size(loops, h);   // after the size check: it compares every vertex with every segment
+  check_feature_size(loops, h);  // after the size check: it compares every vertex with every segment
 
   // ---- boundary: split every segment into ceil(len / h) equal pieces, insert as constraints
   CDT cdt;
@@ -294,8 +292,10 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements)
       for (int k = 0; k < pieces; ++k) {
         const Vec2 x = k == 0 ? a : Vec2(a + (b - a) * (static_cast<double>(k) / pieces));
         CDT::Vertex_handle v = cdt.insert(to_point(x), hint);
-        if (prev != CDT::Vertex_handle()) cdt.insert_constraint(prev, v);
-        else first = v;
+        if (prev != CDT::Vertex_handle())
+          cdt.insert_constraint(prev, v);
+        else
+          first = v;
         hint = v->face();  // after the constraint insertion, which may delete faces
         prev = v;
       }
@@ -307,7 +307,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements)
   mark_nesting_levels(cdt);
   // Refinement one point at a time, so that a region whose small angles make it insert far more points than
   // its area suggests stops at the limit (a flag stretched to 210 m took minutes and 5 GB) instead of ending.
-  const double max_vertices = std::min(max_elements, kMaxElements);   // about half the elements, with margin
+  const double max_vertices = std::min(max_elements, kMaxElements);  // about half the elements, with margin
   auto refine = [&](auto& mesher) {
     mesher.init(/*domain_specified=*/true);
     while (mesher.step_by_step_refine_mesh())

@@ -130,7 +130,8 @@ bool PreviousDomain::is_edge(Index a, Index b) const {
 }
 
 bool PreviousDomain::meshed(Index i) const {
-  return meshed_.empty() || (i >= 0 && static_cast<std::size_t>(i) < meshed_.size() && meshed_[static_cast<std::size_t>(i)]);
+  return meshed_.empty() ||
+         (i >= 0 && static_cast<std::size_t>(i) < meshed_.size() && meshed_[static_cast<std::size_t>(i)]);
 }
 
 bool PreviousDomain::is_boundary_edge(Index a, Index b) const {

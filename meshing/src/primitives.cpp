@@ -21,10 +21,14 @@ TriMesh mesh_rectangle_structured(double x0, double y0, double x1, double y1, in
   if (!(x1 > x0) || !(y1 > y0)) throw std::invalid_argument(where + "empty rectangle (need x1 > x0 and y1 > y0)");
   if (nx < 1 || ny < 1) throw std::invalid_argument(where + "nx and ny must be >= 1");
   enum class Pattern { right, left, crossed } pat;
-  if (pattern == "right") pat = Pattern::right;
-  else if (pattern == "left") pat = Pattern::left;
-  else if (pattern == "crossed") pat = Pattern::crossed;
-  else throw std::invalid_argument(where + "unknown pattern '" + pattern + "' (right, left or crossed)");
+  if (pattern == "right")
+    pat = Pattern::right;
+  else if (pattern == "left")
+    pat = Pattern::left;
+  else if (pattern == "crossed")
+    pat = Pattern::crossed;
+  else
+    throw std::invalid_argument(where + "unknown pattern '" + pattern + "' (right, left or crossed)");
   const std::int64_t nodes = (static_cast<std::int64_t>(nx) + 1) * (static_cast<std::int64_t>(ny) + 1);
   const std::int64_t entries = 6 * static_cast<std::int64_t>(nx) * ny;
   if (nodes > std::numeric_limits<Index>::max() || entries > std::numeric_limits<Index>::max())
@@ -46,7 +50,7 @@ TriMesh mesh_rectangle_structured(double x0, double y0, double x1, double y1, in
       const bool right = pat == Pattern::right || (pat == Pattern::crossed && (i + j) % 2 == 0);
       if (right)  // diagonal a-c
         mesh.conn.insert(mesh.conn.end(), {a, b, c, a, c, d});
-      else        // diagonal b-d
+      else  // diagonal b-d
         mesh.conn.insert(mesh.conn.end(), {a, b, d, b, c, d});
     }
   }
@@ -81,8 +85,8 @@ TriMesh elevate(const TriMesh& linear, int order) {
     for (int k = 0; k < 3; ++k) {
       const Index a = c[k], b = c[(k + 1) % 3];
       const Index lo = std::min(a, b), hi = std::max(a, b);
-      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(lo)) << 32) |
-                                static_cast<std::uint32_t>(hi);
+      const std::uint64_t key =
+          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(lo)) << 32) | static_cast<std::uint32_t>(hi);
       auto [it, inserted] = edge_nodes.try_emplace(key, static_cast<Index>(out.nodes.size()));
       if (inserted) {
         const Vec2& plo = linear.nodes[lo];
@@ -116,7 +120,8 @@ TriMesh elevate(const TriMesh& linear, int order) {
 std::vector<Vec2> arc_points(const Vec2& centre, double radius, double a0, double a1, double h) {
   if (!(std::isfinite(centre.x()) && std::isfinite(centre.y()) && std::isfinite(a0) && std::isfinite(a1)))
     throw std::invalid_argument("arc_points: non-finite centre or angle");
-  if (!std::isfinite(radius) || !(radius > 0.0)) throw std::invalid_argument("arc_points: radius must be finite and > 0");
+  if (!std::isfinite(radius) || !(radius > 0.0))
+    throw std::invalid_argument("arc_points: radius must be finite and > 0");
   if (!std::isfinite(h) || !(h > 0.0)) throw std::invalid_argument("arc_points: h must be finite and > 0");
   // A chord is shorter than its arc: arc pieces of length <= h give segments <= h.
   const double pieces = std::ceil(std::abs(a1 - a0) * radius / h * (1.0 - 1e-12));

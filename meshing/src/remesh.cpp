@@ -29,8 +29,8 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_2;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;         // info: particle index
-using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;    // info: 1 if the face is kept
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;       // info: particle index
+using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;  // info: 1 if the face is kept
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
 
@@ -158,12 +158,12 @@ void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t 
     DT::Face_handle hit;
     int opp = -1;
     if (!single_crossing(dt, va, vb, hit, opp)) {
-      ++lost;   // more than one edge crosses (a, b), or it leaves the convex hull
+      ++lost;  // more than one edge crosses (a, b), or it leaves the convex hull
       continue;
     }
     const Index c = hit->vertex(DT::ccw(opp))->info(), d = hit->vertex(DT::cw(opp))->info();
     if (previous.is_boundary_edge(c, d)) {
-      ++lost;   // two old boundary edges cross: keep the one the Delaunay triangulation has
+      ++lost;  // two old boundary edges cross: keep the one the Delaunay triangulation has
       continue;
     }
     dt.flip(hit, opp);
@@ -190,7 +190,7 @@ int keep_previous_edges(DT& dt, const PreviousDomain& previous, std::size_t n, c
     int flips = 0;
     for (const auto& [a, b] : previous.edges()) {
       if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
-      if (previous.is_boundary_edge(a, b)) continue;   // restore_boundary_edges' business
+      if (previous.is_boundary_edge(a, b)) continue;  // restore_boundary_edges' business
       const DT::Vertex_handle va = vh[static_cast<std::size_t>(a)], vb = vh[static_cast<std::size_t>(b)];
       if (va == DT::Vertex_handle() || vb == DT::Vertex_handle() || dt.is_edge(va, vb)) continue;
       DT::Face_handle hit;
@@ -223,8 +223,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
   const char* where = "remesh";
   const std::size_t n = points.size();
   if (kind.size() != n || h.size() != n)
-    fail(where, "sizes do not match (points " + std::to_string(n) + ", kind " + std::to_string(kind.size()) +
-                    ", h " + std::to_string(h.size()) + ")");
+    fail(where, "sizes do not match (points " + std::to_string(n) + ", kind " + std::to_string(kind.size()) + ", h " +
+                    std::to_string(h.size()) + ")");
   const double alpha = settings.alpha;
   if (!(std::isfinite(alpha) && alpha > 0)) fail(where, "alpha must be finite and > 0");
   const PreviousDomain* previous = nullptr;
@@ -276,7 +276,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
 
   result.triangles.reserve(dt.number_of_faces());
   std::uint8_t* connected = result.connected.data();
-  double area2 = 0.0, area2_comp = 0.0;   // twice the kept area, Neumaier-compensated sum
+  double area2 = 0.0, area2_comp = 0.0;  // twice the kept area, Neumaier-compensated sum
   int removed_alpha = 0, removed_boundary = 0, added = 0, separated = 0;
 
   // Pass 1: the alpha test, in double from the input coordinates (CGAL's faces are counter-clockwise).
@@ -286,20 +286,21 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     const Vec2& pa = points[static_cast<std::size_t>(a)];
     const Vec2& pb = points[static_cast<std::size_t>(b)];
     const Vec2& pc = points[static_cast<std::size_t>(c)];
-    const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y();   // a -> b
-    const double vx = pc.x() - pa.x(), vy = pc.y() - pa.y();   // a -> c
-    const double wx = pc.x() - pb.x(), wy = pc.y() - pb.y();   // b -> c
+    const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y();  // a -> b
+    const double vx = pc.x() - pa.x(), vy = pc.y() - pa.y();  // a -> c
+    const double wx = pc.x() - pb.x(), wy = pc.y() - pb.y();  // b -> c
     const double lab2 = ux * ux + uy * uy, lac2 = vx * vx + vy * vy, lbc2 = wx * wx + wy * wy;
     if (std::min({lab2, lac2, lbc2}) < tol2) {
       if (lab2 < tol2) throw_near_duplicate(a, b, points, where);
       if (lac2 < tol2) throw_near_duplicate(a, c, points, where);
       throw_near_duplicate(b, c, points, where);
     }
-    const double cr = ux * vy - uy * vx;   // 2 * area
+    const double cr = ux * vy - uy * vx;  // 2 * area
     f->info() = 0;
     // R = l_ab l_ac l_bc / (4 A) <= alpha h_e  <=>  l_ab l_ac l_bc <= 2 cr alpha h_e (for cr > 0)
-    const double he = (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] +
-                       h[static_cast<std::size_t>(c)]) * (1.0 / 3.0);
+    const double he =
+        (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] + h[static_cast<std::size_t>(c)]) *
+        (1.0 / 3.0);
     const double lll = std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2);
     const int walls = (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid) +
                       (kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid) +
@@ -329,8 +330,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
         // use) from fluid particles all farther than wetting_distance h_e from it (a dry wall is wetted by
         // fluid that reaches it, not by a surface particle passing at a spacing's distance).
         const double band = settings.level_set_band * he;
-        const int on_boundary = previous->is_boundary_edge(a, b) + previous->is_boundary_edge(b, c) +
-                                previous->is_boundary_edge(c, a);
+        const int on_boundary =
+            previous->is_boundary_edge(a, b) + previous->is_boundary_edge(b, c) + previous->is_boundary_edge(c, a);
         bool reaches = true;
         const Index ids[3] = {a, b, c};
         for (int k = 0; k < 3; ++k) {
@@ -343,10 +344,10 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
           }
           reaches = reaches && nearest <= settings.wetting_distance * he;
         }
-        const bool accept = walls <= 1 && on_boundary < 2 && reaches &&
-                            (settings.detection == DomainDetection::LevelSet
-                                 ? previous->boundary_distance(centroid, band) < band
-                                 : lll <= 2.0 * cr * alpha * he);
+        const bool accept =
+            walls <= 1 && on_boundary < 2 && reaches &&
+            (settings.detection == DomainDetection::LevelSet ? previous->boundary_distance(centroid, band) < band
+                                                             : lll <= 2.0 * cr * alpha * he);
         if (!accept) {
           ++removed_alpha;
           continue;

@@ -7,10 +7,10 @@
 
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/case.hpp>
-#include <lagfsi/model_registry.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fsi/dirichlet_neumann.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/model_registry.hpp>
 #include <lagfsi/output_file.hpp>
 #include <lagfsi/text.hpp>
 #include <lagfsi/time_integrator.hpp>
@@ -48,12 +48,8 @@ const Json& case_defaults() {
 
 const std::map<std::string, ModelBuilder>& model_registry() {
   static const std::map<std::string, ModelBuilder> r = {
-      {"solid", make_solid_model},
-      {"shell", make_solid_model},
-      {"fluid", make_fluid_model},
-      {"mpm", make_mpm_model},
-      {"dem", make_dem_model},
-      {"efg", make_efg_model},
+      {"solid", make_solid_model}, {"shell", make_solid_model}, {"fluid", make_fluid_model},
+      {"mpm", make_mpm_model},     {"dem", make_dem_model},     {"efg", make_efg_model},
   };
   return r;
 }
@@ -62,8 +58,8 @@ namespace {
 
 /// Registry of coupling types (fsi/): the "type" string of an entry of "couplings" to its builder, which
 /// gets the two bodies it couples.
-using CouplingBuilder =
-    std::function<std::unique_ptr<PhysicsModel>(Params, const CaseContext&, PhysicsModel& fluid, PhysicsModel& structure)>;
+using CouplingBuilder = std::function<std::unique_ptr<PhysicsModel>(Params, const CaseContext&, PhysicsModel& fluid,
+                                                                    PhysicsModel& structure)>;
 const std::map<std::string, CouplingBuilder>& coupling_registry() {
   static const std::map<std::string, CouplingBuilder> r = {{"dirichlet_neumann", fsi::make_dirichlet_neumann}};
   return r;
@@ -71,7 +67,6 @@ const std::map<std::string, CouplingBuilder>& coupling_registry() {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
 
 /// Everything built from the case file.
 struct Case {
@@ -85,7 +80,8 @@ struct Case {
   int output_every = 1;
   bool vtk = true;
   CheckpointSettings checkpoint;
-  std::vector<std::string> warnings;   ///< chosen on purpose (a conditionally stable integrator): stderr and summary.json
+  std::vector<std::string>
+      warnings;  ///< chosen on purpose (a conditionally stable integrator): stderr and summary.json
 };
 
 Case build_case(const RunOptions& opt, bool for_check) {
@@ -166,7 +162,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
     if (!p.has("name")) p.fail("name", "required key is missing");
     if (!p.has("type")) p.fail("type", "required key is missing");
     if (!p.has("body")) p.fail("body", "required key is missing");
-    (void)p.identifier("name");   // a column of probes.csv: no commas, quotes or line breaks
+    (void)p.identifier("name");  // a column of probes.csv: no commas, quotes or line breaks
     const std::string body = p.string("body");
     PhysicsModel* m = nullptr;
     for (auto& mm : c.models)
@@ -191,7 +187,6 @@ Case build_case(const RunOptions& opt, bool for_check) {
 /// JSON text for a file: never throws (every string is UTF-8 since the input is checked; any other byte
 /// would be replaced).
 std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
-
 
 }  // namespace
 
@@ -286,21 +281,28 @@ int run_case(const RunOptions& opt) {
     int restarts = 0;
     for (const auto& m : c.couplings) restarts += m->coupling_restarts();
     if (!c.couplings.empty())
-      s["coupling"] = {{"coupled_steps", tot.coupled_steps}, {"restarts", restarts},
-                       {"iterations_total", tot.coupling_iterations},
-                       {"iterations_mean", tot.coupled_steps ? double(tot.coupling_iterations) / tot.coupled_steps : 0.0},
-                       {"iterations_max", tot.coupling_max},
-                       {"residual_max", tot.coupling_residual_max}};
+      s["coupling"] = {
+          {"coupled_steps", tot.coupled_steps},
+          {"restarts", restarts},
+          {"iterations_total", tot.coupling_iterations},
+          {"iterations_mean", tot.coupled_steps ? double(tot.coupling_iterations) / tot.coupled_steps : 0.0},
+          {"iterations_max", tot.coupling_max},
+          {"residual_max", tot.coupling_residual_max}};
     auto timing = [](const PhaseTimes& p) {
-      return Json{{"remesh", p.remesh}, {"assembly", p.assembly}, {"factorization", p.factorization},
-                  {"solve", p.solve}, {"output", p.output},
+      return Json{{"remesh", p.remesh},
+                  {"assembly", p.assembly},
+                  {"factorization", p.factorization},
+                  {"solve", p.solve},
+                  {"output", p.output},
                   {"total", p.remesh + p.assembly + p.factorization + p.solve + p.output}};
     };
     s["timing"] = timing(tot.phases);
     Json bodies = Json::array();
     for (size_t i = 0; i < c.models.size(); ++i) {
       const auto& m = c.models[i];
-      Json b{{"name", m->name()}, {"type", m->type()}, {"nodes", m->num_nodes()},
+      Json b{{"name", m->name()},
+             {"type", m->type()},
+             {"nodes", m->num_nodes()},
              {"elements", m->num_elements()},
              {"timing", timing(i < tot.body_phases.size() ? tot.body_phases[i] : PhaseTimes{})}};
       b.update(m->summary());
@@ -386,8 +388,8 @@ int run_case(const RunOptions& opt) {
       try {
         serialize_run_models(*restart, all_models, all_probes);
       } catch (const CheckpointError& e) {
-        throw InputError(opt.case_file.string(), "", std::string("--restart: the checkpoint does not fit the case (") +
-                                                         e.what() + ")");
+        throw InputError(opt.case_file.string(), "",
+                         std::string("--restart: the checkpoint does not fit the case (") + e.what() + ")");
       }
       restart.reset();
       probes_csv.resume(out / "probes.csv", pos.probes_bytes);
@@ -405,8 +407,9 @@ int run_case(const RunOptions& opt) {
       for (const auto& p : c.probes)
         for (const auto& col : p->columns()) header += "," + col;
       probes_csv.write(header + "\n");
-      log_csv.write("step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
-                    "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n");
+      log_csv.write(
+          "step,time,dt,iterations,residual,nodes,elements,fluid_area_remeshed,fluid_area,remesh_dA,remesh_dKE,"
+          "t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step,fsi_iterations,fsi_residual\n");
       output();
       sample();
     }
@@ -486,8 +489,8 @@ int run_case(const RunOptions& opt) {
       tot.phases += ph;
       const double wall_step = since(t_step);
       std::ostringstream row;
-      row << std::setprecision(10) << step << "," << t << "," << dt << "," << iters_step << "," << last_res << ","
-          << nn << "," << ne << "," << area_remeshed << "," << area << "," << remesh_dA << "," << remesh_dKE << ","
+      row << std::setprecision(10) << step << "," << t << "," << dt << "," << iters_step << "," << last_res << "," << nn
+          << "," << ne << "," << area_remeshed << "," << area << "," << remesh_dA << "," << remesh_dKE << ","
           << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << "," << ph.output << ","
           << wall_step << "," << fsi_iterations << "," << fsi_residual << "\n";
       log_csv.write(row.str());
@@ -579,7 +582,8 @@ int run_case(const RunOptions& opt) {
   }
   const std::string resume = checkpoint_step >= 0 && early ? "; continue it with --restart " + out.string() : "";
   if (code > 128 || (code == kOk && early)) {
-    if (!opt.quiet || code > 128) std::cerr << "lagfsi: " << message << "; output written to " << out.string() << resume << "\n";
+    if (!opt.quiet || code > 128)
+      std::cerr << "lagfsi: " << message << "; output written to " << out.string() << resume << "\n";
   } else if (code == kOk) {
     if (!opt.quiet)
       std::fprintf(stderr, "[%s] done: %d steps, %ld Newton iterations, %.2f s -> %s\n", c.name.c_str(), tot.steps,

@@ -38,8 +38,9 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
     it.validate({{"type", "generalized_alpha"}, {"rho_inf", 0.8}});
   } else {
     it.validate({{"type", "central_difference"}});
-    it.fail("type", "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
-                    "(use newmark or generalized_alpha)");
+    it.fail("type",
+            "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
+            "(use newmark or generalized_alpha)");
   }
   warnings = check_integrator_stability(it);
   (void)make_time_integrator(it);  // the models build theirs with the same factory: its errors show here first

@@ -95,9 +95,12 @@ int app_main(int argc, char** argv) {
   const std::string cmd = args[0];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
     const std::string topic = args.size() > 1 ? args[1] : "";
-    if (topic == "run") std::cout << kRunHelp;
-    else if (topic == "check") std::cout << kCheckHelp;
-    else std::cout << kUsageText << "\n" << kHelp;
+    if (topic == "run")
+      std::cout << kRunHelp;
+    else if (topic == "check")
+      std::cout << kCheckHelp;
+    else
+      std::cout << kUsageText << "\n" << kHelp;
     return kOk;
   }
   if (cmd == "--version") {
@@ -151,7 +154,7 @@ int app_main(int argc, char** argv) {
     } else if (a == "--threads" || a.rfind("--threads=", 0) == 0) {
       if (a == "--threads" && !value()) return usage_error("--threads needs a number" + see);
       if (a != "--threads") v = a.substr(10);
-      const long n = whole_number(v);   // -1 for "1x", "2 threads"
+      const long n = whole_number(v);  // -1 for "1x", "2 threads"
       if (n < 1) return usage_error("--threads needs a positive integer (got '" + echo(v) + "')");
       if (n > max_threads())
         return usage_error("--threads " + echo(v) + ": at most " + std::to_string(max_threads()) + " (4 x the " +

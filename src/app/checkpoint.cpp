@@ -5,12 +5,12 @@
 
 #include <lagfsi/output_file.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstring>
-#include <fcntl.h>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace lagfsi {
 
@@ -35,7 +35,9 @@ std::string hex(std::uint64_t h) {
   return o.str();
 }
 
-void serialize_phases(StateArchive& ar, PhaseTimes& p) { ar.io(p.remesh, p.assembly, p.factorization, p.solve, p.output); }
+void serialize_phases(StateArchive& ar, PhaseTimes& p) {
+  ar.io(p.remesh, p.assembly, p.factorization, p.solve, p.output);
+}
 
 /// Writes all of `s` to `fd`; 0 or the errno.
 int write_all(int fd, const std::string& s) {
@@ -76,8 +78,9 @@ void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, cons
   ar.io(pos.case_hash);
   if (ar.loading() && pos.case_hash != expected)
     throw InputError(case_file.string(), "",
-                     "--restart: the case differs from the checkpointed one (resolved case " + hex(expected) + ", checkpoint " +
-                         hex(pos.case_hash) + "): give the same case file and --set options, or run without --restart");
+                     "--restart: the case differs from the checkpointed one (resolved case " + hex(expected) +
+                         ", checkpoint " + hex(pos.case_hash) +
+                         "): give the same case file and --set options, or run without --restart");
   ar.io(pos.step, pos.t, pos.last_output_t, pos.probes_bytes, pos.log_bytes, pos.threads);
   ar.section("totals");
   serialize_phases(ar, tot.phases);
@@ -89,12 +92,14 @@ void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, cons
         tot.coupling_max, tot.coupling_residual_max, tot.wall_before);
 }
 
-void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models, const std::vector<Probe*>& probes) {
+void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models,
+                          const std::vector<Probe*>& probes) {
   std::uint64_t nm = models.size(), np = probes.size();
   ar.io(nm, np);
   if (ar.loading() && (nm != models.size() || np != probes.size()))
     throw CheckpointError("it holds " + std::to_string(nm) + " bodies and couplings and " + std::to_string(np) +
-                          " probes, the case " + std::to_string(models.size()) + " and " + std::to_string(probes.size()));
+                          " probes, the case " + std::to_string(models.size()) + " and " +
+                          std::to_string(probes.size()));
   for (PhysicsModel* m : models) {
     ar.section("model " + m->name());
     m->serialize(ar);
@@ -207,8 +212,9 @@ StateArchive open_restart(const fs::path& dir, RunPosition& pos, RunTotals& tot,
     std::error_code ec;
     const auto size = fs::file_size(dir / file, ec);
     if (ec || size < bytes)
-      throw InputError(case_file.string(), "",
-                       "--restart: " + (dir / file).string() + " is " + (ec ? "missing" : "shorter than at the checkpoint"));
+      throw InputError(
+          case_file.string(), "",
+          "--restart: " + (dir / file).string() + " is " + (ec ? "missing" : "shorter than at the checkpoint"));
   }
   return ar;
 }

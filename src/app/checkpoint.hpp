@@ -16,9 +16,9 @@
 namespace lagfsi {
 
 struct CheckpointSettings {
-  long every_steps = 0;       ///< 0: not by steps
-  double every_minutes = 0;   ///< 0: not by wall time
-  int keep = 2;               ///< 1: the last checkpoint only; 2: also the one before (checkpoint.prev.bin)
+  long every_steps = 0;      ///< 0: not by steps
+  double every_minutes = 0;  ///< 0: not by wall time
+  int keep = 2;              ///< 1: the last checkpoint only; 2: also the one before (checkpoint.prev.bin)
   bool active() const { return every_steps > 0 || every_minutes > 0; }
 };
 
@@ -42,7 +42,7 @@ struct RunTotals {
   long coupling_iterations = 0;
   int coupling_max = 0;
   double coupling_residual_max = 0;
-  double wall_before = 0;   // wall time of the runs before a restart
+  double wall_before = 0;  // wall time of the runs before a restart
 };
 
 /// Where the run is at a checkpoint.
@@ -50,7 +50,7 @@ struct RunPosition {
   std::uint64_t case_hash = 0;
   long step = 0;
   double t = 0, last_output_t = -1;
-  std::uint64_t probes_bytes = 0, log_bytes = 0;   // probes.csv and log.csv after the step's rows
+  std::uint64_t probes_bytes = 0, log_bytes = 0;  // probes.csv and log.csv after the step's rows
   int threads = 0;
 };
 
@@ -59,7 +59,8 @@ struct RunPosition {
 /// differ), then every model (bodies, then couplings) and probe (CheckpointError when they are not those of
 /// the checkpoint).
 void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, const std::filesystem::path& case_file);
-void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models, const std::vector<Probe*>& probes);
+void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models,
+                          const std::vector<Probe*>& probes);
 
 /// Bodies and couplings that cannot be checkpointed (DEM, EFG) with checkpoints asked for: InputError at
 /// /output/checkpoint, or naming the case file for --restart (`restart`).

@@ -45,7 +45,7 @@ std::vector<std::string> body_outputs(const std::string& name, const std::string
 /// thickness: a rectangle per segment) as plane regions with their JSON paths.
 struct Shape {
   PlaneRegion region;
-  std::string key;   // relative to the body: "regions/0", "geometry"
+  std::string key;  // relative to the body: "regions/0", "geometry"
 };
 
 bool read_shape(const Json& g, PlaneRegion& r) {
@@ -117,9 +117,8 @@ double diameter(const PlaneRegion& r) {
 void check_output_names(const Params& root) {
   // Owner of each output name (lower case): the run's own files, then each body's.
   std::map<std::string, std::string> owner;
-  const std::vector<std::string> run_files{"log.csv",        "probes.csv",       "summary.json",
-                                           "resolved_case.json", kCheckpointFile, kCheckpointPrevFile,
-                                           kLockFileName};
+  const std::vector<std::string> run_files{"log.csv",       "probes.csv",        "summary.json", "resolved_case.json",
+                                           kCheckpointFile, kCheckpointPrevFile, kLockFileName};
   for (const auto& f : run_files) owner[lower(f)] = "the run itself";
   const Params bodies = root.at("bodies");
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -187,8 +186,9 @@ std::vector<std::string> check_integrator_stability(Params it) {
       const std::string what = "beta = " + num(beta) + " < gamma / 2 = " + num(0.5 * gamma) +
                                ": conditionally stable (omega dt <= " + num(w_crit) + " for every mode)";
       if (!it.boolean("allow_conditionally_stable"))
-        it.fail("beta", what + "; unconditional stability needs beta >= gamma / 2 (set \"allow_conditionally_stable\": "
-                               "true to run it anyway)");
+        it.fail("beta", what +
+                            "; unconditional stability needs beta >= gamma / 2 (set \"allow_conditionally_stable\": "
+                            "true to run it anyway)");
       warnings.push_back(it.path() + ": " + what + ", chosen with allow_conditionally_stable");
     }
   } else if (it.string("type") == "generalized_alpha") {

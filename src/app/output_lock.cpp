@@ -1,13 +1,13 @@
 // The output folder's lock (output_lock.hpp).
 #include "output_lock.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
-#include <string>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <string>
 
 namespace lagfsi {
 
@@ -40,7 +40,8 @@ std::string OutputLock::acquire(const std::filesystem::path& dir) {
                ": wait for it to end or give another folder with -o";
       return "cannot lock " + file_.string() + " (" + std::strerror(err) + ")";
     }
-    struct stat held {}, now {};
+    struct stat held {
+    }, now{};
     if (::fstat(fd_, &held) == 0 && ::stat(file_.c_str(), &now) == 0 && held.st_ino == now.st_ino &&
         held.st_dev == now.st_dev)
       break;

@@ -138,7 +138,7 @@ double length_inside(const PlaneRegion& r, const std::vector<Vec2>& polyline, do
       for (size_t i = 0; i < ring.size(); ++i) {
         const Vec2 &a = ring[i], e = ring[(i + 1) % ring.size()] - ring[i];
         const double den = cross(d, e);
-        if (den == 0) continue;   // parallel: an edge along the segment adds no crossing
+        if (den == 0) continue;  // parallel: an edge along the segment adds no crossing
         const double t = cross(a - p, e) / den, u = cross(a - p, d) / den;
         if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts.push_back(t);
       }

@@ -8,7 +8,7 @@
 namespace lagfsi {
 
 struct PlaneRegion {
-  std::vector<std::vector<Vec2>> rings;   ///< rings[0]: the outline; the others: holes in it
+  std::vector<std::vector<Vec2>> rings;  ///< rings[0]: the outline; the others: holes in it
 };
 
 /// Area of the region (outline minus holes).

@@ -3,10 +3,10 @@
 // crossed a tenth of its time. Nothing here touches log.csv, which keeps one row per step.
 #include "progress.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <sys/ioctl.h>
 #include <unistd.h>
+#include <algorithm>
+#include <cmath>
 
 namespace lagfsi {
 
@@ -39,11 +39,16 @@ double fraction(const StepStatus& s) { return s.t_end > 0 ? std::clamp(s.t / s.t
 }  // namespace
 
 bool parse_progress_mode(const std::string& word, bool quiet, ProgressMode& mode) {
-  if (word == "auto") mode = ::isatty(STDERR_FILENO) ? ProgressMode::bar : ProgressMode::lines;
-  else if (word == "bar") mode = ProgressMode::bar;
-  else if (word == "lines") mode = ProgressMode::lines;
-  else if (word == "none") mode = ProgressMode::none;
-  else return false;
+  if (word == "auto")
+    mode = ::isatty(STDERR_FILENO) ? ProgressMode::bar : ProgressMode::lines;
+  else if (word == "bar")
+    mode = ProgressMode::bar;
+  else if (word == "lines")
+    mode = ProgressMode::lines;
+  else if (word == "none")
+    mode = ProgressMode::none;
+  else
+    return false;
   if (quiet) mode = ProgressMode::none;
   return true;
 }
@@ -65,7 +70,8 @@ std::string Progress::status_text(const StepStatus& s, bool with_bar, int width)
     std::snprintf(buf, sizeof buf, " fsi=%d", s.fsi_passes);
     nums += buf;
   }
-  std::snprintf(buf, sizeof buf, s.particles > 0 ? " particles=%ld" : " nodes=%ld", s.particles > 0 ? s.particles : s.nodes);
+  std::snprintf(buf, sizeof buf, s.particles > 0 ? " particles=%ld" : " nodes=%ld",
+                s.particles > 0 ? s.particles : s.nodes);
   nums += buf;
   std::snprintf(buf, sizeof buf, " wall=%s eta=%s", duration(s.wall).c_str(), duration(eta).c_str());
   nums += buf;
@@ -134,16 +140,14 @@ void Progress::table(const TimeTable& t) {
   if (mode_ == ProgressMode::none) return;
   const PhaseTimes& p = t.phases;
   const double counted = p.remesh + p.assembly + p.factorization + p.solve + p.output;
-  std::fprintf(out_, "[%s] where the time went: %s wall, %ld steps (%d retried with a smaller dt), %ld Newton iterations",
+  std::fprintf(out_,
+               "[%s] where the time went: %s wall, %ld steps (%d retried with a smaller dt), %ld Newton iterations",
                name_.c_str(), duration(t.wall).c_str(), t.steps, t.retries, t.iterations);
   if (t.fsi_passes > 0) std::fprintf(out_, ", %ld FSI passes", t.fsi_passes);
   std::fprintf(out_, "\n");
-  const std::pair<const char*, double> rows[] = {{"remesh", p.remesh},
-                                                 {"assembly", p.assembly},
-                                                 {"factorization", p.factorization},
-                                                 {"solve", p.solve},
-                                                 {"output", p.output},
-                                                 {"other", std::max(0.0, t.wall - counted)}};
+  const std::pair<const char*, double> rows[] = {
+      {"remesh", p.remesh}, {"assembly", p.assembly}, {"factorization", p.factorization},
+      {"solve", p.solve},   {"output", p.output},     {"other", std::max(0.0, t.wall - counted)}};
   for (const auto& [phase, seconds] : rows)
     std::fprintf(out_, "  %-14s %10.2f s %6.1f %%\n", phase, seconds, t.wall > 0 ? 100 * seconds / t.wall : 0.0);
   std::fflush(out_);

@@ -19,19 +19,19 @@ bool parse_progress_mode(const std::string& word, bool quiet, ProgressMode& mode
 struct StepStatus {
   long step = 0;
   double t = 0, t_end = 1, dt = 0;
-  int iterations = 0;       ///< Newton iterations of the step (inner ones for couplings)
-  int fsi_passes = 0;       ///< coupling iterations of the step
-  long particles = 0;       ///< fluid and MPM particles (0: none in the case)
-  long nodes = 0;           ///< every body's nodes
-  double wall = 0;          ///< seconds since the start of the run
+  int iterations = 0;  ///< Newton iterations of the step (inner ones for couplings)
+  int fsi_passes = 0;  ///< coupling iterations of the step
+  long particles = 0;  ///< fluid and MPM particles (0: none in the case)
+  long nodes = 0;      ///< every body's nodes
+  double wall = 0;     ///< seconds since the start of the run
 };
 
 /// Where the time of a run went, for the final table.
 struct TimeTable {
   PhaseTimes phases;
-  double wall = 0;          ///< the whole run (set-up, steps, output)
+  double wall = 0;  ///< the whole run (set-up, steps, output)
   long steps = 0;
-  int retries = 0;          ///< steps retried with a smaller dt
+  int retries = 0;  ///< steps retried with a smaller dt
   long iterations = 0;
   long fsi_passes = 0;
 };

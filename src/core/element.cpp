@@ -32,8 +32,8 @@ std::vector<QuadraturePoint> expand(std::initializer_list<Orbit> orbits) {
       rule.push_back({b, b, w});
     } else {
       const double a = o.a, b = o.b, c = 1.0 - o.a - o.b;
-      for (const auto& [x, y] : std::array<std::pair<double, double>, 6>{
-               {{a, b}, {b, a}, {a, c}, {c, a}, {b, c}, {c, b}}})
+      for (const auto& [x, y] :
+           std::array<std::pair<double, double>, 6>{{{a, b}, {b, a}, {a, c}, {c, a}, {b, c}, {c, b}}})
         rule.push_back({x, y, w});
     }
   }
@@ -117,14 +117,21 @@ std::vector<std::pair<double, double>> gauss_legendre(std::initializer_list<std:
 const std::vector<QuadraturePoint>& triangle_quadrature(int degree) {
   switch (degree) {
     case 0:
-    case 1: return rule_d1();
-    case 2: return rule_d2();
+    case 1:
+      return rule_d1();
+    case 2:
+      return rule_d2();
     case 3:
-    case 4: return rule_d4();
-    case 5: return rule_d5();
-    case 6: return rule_d6();
-    case 7: return rule_d7();
-    case 8: return rule_d8();
+    case 4:
+      return rule_d4();
+    case 5:
+      return rule_d5();
+    case 6:
+      return rule_d6();
+    case 7:
+      return rule_d7();
+    case 8:
+      return rule_d8();
     default:
       throw std::invalid_argument("triangle_quadrature: unsupported degree " + std::to_string(degree) +
                                   " (supported: 1 to 8)");
@@ -136,8 +143,8 @@ const std::vector<std::pair<double, double>>& line_quadrature(int n_points) {
       gauss_legendre({{0.5, 1.0}}),
       gauss_legendre({{0.211324865405187117745, 0.5}}),
       gauss_legendre({{0.112701665379258311482, 0.277777777777777777778}, {0.5, 0.444444444444444444444}}),
-      gauss_legendre({{0.0694318442029737123880, 0.173927422568726928687},
-                      {0.330009478207571867599, 0.326072577431273071313}}),
+      gauss_legendre(
+          {{0.0694318442029737123880, 0.173927422568726928687}, {0.330009478207571867599, 0.326072577431273071313}}),
       gauss_legendre({{0.0469100770306680036012, 0.118463442528094543757},
                       {0.230765344947158454482, 0.239314335249683234021},
                       {0.5, 0.284444444444444444444}}),
@@ -153,8 +160,7 @@ const std::vector<std::pair<double, double>>& line_quadrature(int n_points) {
 
 void triangle_shape(int order, double xi1, double xi2, Eigen::VectorXd& N, Eigen::MatrixX2d& dN) {
   if (order < 1 || order > 3)
-    throw std::invalid_argument("triangle_shape: unsupported order " + std::to_string(order) +
-                                " (supported: 1 to 3)");
+    throw std::invalid_argument("triangle_shape: unsupported order " + std::to_string(order) + " (supported: 1 to 3)");
   // Area coordinates and their (constant) derivatives with respect to (xi1, xi2).
   const double L[3] = {xi1, xi2, 1.0 - xi1 - xi2};
   const double dL[3][2] = {{1.0, 0.0}, {0.0, 1.0}, {-1.0, -1.0}};
@@ -228,12 +234,10 @@ void line_shape(int order, double s, Eigen::VectorXd& N, Eigen::VectorXd& dN) {
       dN << -(4.0 * t - 1.0), 4.0 * (t - s), 4.0 * s - 1.0;
       break;
     default:
-      N << 0.5 * t * (3.0 * t - 1.0) * (3.0 * t - 2.0), 4.5 * t * s * (3.0 * t - 1.0),
-          4.5 * t * s * (3.0 * s - 1.0), 0.5 * s * (3.0 * s - 1.0) * (3.0 * s - 2.0);
-      dN << -0.5 * (27.0 * t * t - 18.0 * t + 2.0),
-          4.5 * (t * (3.0 * t - 1.0) - s * (3.0 * t - 1.0) - 3.0 * t * s),
-          4.5 * (t * (3.0 * s - 1.0) + 3.0 * t * s - s * (3.0 * s - 1.0)),
-          0.5 * (27.0 * s * s - 18.0 * s + 2.0);
+      N << 0.5 * t * (3.0 * t - 1.0) * (3.0 * t - 2.0), 4.5 * t * s * (3.0 * t - 1.0), 4.5 * t * s * (3.0 * s - 1.0),
+          0.5 * s * (3.0 * s - 1.0) * (3.0 * s - 2.0);
+      dN << -0.5 * (27.0 * t * t - 18.0 * t + 2.0), 4.5 * (t * (3.0 * t - 1.0) - s * (3.0 * t - 1.0) - 3.0 * t * s),
+          4.5 * (t * (3.0 * s - 1.0) + 3.0 * t * s - s * (3.0 * s - 1.0)), 0.5 * (27.0 * s * s - 18.0 * s + 2.0);
       break;
   }
 }

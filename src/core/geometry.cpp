@@ -42,9 +42,8 @@ std::vector<Vec2> circle_cut(const Params& g, const std::vector<Vec2>& poly, con
   if (cross.size() != 2)
     g.fail("the circle must cut the polygon boundary in exactly two points (found " + std::to_string(cross.size()) +
            ")");
-  std::sort(cross.begin(), cross.end(), [](const Crossing& x, const Crossing& y) {
-    return x.edge != y.edge ? x.edge < y.edge : x.s < y.s;
-  });
+  std::sort(cross.begin(), cross.end(),
+            [](const Crossing& x, const Crossing& y) { return x.edge != y.edge ? x.edge < y.edge : x.s < y.s; });
   const Crossing& enter = cross[0].entering ? cross[0] : cross[1];
   const Crossing& leave = cross[0].entering ? cross[1] : cross[0];
   // Walk from the exit point along the polygon (outside the disc) to the entry point, then along the arc
@@ -175,8 +174,8 @@ std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
       }
     }
     if (best < 0 || dbest > tol)
-      s.fail("at", "no node within " + std::to_string(tol) + " of the point (nearest at " + std::to_string(dbest) +
-                       ")");
+      s.fail("at",
+             "no node within " + std::to_string(tol) + " of the point (nearest at " + std::to_string(dbest) + ")");
     out.push_back(best);
   } else if (type == "segment") {
     s.validate({{"type", "segment"}, {"from", nullptr}, {"to", nullptr}, {"tolerance", 1e-6 * L}});

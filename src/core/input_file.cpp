@@ -1,12 +1,12 @@
 // Reading input files: regular files only, with a size bound (input_file.hpp).
 #include <lagfsi/input_file.hpp>
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
-#include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <sstream>
 
 namespace lagfsi {
 
@@ -62,7 +62,7 @@ std::string read_regular_file(const std::filesystem::path& file, std::uintmax_t 
     }
     if (n == 0) break;
     text.append(buf, static_cast<std::size_t>(n));
-    if (text.size() > max_bytes) too_large(text.size());   // a file that grows while it is read
+    if (text.size() > max_bytes) too_large(text.size());  // a file that grows while it is read
   }
   return text;
 }

@@ -14,12 +14,12 @@
 #include <lagfsi/error.hpp>
 #include <lagfsi/linear_solver.hpp>
 
+#include <cholmod.h>
 #include <Eigen/KLUSupport>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
-#include <cholmod.h>
 
 #include <algorithm>
 #include <cctype>
@@ -106,8 +106,7 @@ class DirectSolverBase : public LinearSolver {
     } else {
       backsolve(b, x);
     }
-    if (x.size() != b.size() || !x.allFinite())
-      fail("solution has non-finite entries (matrix numerically singular?)");
+    if (x.size() != b.size() || !x.allFinite()) fail("solution has non-finite entries (matrix numerically singular?)");
   }
 
  protected:
@@ -118,9 +117,7 @@ class DirectSolverBase : public LinearSolver {
   /// x = A^{-1} b with the last factorization (b and x are distinct, b has the right size).
   virtual void backsolve(const Vec& b, Vec& x) = 0;
 
-  [[noreturn]] void fail(const std::string& reason) const {
-    throw SolverError(type() + ": " + reason);
-  }
+  [[noreturn]] void fail(const std::string& reason) const { throw SolverError(type() + ": " + reason); }
 
  private:
   SparseMatrix A_;
@@ -171,8 +168,7 @@ class CholmodSolver final : public DirectSolverBase {
     const int ok = cholmod_factorize(&view, L_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF || (ok && L_->minor < L_->n)) {
       std::ostringstream os;
-      os << "matrix is not positive definite (factorization failed at column " << L_->minor << " of "
-         << L_->n << ")";
+      os << "matrix is not positive definite (factorization failed at column " << L_->minor << " of " << L_->n << ")";
       fail(os.str());
     }
     if (!ok || common_.status < CHOLMOD_OK) fail("numeric factorization failed (" + status_text() + ")");
@@ -211,11 +207,16 @@ class CholmodSolver final : public DirectSolverBase {
 
   std::string status_text() const {
     switch (common_.status) {
-      case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
-      case CHOLMOD_TOO_LARGE: return "problem too large";
-      case CHOLMOD_INVALID: return "invalid input";
-      case CHOLMOD_DSMALL: return "diagonal entry too small";
-      default: return "CHOLMOD status " + std::to_string(common_.status);
+      case CHOLMOD_OUT_OF_MEMORY:
+        return "out of memory";
+      case CHOLMOD_TOO_LARGE:
+        return "problem too large";
+      case CHOLMOD_INVALID:
+        return "invalid input";
+      case CHOLMOD_DSMALL:
+        return "diagonal entry too small";
+      default:
+        return "CHOLMOD status " + std::to_string(common_.status);
     }
   }
 
@@ -290,24 +291,21 @@ class EigenWrappedSolver final : public DirectSolverBase {
 }  // namespace
 
 const std::vector<std::string>& linear_solver_types() {
-  static const std::vector<std::string> types{"cholmod", "cholmod_supernodal", "umfpack", "klu", "eigen_lu",
-                                              "eigen_ldlt"};
+  static const std::vector<std::string> types{"cholmod", "cholmod_supernodal", "umfpack",
+                                              "klu",     "eigen_lu",           "eigen_ldlt"};
   return types;
 }
 
 std::unique_ptr<LinearSolver> make_linear_solver(const std::string& type) {
   if (type == "cholmod") return std::make_unique<CholmodSolver>(false);
   if (type == "cholmod_supernodal") return std::make_unique<CholmodSolver>(true);
-  if (type == "umfpack")
-    return std::make_unique<EigenWrappedSolver<Eigen::UmfPackLU<SparseMatrix>>>(type, false);
+  if (type == "umfpack") return std::make_unique<EigenWrappedSolver<Eigen::UmfPackLU<SparseMatrix>>>(type, false);
   if (type == "klu") return std::make_unique<EigenWrappedSolver<Eigen::KLU<SparseMatrix>>>(type, false);
   if (type == "eigen_lu")
-    return std::make_unique<EigenWrappedSolver<Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>>>(
-        type, false);
+    return std::make_unique<EigenWrappedSolver<Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>>>(type, false);
   if (type == "eigen_ldlt")
     return std::make_unique<
-        EigenWrappedSolver<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>>(type,
-                                                                                                      true);
+        EigenWrappedSolver<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>>(type, true);
   std::string valid;
   for (const auto& t : linear_solver_types()) valid += (valid.empty() ? "" : ", ") + t;
   throw std::invalid_argument("unknown linear solver '" + type + "' (valid: " + valid + ")");

@@ -48,9 +48,7 @@ class SvkMaterial final : public SolidMaterial {
     MaterialResponse r;
     r.psi = 0.5 * l * trE * trE + mu * E.squaredNorm();
     r.S = l * trE * Mat2::Identity() + 2.0 * mu * E;
-    r.D << l + 2.0 * mu, l, 0.0,
-           l, l + 2.0 * mu, 0.0,
-           0.0, 0.0, mu;
+    r.D << l + 2.0 * mu, l, 0.0, l, l + 2.0 * mu, 0.0, 0.0, 0.0, mu;
     if (stress) {
       const double E33 = -lam / (lam + 2.0 * mu) * trE;
       const double c33 = 1.0 + 2.0 * E33;
@@ -103,8 +101,7 @@ class NeoHookeanMaterial final : public SolidMaterial {
       Eigen::Vector3d d;
       for (int a = 0; a < 3; ++a) d(a) = lam * Ci(kVoigt[a][0], kVoigt[a][1]) / c33;
       const double d33 = (lam + 2.0 * m) / (c33 * c33);
-      if (!(d33 > 0.0))
-        throw SolverError("neo_hookean plane stress: non-positive out-of-plane stiffness");
+      if (!(d33 > 0.0)) throw SolverError("neo_hookean plane stress: non-positive out-of-plane stiffness");
       r.D -= d * d.transpose() / d33;
       r.S33 = 0.0;
       r.F33 = std::sqrt(c33);
@@ -131,8 +128,8 @@ class NeoHookeanMaterial final : public SolidMaterial {
       u -= du;
       if (std::abs(du) <= 1e-14 * std::max(1.0, std::abs(u))) return std::exp(u);
     }
-    throw SolverError("neo_hookean plane stress: the S33 = 0 iteration did not converge (ln det F = " +
-                      format_number(ln_j2) + ")");
+    throw SolverError(
+        "neo_hookean plane stress: the S33 = 0 iteration did not converge (ln det F = " + format_number(ln_j2) + ")");
   }
 };
 
@@ -143,14 +140,14 @@ std::unique_ptr<SolidMaterial> make_solid_material(const std::string& type, doub
   if (type != "svk" && type != "neo_hookean")
     throw std::invalid_argument("unknown material '" + type + "' (valid: svk, neo_hookean)");
   if (!(std::isfinite(E) && E > 0.0))
-    throw std::invalid_argument("material '" + type + "': Young's modulus must be positive (got " +
-                                format_number(E) + ")");
+    throw std::invalid_argument("material '" + type + "': Young's modulus must be positive (got " + format_number(E) +
+                                ")");
   if (!(std::isfinite(nu) && nu > -1.0 && nu < 0.5))
     throw std::invalid_argument("material '" + type + "': Poisson's ratio must lie in (-1, 0.5) (got " +
                                 format_number(nu) + ")");
   if (!(std::isfinite(rho) && rho >= 0.0))
-    throw std::invalid_argument("material '" + type + "': density must be non-negative (got " +
-                                format_number(rho) + ")");
+    throw std::invalid_argument("material '" + type + "': density must be non-negative (got " + format_number(rho) +
+                                ")");
   if (type == "svk") return std::make_unique<SvkMaterial>(E, nu, rho, h);
   return std::make_unique<NeoHookeanMaterial>(E, nu, rho, h);
 }

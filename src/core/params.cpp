@@ -49,8 +49,12 @@ class DuplicateKeyCheck {
   explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
   bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
     switch (event) {
-      case Json::parse_event_t::object_start: frames_.push_back({true, {}, "", 0}); break;
-      case Json::parse_event_t::array_start: frames_.push_back({false, {}, "", 0}); break;
+      case Json::parse_event_t::object_start:
+        frames_.push_back({true, {}, "", 0});
+        break;
+      case Json::parse_event_t::array_start:
+        frames_.push_back({false, {}, "", 0});
+        break;
       case Json::parse_event_t::key: {
         Frame& f = frames_.back();
         const std::string k = parsed.get<std::string>();
@@ -63,7 +67,9 @@ class DuplicateKeyCheck {
         frames_.pop_back();
         advance();
         break;
-      case Json::parse_event_t::value: advance(); break;
+      case Json::parse_event_t::value:
+        advance();
+        break;
     }
     return true;
   }
@@ -72,8 +78,8 @@ class DuplicateKeyCheck {
   struct Frame {
     bool object;
     std::set<std::string> keys;
-    std::string key;   // objects: the key being read
-    size_t index;      // arrays: the element being read
+    std::string key;  // objects: the key being read
+    size_t index;     // arrays: the element being read
   };
   void advance() {
     if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
@@ -101,8 +107,9 @@ Params Params::load(const std::filesystem::path& file) {
   // parser checks strings only; a byte in a comment would still reach an echo).
   size_t bad = 0;
   if (!valid_utf8(text, &bad))
-    throw InputError(file.string(), "", "not UTF-8 text: byte " + std::to_string(bad) + " (line " +
-                                            std::to_string(line_of(text, bad)) + ") is not valid UTF-8");
+    throw InputError(file.string(), "",
+                     "not UTF-8 text: byte " + std::to_string(bad) + " (line " + std::to_string(line_of(text, bad)) +
+                         ") is not valid UTF-8");
   try {
     DuplicateKeyCheck check(file.string());
     Json::parser_callback_t cb = [&check](int depth, Json::parse_event_t event, Json& parsed) {
@@ -112,8 +119,9 @@ Params Params::load(const std::filesystem::path& file) {
   } catch (const Json::parse_error& e) {
     std::string what = e.what();
     const auto pos = what.find("syntax error");
-    throw InputError(file.string(), "", "invalid JSON at line " + std::to_string(line_of(text, e.byte)) + ": " +
-                                            (pos == std::string::npos ? what : what.substr(pos)));
+    throw InputError(file.string(), "",
+                     "invalid JSON at line " + std::to_string(line_of(text, e.byte)) + ": " +
+                         (pos == std::string::npos ? what : what.substr(pos)));
   } catch (const Json::out_of_range& e) {
     // A number beyond double's range (1e999): nlohmann reports the literal, not its position.
     std::string what = e.what(), where;
@@ -140,8 +148,7 @@ void Params::validate(const Json& defaults) {
   for (const auto& [k, v] : (*node_).items()) {
     if (!defaults.contains(k)) fail(k, "unknown key (valid keys: " + join(valid) + ")");
     const Json& d = defaults.at(k);
-    if (!d.is_null() && !same_kind(v, d))
-      fail(k, "expected " + type_name(d) + ", found " + type_name(v));
+    if (!d.is_null() && !same_kind(v, d)) fail(k, "expected " + type_name(d) + ", found " + type_name(v));
     if (v.is_number() && !std::isfinite(v.get<double>())) fail(k, "not a finite number");
   }
   for (const auto& [k, d] : defaults.items()) {
@@ -220,14 +227,14 @@ std::string Params::string(const std::string& key) const {
 
 std::string Params::identifier(const std::string& key) const {
   const std::string s = string(key);
-  const bool ok = !s.empty() && s.size() <= 64 && s[0] != '.' &&
-                  std::all_of(s.begin(), s.end(), [](char ch) {
-                    const unsigned char u = static_cast<unsigned char>(ch);
-                    return std::isalnum(u) || ch == '_' || ch == '-' || ch == '.' || ch == '+';
-                  });
+  const bool ok = !s.empty() && s.size() <= 64 && s[0] != '.' && std::all_of(s.begin(), s.end(), [](char ch) {
+    const unsigned char u = static_cast<unsigned char>(ch);
+    return std::isalnum(u) || ch == '_' || ch == '-' || ch == '.' || ch == '+';
+  });
   if (!ok)
-    fail(key, "must be 1-64 characters from letters, digits, '_', '-', '.' and '+', not starting with '.' (names "
-              "become file names and CSV columns)");
+    fail(key,
+         "must be 1-64 characters from letters, digits, '_', '-', '.' and '+', not starting with '.' (names "
+         "become file names and CSV columns)");
   return s;
 }
 
@@ -279,8 +286,7 @@ void apply_override(Json& doc, const std::string& assignment) {
   if (!valid_utf8(assignment, &bad))
     throw InputError("--set", echo(assignment), "not UTF-8 text (byte " + std::to_string(bad) + ")");
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InputError("--set", echo(assignment), "expected key.path=value");
+  if (eq == std::string::npos || eq == 0) throw InputError("--set", echo(assignment), "expected key.path=value");
   const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   Json value;
   try {
@@ -300,7 +306,7 @@ void apply_override(Json& doc, const std::string& assignment) {
   while (std::getline(ss, part, '.')) parts.push_back(part);
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::string& p = parts[i];
-    path += '/';   // (not "/" + echo(p): a false -Wrestrict of GCC 12, bug 105329)
+    path += '/';  // (not "/" + echo(p): a false -Wrestrict of GCC 12, bug 105329)
     path += echo(p);
     if (node->is_array()) {
       size_t idx = 0;

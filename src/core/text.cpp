@@ -19,12 +19,12 @@ std::size_t sequence_length(std::string_view s, std::size_t i) {
     n = 2;
   } else if (c >= 0xE0 && c <= 0xEF) {
     n = 3;
-    if (c == 0xE0) lo = 0xA0;   // no overlong forms
-    if (c == 0xED) hi = 0x9F;   // no surrogates
+    if (c == 0xE0) lo = 0xA0;  // no overlong forms
+    if (c == 0xED) hi = 0x9F;  // no surrogates
   } else if (c >= 0xF0 && c <= 0xF4) {
     n = 4;
-    if (c == 0xF0) lo = 0x90;   // no overlong forms
-    if (c == 0xF4) hi = 0x8F;   // nothing beyond U+10FFFF
+    if (c == 0xF0) lo = 0x90;  // no overlong forms
+    if (c == 0xF4) hi = 0x8F;  // nothing beyond U+10FFFF
   } else {
     return 0;
   }

@@ -153,8 +153,9 @@ std::unique_ptr<TimeFunction> read_table(const Params& p, const std::filesystem:
       // "0,5" between digits: a decimal comma, read as a separator.
       bool digit_comma_digit = false;
       for (size_t k = 1; k + 1 < row.size(); ++k)
-        digit_comma_digit = digit_comma_digit || (row[k] == ',' && std::isdigit(static_cast<unsigned char>(row[k - 1])) &&
-                                                  std::isdigit(static_cast<unsigned char>(row[k + 1])));
+        digit_comma_digit =
+            digit_comma_digit || (row[k] == ',' && std::isdigit(static_cast<unsigned char>(row[k - 1])) &&
+                                  std::isdigit(static_cast<unsigned char>(row[k + 1])));
       p.fail("file", name + ":" + std::to_string(lineno) + ": " + why +
                          (digit_comma_digit ? " (decimal commas? write 0.5, not 0,5)" : "") + " (found '" + echo(row) +
                          "')");

@@ -90,8 +90,7 @@ class CentralDifference final : public TimeIntegrator {
     s.t = old_.t + dt_;
   }
 
-  void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt,
-                     KinematicState& s) const override {
+  void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt, KinematicState& s) const override {
     if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be positive and finite");
     const Vec x_new = s.x + dt * s.v + 0.5 * dt * dt * s.a;
     const Vec v_pred = s.v + 0.5 * dt * s.a;  // half-step velocity, used for the damping force
@@ -140,8 +139,7 @@ std::unique_ptr<TimeIntegrator> make_newmark(double beta, double gamma) {
 }
 
 std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf) {
-  if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
-    throw std::invalid_argument("generalized-alpha needs 0 <= rho_inf <= 1");
+  if (!(rho_inf >= 0.0 && rho_inf <= 1.0)) throw std::invalid_argument("generalized-alpha needs 0 <= rho_inf <= 1");
   const double am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
   const double af = rho_inf / (rho_inf + 1.0);
   const double gamma = 0.5 - am + af;

@@ -23,8 +23,14 @@ double wu_hao_duration(double r, double w) { return 0.5e-3 * std::pow(r, 0.72) *
 double shock_speed(double ps, double p0, double a0) { return a0 * std::sqrt(1.0 + 6.0 * ps / (7.0 * p0)); }
 
 Blast::Blast(Params p) {
-  p.validate({{"charge_mass", nullptr}, {"position", nullptr}, {"t_end", 2.5e-3}, {"beta", 1.0},
-              {"arrival", "direct"}, {"area", "arc"}, {"ambient_pressure", 101325.0}, {"sound_speed", 340.0},
+  p.validate({{"charge_mass", nullptr},
+              {"position", nullptr},
+              {"t_end", 2.5e-3},
+              {"beta", 1.0},
+              {"arrival", "direct"},
+              {"area", "arc"},
+              {"ambient_pressure", 101325.0},
+              {"sound_speed", 340.0},
               {"exposure_every", 1}});
   w_ = p.positive("charge_mass");
   w13_ = std::cbrt(w_);
@@ -93,7 +99,7 @@ void Blast::update_exposure(const double* x, int stride, const double* r, int n)
       lo_[p] = hi_[p] = 0;
       continue;
     }
-    const double q = std::sqrt(d2 - rp * rp);  // |tangent| = d cos(alpha); r = d sin(alpha)
+    const double q = std::sqrt(d2 - rp * rp);                   // |tangent| = d cos(alpha); r = d sin(alpha)
     lo_[p] = pseudo_angle(cx * q + cy * rp, cy * q - cx * rp);  // the centre direction turned by -alpha
     hi_[p] = pseudo_angle(cx * q - cy * rp, cy * q + cx * rp);  // by +alpha
   }

@@ -34,7 +34,7 @@ struct CraterSettings {
 /// counting across a retry.
 struct DemBody {
   std::string name;
-  std::string file;     // case file (errors)
+  std::string file;  // case file (errors)
   Discs discs;
   KinematicState state;  // 3 n dofs
   Vec inv_mass, force;   // 3 n
@@ -53,11 +53,11 @@ struct DemBody {
   // neighbour search
   NeighbourGrid grid;
   PairList pairs;
-  std::vector<double> history;      // tangential spring of each pair
-  std::vector<double> pair_force;   // 3 per pair: Fx, Fy on i, -ft (torque per unit radius)
+  std::vector<double> history;     // tangential spring of each pair
+  std::vector<double> pair_force;  // 3 per pair: Fx, Fy on i, -ft (torque per unit radius)
   std::vector<std::uint8_t> pair_rupture;
-  std::vector<double> pair_roll;    // rolling-resistance torque on i (on j: minus it), when the law has one
-  std::vector<double> x_build;      // 2 per disc: positions at the last build
+  std::vector<double> pair_roll;  // rolling-resistance torque on i (on j: minus it), when the law has one
+  std::vector<double> x_build;    // 2 per disc: positions at the last build
   std::vector<Vec2> wall_offset_build;
   double skin = 0, r_max = 0, r_min = 0;
   bool reorder = true;
@@ -65,7 +65,7 @@ struct DemBody {
   // wall contacts (CSR by disc): segment index into `segments`, history, force on the disc
   std::vector<Index> wall_row, wall_seg;
   std::vector<double> wall_history, wall_force;  // wall_force: 2 per entry
-  std::vector<Index> where;  // id -> current index
+  std::vector<Index> where;                      // id -> current index
 
   // energy bookkeeping (only when a probe asks for it)
   bool track_energy = false;

@@ -49,15 +49,21 @@ double tsuji_restitution(double alpha) {
 
 LinearSpringDashpot::LinearSpringDashpot(double kn, double zeta, double gamma_n, double kt_ratio, double zeta_t,
                                          double gamma_t, Tangential tangential, bool no_attraction)
-    : kn_(kn), kt_(kt_ratio * kn), gamma_n_(gamma_n), gamma_t_(gamma_t), two_zeta_sqrt_kn_(2 * zeta * std::sqrt(kn)),
-      two_zeta_t_sqrt_kt_(2 * zeta_t * std::sqrt(kt_ratio * kn)), no_attraction_(no_attraction) {
+    : kn_(kn),
+      kt_(kt_ratio * kn),
+      gamma_n_(gamma_n),
+      gamma_t_(gamma_t),
+      two_zeta_sqrt_kn_(2 * zeta * std::sqrt(kn)),
+      two_zeta_t_sqrt_kt_(2 * zeta_t * std::sqrt(kt_ratio * kn)),
+      no_attraction_(no_attraction) {
   tangential_ = tangential;
 }
 
 double LinearSpringDashpot::max_frequency(double m, double, double inertia_factor, bool rotation) const {
   // two equal discs: the relative motion has m_eff = m/2; sliding with rotation has 1/m_t = (1 + 1/f)/m_eff
   double k = kn_;
-  if (tangential_.model == TangentialModel::Coulomb) k = std::max(k, kt_ * (rotation ? 1.0 + 1.0 / inertia_factor : 1.0));
+  if (tangential_.model == TangentialModel::Coulomb)
+    k = std::max(k, kt_ * (rotation ? 1.0 + 1.0 / inertia_factor : 1.0));
   return std::sqrt(k / (0.5 * m));
 }
 
@@ -90,10 +96,16 @@ double HertzMindlin::max_frequency(double, double r, double, bool) const {
   return 2.0 / dt_rayleigh;
 }
 
-Sabatucci::Sabatucci(double kn, double zeta, double lambda, double band1, double band2, double rupture,
-                     bool continuous, Tangential tangential)
-    : kn_(kn), two_zeta_sqrt_kn_(2 * zeta * std::sqrt(kn)), lambda_(lambda), lambda2_(lambda * lambda),
-      band1_(band1), band2_(band2), rupture_(rupture), continuous_(continuous) {
+Sabatucci::Sabatucci(double kn, double zeta, double lambda, double band1, double band2, double rupture, bool continuous,
+                     Tangential tangential)
+    : kn_(kn),
+      two_zeta_sqrt_kn_(2 * zeta * std::sqrt(kn)),
+      lambda_(lambda),
+      lambda2_(lambda * lambda),
+      band1_(band1),
+      band2_(band2),
+      rupture_(rupture),
+      continuous_(continuous) {
   tangential_ = tangential;
 }
 
@@ -108,8 +120,9 @@ Tangential read_tangential(Params c, const std::string& deflt) {
   const std::string m = c.choice("tangential", {"coulomb", "haff_werner", "none"});
   t.mu = c.non_negative("friction");
   t.haff_werner = c.non_negative("haff_werner_gamma");
-  t.model = m == "coulomb" ? TangentialModel::Coulomb : m == "haff_werner" ? TangentialModel::HaffWerner
-                                                                            : TangentialModel::None;
+  t.model = m == "coulomb"       ? TangentialModel::Coulomb
+            : m == "haff_werner" ? TangentialModel::HaffWerner
+                                 : TangentialModel::None;
   if (t.mu == 0 && m != "none" && c.json().at("tangential") == deflt) t.model = TangentialModel::None;
   return t;
 }
@@ -121,10 +134,20 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
   if (!c.has("law")) c.fail("law", "required key is missing");
   const std::string law = c.choice("law", {"linear", "hertz_mindlin", "sabatucci"});
   if (law == "linear") {
-    c.validate({{"law", law}, {"kn", nullptr}, {"damping", "ratio"}, {"damping_ratio", 0.0}, {"restitution", 1.0},
-                {"gamma_n", 0.0}, {"kt_ratio", 2.0 / 7.0}, {"tangential_damping_ratio", 0.0}, {"gamma_t", 0.0},
-                {"friction", 0.0}, {"tangential", "coulomb"}, {"haff_werner_gamma", 100.0},
-                {"no_attraction", false}, {"rolling_friction", 0.0}});
+    c.validate({{"law", law},
+                {"kn", nullptr},
+                {"damping", "ratio"},
+                {"damping_ratio", 0.0},
+                {"restitution", 1.0},
+                {"gamma_n", 0.0},
+                {"kt_ratio", 2.0 / 7.0},
+                {"tangential_damping_ratio", 0.0},
+                {"gamma_t", 0.0},
+                {"friction", 0.0},
+                {"tangential", "coulomb"},
+                {"haff_werner_gamma", 100.0},
+                {"no_attraction", false},
+                {"rolling_friction", 0.0}});
     const double kn = c.positive("kn");
     const std::string d = c.choice("damping", {"ratio", "restitution", "viscous"});
     double zeta = 0, gamma_n = 0;
@@ -146,8 +169,13 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     return law;
   }
   if (law == "hertz_mindlin") {
-    c.validate({{"law", law}, {"restitution", 1.0}, {"friction", 0.0}, {"tangential", "coulomb"},
-                {"haff_werner_gamma", 100.0}, {"no_attraction", false}, {"rolling_friction", 0.0}});
+    c.validate({{"law", law},
+                {"restitution", 1.0},
+                {"friction", 0.0},
+                {"tangential", "coulomb"},
+                {"haff_werner_gamma", 100.0},
+                {"no_attraction", false},
+                {"rolling_friction", 0.0}});
     const double e = c.number("restitution");
     if (!(e > 0.01 && e <= 1)) c.fail("restitution", "must lie in (0.01, 1]");
     if (!(young > 0)) c.fail("law", "hertz_mindlin needs the body's material.young > 0");
@@ -156,15 +184,24 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     law->set_rolling(c.non_negative("rolling_friction"));
     return law;
   }
-  c.validate({{"law", law}, {"kn", nullptr}, {"damping_ratio", 0.01}, {"lambda", 50.0},
-              {"bands", Json::array({0.1, 0.7})}, {"rupture", 0.7}, {"continuous", false}, {"friction", 0.2},
-              {"tangential", "haff_werner"}, {"haff_werner_gamma", 100.0}});
+  c.validate({{"law", law},
+              {"kn", nullptr},
+              {"damping_ratio", 0.01},
+              {"lambda", 50.0},
+              {"bands", Json::array({0.1, 0.7})},
+              {"rupture", 0.7},
+              {"continuous", false},
+              {"friction", 0.2},
+              {"tangential", "haff_werner"},
+              {"haff_werner_gamma", 100.0}});
   const auto bands = c.numbers("bands");
-  if (bands.size() != 2 || !(bands[0] > 0 && bands[1] > bands[0])) c.fail("bands", "expected [b1, b2] with 0 < b1 < b2");
+  if (bands.size() != 2 || !(bands[0] > 0 && bands[1] > bands[0]))
+    c.fail("bands", "expected [b1, b2] with 0 < b1 < b2");
   const double zeta = c.non_negative("damping_ratio");
   if (zeta >= 1) c.fail("damping_ratio", "must be below 1 (critical damping)");
   Tangential t = read_tangential(c, "haff_werner");
-  if (t.model == TangentialModel::Coulomb) c.fail("tangential", "the sabatucci law has no tangential spring: haff_werner or none");
+  if (t.model == TangentialModel::Coulomb)
+    c.fail("tangential", "the sabatucci law has no tangential spring: haff_werner or none");
   return std::make_unique<Sabatucci>(c.positive("kn"), zeta, c.positive("lambda"), bands[0], bands[1],
                                      c.positive("rupture"), c.boolean("continuous"), t);
 }

@@ -190,7 +190,8 @@ void DemBody::compute_forces(const Vec& x, const Vec& v, double tt, double h, Ve
     const auto tb = Clock::now();
     blast_force.assign(2 * n, 0.0);
     blast->apply(x.data(), 3, discs.radius.data(), n, tt, blast_force);
-    for (Index p = 0; p < n; ++p) blast_work += h * (blast_force[2 * p] * v[3 * p] + blast_force[2 * p + 1] * v[3 * p + 1]);
+    for (Index p = 0; p < n; ++p)
+      blast_work += h * (blast_force[2 * p] * v[3 * p] + blast_force[2 * p + 1] * v[3 * p + 1]);
     t_blast += since(tb);
   } else if (!blast_force.empty()) {
     blast_force.clear();
@@ -202,10 +203,14 @@ void DemBody::compute_forces(const Vec& x, const Vec& v, double tt, double h, Ve
     disc_dissipated.assign(n, 0.0);
   }
   const ContactLaw* l = law.get();
-  if (auto* a = dynamic_cast<const LinearSpringDashpot*>(l)) sweep(*this, *a, x.data(), v.data(), tt, h, f.data());
-  else if (auto* c = dynamic_cast<const HertzMindlin*>(l)) sweep(*this, *c, x.data(), v.data(), tt, h, f.data());
-  else if (auto* s = dynamic_cast<const Sabatucci*>(l)) sweep(*this, *s, x.data(), v.data(), tt, h, f.data());
-  else throw std::logic_error("unknown contact law " + l->type());
+  if (auto* a = dynamic_cast<const LinearSpringDashpot*>(l))
+    sweep(*this, *a, x.data(), v.data(), tt, h, f.data());
+  else if (auto* c = dynamic_cast<const HertzMindlin*>(l))
+    sweep(*this, *c, x.data(), v.data(), tt, h, f.data());
+  else if (auto* s = dynamic_cast<const Sabatucci*>(l))
+    sweep(*this, *s, x.data(), v.data(), tt, h, f.data());
+  else
+    throw std::logic_error("unknown contact law " + l->type());
   if (track_energy) {
     double el = 0, dis = 0;
     for (size_t k = 0; k < pairs.size(); ++k) {

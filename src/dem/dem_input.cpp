@@ -11,7 +11,8 @@
 //   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors
 //   "blast": {}                    dem_blast.hpp (empty: none)
 //   "discs_csv": false             also write <name>_discs.csv at each output
-//   "crater": {}                   {"surface": 0 (top of the bed at t = 0, after settling), "bin": 0 (2 d_max), "centre": x (default the
+//   "crater": {}                   {"surface": 0 (top of the bed at t = 0, after settling), "bin": 0 (2 d_max),
+//   "centre": x (default the
 //                                  charge's x), "offsets": [-0.05, 0, 0.05]}: crater.csv at each output (empty: none)
 //   "settle": {}                   {"time": T, "remove_walls": [names]}: settle under gravity for T before t = 0,
 //                                  then remove those walls and start from rest (empty: none)
@@ -45,10 +46,12 @@ void check_overlaps(Params body, DemBody& b, double tol) {
     const Index i = std::min(l.i[k], l.j[k]), j = std::max(l.i[k], l.j[k]);
     const double ov = b.discs.radius[i] + b.discs.radius[j] - (b.position(i) - b.position(j)).norm();
     if (ov > tol * std::min(b.discs.radius[i], b.discs.radius[j]))
-      body.at("discs").at(b.discs.group[j]).fail(
-          "discs " + std::to_string(i) + " at (" + fmt(b.position(i).x()) + ", " + fmt(b.position(i).y()) + ") and " +
-          std::to_string(j) + " at (" + fmt(b.position(j).x()) + ", " + fmt(b.position(j).y()) + ") overlap by " +
-          fmt(ov) + " m, more than overlap_tolerance (" + fmt(tol) + ") times the smaller radius");
+      body.at("discs")
+          .at(b.discs.group[j])
+          .fail("discs " + std::to_string(i) + " at (" + fmt(b.position(i).x()) + ", " + fmt(b.position(i).y()) +
+                ") and " + std::to_string(j) + " at (" + fmt(b.position(j).x()) + ", " + fmt(b.position(j).y()) +
+                ") overlap by " + fmt(ov) + " m, more than overlap_tolerance (" + fmt(tol) +
+                ") times the smaller radius");
   }
   for (Index p = 0; p < n; ++p)
     for (size_t w = 0; w < b.walls.size(); ++w)
@@ -64,10 +67,20 @@ void check_overlaps(Params body, DemBody& b, double tol) {
 }  // namespace
 
 double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
-  body.validate({{"name", "dem"}, {"type", "dem"}, {"material", nullptr}, {"mass", "disc"}, {"rotation", true},
-                 {"contact", nullptr}, {"discs", nullptr}, {"walls", Json::array()}, {"time_step", Json::object()},
-                 {"neighbour", Json::object()}, {"overlap_tolerance", 1e-3}, {"blast", Json::object()},
-                 {"settle", Json::object()}, {"discs_csv", false},
+  body.validate({{"name", "dem"},
+                 {"type", "dem"},
+                 {"material", nullptr},
+                 {"mass", "disc"},
+                 {"rotation", true},
+                 {"contact", nullptr},
+                 {"discs", nullptr},
+                 {"walls", Json::array()},
+                 {"time_step", Json::object()},
+                 {"neighbour", Json::object()},
+                 {"overlap_tolerance", 1e-3},
+                 {"blast", Json::object()},
+                 {"settle", Json::object()},
+                 {"discs_csv", false},
                  {"crater", Json::object()}});
   b.csv = body.boolean("discs_csv");
   b.name = body.identifier("name");
@@ -82,7 +95,8 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   b.law = make_contact_law(body.at("contact"), young, nu, rho);
   b.walls = read_walls(body.at("walls"), ctx.base_dir);
   for (size_t w = 0; w < b.walls.size(); ++w) {
-    for (size_t s = 0; s < b.walls[w].segments(); ++s) b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
+    for (size_t s = 0; s < b.walls[w].segments(); ++s)
+      b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
     for (size_t v = 0; v < w; ++v)
       if (b.walls[v].name == b.walls[w].name) body.at("walls").at(w).fail("name", "duplicate wall name");
   }
@@ -162,7 +176,9 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
 
   Params cr = body.at("crater");
   if (!cr.json().empty()) {
-    cr.validate({{"surface", 0.0}, {"bin", 0.0}, {"centre", b.blast ? b.blast->charge().x() : 0.0},
+    cr.validate({{"surface", 0.0},
+                 {"bin", 0.0},
+                 {"centre", b.blast ? b.blast->charge().x() : 0.0},
                  {"offsets", Json::array({-0.05, 0.0, 0.05})}});
     b.crater.enabled = true;
     b.crater.surface = cr.number("surface");  // 0: set at t = 0 (DemModel::initialize), after any settling
@@ -180,7 +196,8 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
     Params rw = st.at("remove_walls");
     for (size_t i = 0; i < rw.size(); ++i) {
       const auto& v = rw.at(i).json();
-      if (!v.is_string() || std::none_of(b.walls.begin(), b.walls.end(), [&](const Wall& w) { return w.name == v.get<std::string>(); }))
+      if (!v.is_string() ||
+          std::none_of(b.walls.begin(), b.walls.end(), [&](const Wall& w) { return w.name == v.get<std::string>(); }))
         rw.at(i).fail("no wall of that name");
       b.remove_after_settle.push_back(v.get<std::string>());
     }

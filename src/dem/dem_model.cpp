@@ -66,7 +66,8 @@ void DemModel::initialize() {
     b.walls = kept;
     b.segments.clear();
     for (size_t w = 0; w < b.walls.size(); ++w)
-      for (size_t s = 0; s < b.walls[w].segments(); ++s) b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
+      for (size_t s = 0; s < b.walls[w].segments(); ++s)
+        b.segments.emplace_back(static_cast<int>(w), static_cast<int>(s));
     b.wall_row.clear();  // no history to carry: the wall indices changed
     b.state.v.setZero();
     b.state.t = 0.0;

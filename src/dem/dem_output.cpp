@@ -40,7 +40,8 @@ CraterProfile crater_profile(const DemBody& b, const CraterSettings& s) {
     if (c.x.empty()) return 0.0;
     if (x <= c.x.front()) return c.height.front();
     for (size_t i = 1; i < c.x.size(); ++i)
-      if (x <= c.x[i]) return c.height[i - 1] + (c.height[i] - c.height[i - 1]) * (x - c.x[i - 1]) / (c.x[i] - c.x[i - 1]);
+      if (x <= c.x[i])
+        return c.height[i - 1] + (c.height[i] - c.height[i - 1]) * (x - c.x[i - 1]) / (c.x[i] - c.x[i - 1]);
     return c.height.back();
   };
   for (double o : s.offsets) c.depth += (s.surface - height_at(s.centre + o)) / s.offsets.size();
@@ -107,12 +108,13 @@ void DemWriter::write(double t, const DemBody& b) {
     {
       std::ofstream o(tmp);
       if (!o) throw std::runtime_error("cannot write " + tmp);
-      o << std::setprecision(8) << "# crater of body " << b.name << " at t = " << t << ": ground level " << crater.surface
-        << " m, centre x = " << crater.centre << " m\n# depth = " << c.depth << " m (mean at offsets";
+      o << std::setprecision(8) << "# crater of body " << b.name << " at t = " << t << ": ground level "
+        << crater.surface << " m, centre x = " << crater.centre << " m\n# depth = " << c.depth << " m (mean at offsets";
       for (double off : crater.offsets) o << " " << off;
       o << " m), diameter = " << c.diameter << " m (ground-level crossings " << c.left << " .. " << c.right
         << " m)\nx,surface,depth\n";
-      for (size_t i = 0; i < c.x.size(); ++i) o << c.x[i] << "," << c.height[i] << "," << crater.surface - c.height[i] << "\n";
+      for (size_t i = 0; i < c.x.size(); ++i)
+        o << c.x[i] << "," << c.height[i] << "," << crater.surface - c.height[i] << "\n";
     }
     std::filesystem::rename(tmp, path);
   }

@@ -78,8 +78,8 @@ std::vector<DiscSpec> hex_lattice(const std::vector<Vec2>& poly, double r, doubl
   return out;
 }
 
-std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, double r_max, double fraction,
-                                  int count, unsigned seed, int attempts) {
+std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, double r_max, double fraction, int count,
+                                  unsigned seed, int attempts) {
   Vec2 lo, hi;
   bounds(poly, lo, hi);
   const double area = polygon_area(poly);
@@ -97,7 +97,8 @@ std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, d
     const double r = r_max > r_min ? ur(rng) : r_min;
     const Vec2 c(ux(rng), uy(rng));
     bool ok = fits(poly, c, r);
-    const long ci = static_cast<long>(std::floor((c.x() - lo.x()) / h)), cj = static_cast<long>(std::floor((c.y() - lo.y()) / h));
+    const long ci = static_cast<long>(std::floor((c.x() - lo.x()) / h)),
+               cj = static_cast<long>(std::floor((c.y() - lo.y()) / h));
     for (long a = ci - 1; ok && a <= ci + 1; ++a)
       for (long b = cj - 1; ok && b <= cj + 1; ++b) {
         auto it = cells.find(key(a, b));
@@ -156,7 +157,11 @@ std::vector<DiscSpec> generate_discs(Params discs) {
         made.push_back({Vec2(v[0].get<double>(), v[1].get<double>()), r, Vec2::Zero(), 0.0, 0});
       }
     } else if (t == "hex_lattice") {
-      d.validate({{"type", t}, {"region", nullptr}, {"radius", nullptr}, {"gap", 0.0}, {"velocity", common_v},
+      d.validate({{"type", t},
+                  {"region", nullptr},
+                  {"radius", nullptr},
+                  {"gap", 0.0},
+                  {"velocity", common_v},
                   {"angular_velocity", 0.0}});
       const double r = d.positive("radius");
       const auto poly = read_region(d.at("region"));
@@ -165,12 +170,20 @@ std::vector<DiscSpec> generate_discs(Params discs) {
       if ((hi - lo).x() * (hi - lo).y() / (r * r) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
       made = hex_lattice(poly, r, d.non_negative("gap"));
     } else {
-      d.validate({{"type", t}, {"region", nullptr}, {"radius", nullptr}, {"fraction", 0.5}, {"count", 0},
-                  {"seed", 1}, {"attempts", 20000}, {"velocity", common_v}, {"angular_velocity", 0.0}});
+      d.validate({{"type", t},
+                  {"region", nullptr},
+                  {"radius", nullptr},
+                  {"fraction", 0.5},
+                  {"count", 0},
+                  {"seed", 1},
+                  {"attempts", 20000},
+                  {"velocity", common_v},
+                  {"angular_velocity", 0.0}});
       double r0, r1;
       if (d.json().at("radius").is_array()) {
         const auto rr = d.numbers("radius");
-        if (rr.size() != 2 || !(rr[0] > 0 && rr[1] >= rr[0])) d.fail("radius", "expected [r_min, r_max], 0 < r_min <= r_max");
+        if (rr.size() != 2 || !(rr[0] > 0 && rr[1] >= rr[0]))
+          d.fail("radius", "expected [r_min, r_max], 0 < r_min <= r_max");
         r0 = rr[0];
         r1 = rr[1];
       } else {

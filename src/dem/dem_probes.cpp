@@ -107,8 +107,10 @@ std::vector<double> DemProbe::sample() const {
   double best = -std::numeric_limits<double>::infinity();
   for (size_t p = 0; p < b.size(); ++p) {
     const Vec2 c = b.position(static_cast<Index>(p));
-    if (type_ == "front") best = std::max(best, c.x() + b.discs.radius[p]);
-    else if (std::abs(c.x() - x) <= band) best = std::max(best, c.y() + b.discs.radius[p]);
+    if (type_ == "front")
+      best = std::max(best, c.x() + b.discs.radius[p]);
+    else if (std::abs(c.x() - x) <= band)
+      best = std::max(best, c.y() + b.discs.radius[p]);
   }
   return {std::isfinite(best) ? best : nan};
 }
@@ -121,7 +123,8 @@ namespace lagfsi::dem {
 
 std::unique_ptr<Probe> DemModel::make_probe(Params p) {
   DemBody& b = *body_;
-  const std::string t = p.choice("type", {"energy", "contacts", "max_contact_force", "disc", "ke_near", "front", "height"});
+  const std::string t =
+      p.choice("type", {"energy", "contacts", "max_contact_force", "disc", "ke_near", "front", "height"});
   const std::string name = p.identifier("name");
   if (t == "energy") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "kinetic"}});
@@ -142,10 +145,12 @@ std::unique_ptr<Probe> DemModel::make_probe(Params p) {
   }
   if (t == "disc") {
     p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"id", nullptr}, {"quantity", "y"}});
-    auto probe = std::make_unique<DemProbe>(*this, name, t, p.choice("quantity", {"x", "y", "vx", "vy", "omega", "theta"}));
+    auto probe =
+        std::make_unique<DemProbe>(*this, name, t, p.choice("quantity", {"x", "y", "vx", "vy", "omega", "theta"}));
     probe->id = p.integer("id", 0);
     if (probe->id >= static_cast<Index>(b.size()))
-      p.fail("id", "the body has " + std::to_string(b.size()) + " discs (ids 0 .. " + std::to_string(b.size() - 1) + ")");
+      p.fail("id",
+             "the body has " + std::to_string(b.size()) + " discs (ids 0 .. " + std::to_string(b.size() - 1) + ")");
     return probe;
   }
   if (t == "ke_near") {

@@ -18,7 +18,9 @@ std::vector<Wall> read_walls(Params walls, const std::filesystem::path& base_dir
   for (size_t i = 0; i < walls.size(); ++i) {
     Params w = walls.at(i);
     if (!w.json().is_object()) w.fail("expected an object");
-    w.validate({{"name", "wall" + std::to_string(i)}, {"points", nullptr}, {"velocity", Json::array({0.0, 0.0})},
+    w.validate({{"name", "wall" + std::to_string(i)},
+                {"points", nullptr},
+                {"velocity", Json::array({0.0, 0.0})},
                 {"function", Json::object()}});
     Wall wall;
     wall.name = w.identifier("name");

@@ -66,7 +66,11 @@ class Mazars final : public DamageLaw {
     if (et2 > 0) {
       at = std::clamp(num_t / et2, 0.0, 1.0);
       ac = std::clamp(num_c / et2, 0.0, 1.0);
-      if (at + ac > 1) { const double f = at + ac; at /= f; ac /= f; }
+      if (at + ac > 1) {
+        const double f = at + ac;
+        at /= f;
+        ac /= f;
+      }
       if (at + ac < 1e-12) at = 1;
     }
     return at * Dt + ac * Dc;

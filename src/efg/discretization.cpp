@@ -42,11 +42,10 @@ QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vecto
                         int order) {
   if (nx < 1 || ny < 1) throw std::invalid_argument("divisions must be at least 1");
   if (order != 1 && order != 2) throw std::invalid_argument("cell order must be 1 (Q4) or 2 (Q9)");
-  const int mx = order * nx, my = order * ny;   // node intervals
+  const int mx = order * nx, my = order * ny;  // node intervals
   std::vector<Vec2> nodes;
   for (int j = 0; j <= my; ++j)
-    for (int i = 0; i <= mx; ++i)
-      nodes.emplace_back(origin.x() + size.x() * i / mx, origin.y() + size.y() * j / my);
+    for (int i = 0; i <= mx; ++i) nodes.emplace_back(origin.x() + size.x() * i / mx, origin.y() + size.y() * j / my);
   auto id = [&](int i, int j) { return static_cast<Index>(j * (mx + 1) + i); };
   std::vector<std::array<Index, 4>> cells;
   std::vector<std::array<Index, 9>> q9;
@@ -61,8 +60,8 @@ QuadMesh rectangle_grid(Vec2 origin, Vec2 size, int nx, int ny, const std::vecto
       if (removed) continue;
       cells.push_back(c);
       if (order == 2)
-        q9.push_back({c[0], c[1], c[2], c[3], id(I + 1, J), id(I + 2, J + 1), id(I + 1, J + 2), id(I, J + 1),
-                      id(I + 1, J + 1)});
+        q9.push_back(
+            {c[0], c[1], c[2], c[3], id(I + 1, J), id(I + 2, J + 1), id(I + 1, J + 2), id(I, J + 1), id(I + 1, J + 1)});
     }
   if (cells.empty()) throw std::invalid_argument("the holes remove every cell");
   return compact(nodes, cells, q9);
@@ -87,8 +86,10 @@ QuadMesh plate_with_hole(double a, double b, int n_arc, int n_rad, double gradin
       const Vec2 inner(a * std::cos(th), a * std::sin(th));
       // Outer boundary: x = b for th <= 45 deg (y linear), y = b above (x linear): straight edges evenly divided.
       Vec2 outer;
-      if (i <= n_arc) outer = Vec2(b, b * static_cast<double>(i) / n_arc);
-      else outer = Vec2(b * static_cast<double>(na - i) / n_arc, b);
+      if (i <= n_arc)
+        outer = Vec2(b, b * static_cast<double>(i) / n_arc);
+      else
+        outer = Vec2(b * static_cast<double>(na - i) / n_arc, b);
       nodes.push_back(inner + s[k] * (outer - inner));
     }
   std::vector<std::array<Index, 4>> cells;

@@ -93,7 +93,8 @@ void EfgModel::assemble(const Vec& x, Vec& fint, bool with_matrix) {
       for (size_t a = 0; a < c.sh.nodes.size(); ++a) {
         fint[2 * c.sh.nodes[a] + c.comp] += penalty_ * c.sh.N[a] * u;
         if (!with_matrix) continue;
-        for (size_t b = 0; b < c.sh.nodes.size(); ++b) K_.coeffRef(2 * c.sh.nodes[a] + c.comp, 2 * c.sh.nodes[b] + c.comp) += penalty_ * c.sh.N[a] * c.sh.N[b];
+        for (size_t b = 0; b < c.sh.nodes.size(); ++b)
+          K_.coeffRef(2 * c.sh.nodes[a] + c.comp, 2 * c.sh.nodes[b] + c.comp) += penalty_ * c.sh.N[a] * c.sh.N[b];
       }
     }
   } else if (essential_ == "lagrange") {

@@ -63,7 +63,8 @@ IterationReport EfgModel::solve_iteration() {
     dx = dl * dUP + dUQ;
   }
   times_.solve += since(t0);
-  if (!std::isfinite(dl) || !dx.allFinite()) throw SolverError("body '" + name_ + "': non-finite load-factor increment");
+  if (!std::isfinite(dl) || !dx.allFinite())
+    throw SolverError("body '" + name_ + "': non-finite load-factor increment");
   x_ += dx;
   lambda_ += dl;
   dx_step_ += dx;

@@ -113,7 +113,8 @@ Json EfgModel::summary() const {
   }
   double dmax = 0;
   for (size_t i = 0; i < hist0_.size(); ++i) {
-    const Material& mat = cell_material_[gps_[i].cell] < 0 ? *material_ : *region_materials_[cell_material_[gps_[i].cell]];
+    const Material& mat =
+        cell_material_[gps_[i].cell] < 0 ? *material_ : *region_materials_[cell_material_[gps_[i].cell]];
     dmax = std::max(dmax, mat.damage(hist0_[i]));
   }
   s["damage_max"] = dmax;

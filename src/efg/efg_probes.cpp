@@ -77,7 +77,11 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
     });
   }
   if (t == "displacement") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"component", "y"},
+    p.validate({{"name", nullptr},
+                {"type", t},
+                {"body", nullptr},
+                {"at", nullptr},
+                {"component", "y"},
                 {"value", "displacement"}});
     Json sel = {{"type", "point"}, {"at", p.json()["at"]}};
     Params sp(sel, p.file(), p.child_path("at"));

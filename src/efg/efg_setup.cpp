@@ -35,7 +35,8 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"control", Json::object()}});
   name_ = b.identifier("name");
   thickness_ = b.positive("thickness");
-  if (ctx.analysis.type != "static") b.at("type").fail("an efg body needs a static analysis (analysis.type = \"static\")");
+  if (ctx.analysis.type != "static")
+    b.at("type").fail("an efg body needs a static analysis (analysis.type = \"static\")");
   material_ = make_material(b.at("material"));
   Params regions = b.at("regions");
   for (size_t i = 0; i < regions.size(); ++i) {
@@ -46,8 +47,14 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   }
   operator_ = b.choice("operator", {"tangent", "secant"}) == "tangent" ? Operator::tangent : Operator::secant;
   Params ex = b.at("exact");
-  ex.validate({{"type", "none"}, {"P", 0.0}, {"L", 0.0}, {"D", 0.0}, {"sigma0", 0.0}, {"radius", 0.0},
-               {"ux", Json::array({0, 0, 0, 0, 0, 0})}, {"uy", Json::array({0, 0, 0, 0, 0, 0})}});
+  ex.validate({{"type", "none"},
+               {"P", 0.0},
+               {"L", 0.0},
+               {"D", 0.0},
+               {"sigma0", 0.0},
+               {"radius", 0.0},
+               {"ux", Json::array({0, 0, 0, 0, 0, 0})},
+               {"uy", Json::array({0, 0, 0, 0, 0, 0})}});
   exact_.type = ex.choice("type", {"none", "timoshenko", "kirsch", "polynomial"});
   if (exact_.type == "polynomial")
     for (const char* k : {"ux", "uy"}) {
@@ -77,8 +84,7 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   build_pattern();
   const std::string ls = ctx.analysis.linear_solver;
   solver_ = make_linear_solver(ls);
-  const bool unsym = (operator_ == Operator::tangent && !material_->linear()) ||
-                     (material_->type() == "smeared_crack");
+  const bool unsym = (operator_ == Operator::tangent && !material_->linear()) || (material_->type() == "smeared_crack");
   if (solver_->symmetric_only() && (essential_ == "lagrange" || unsym))
     b.at(essential_ == "lagrange" ? "essential" : "operator")
         .fail(std::string(essential_ == "lagrange" ? "Lagrange multipliers give an indefinite system"
@@ -92,8 +98,12 @@ void EfgModel::read_discretization(Params b) {
   const std::string t = d.choice("type", {"rectangle", "plate_with_hole"});
   try {
     if (t == "rectangle") {
-      d.validate({{"type", t}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}, {"divisions", nullptr},
-                  {"holes", Json::array()}, {"cells", "q4"}});
+      d.validate({{"type", t},
+                  {"origin", Json::array({0.0, 0.0})},
+                  {"size", nullptr},
+                  {"divisions", nullptr},
+                  {"holes", Json::array()},
+                  {"cells", "q4"}});
       const int order = d.choice("cells", {"q4", "q9"}) == "q9" ? 2 : 1;
       const Vec2 size = d.vec2("size");
       if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
@@ -119,15 +129,21 @@ void EfgModel::read_discretization(Params b) {
     d.fail(e.what());
   }
   Params e = b.at("efg");
-  e.validate({{"basis", "bilinear"}, {"weight", "cubic_spline"}, {"domain", "rectangular"}, {"alpha", 2.0},
-              {"gauss", 5}, {"integration", "gauss"}, {"rcond_min", 1e-12}, {"protected_segments", Json::array()}});
+  e.validate({{"basis", "bilinear"},
+              {"weight", "cubic_spline"},
+              {"domain", "rectangular"},
+              {"alpha", 2.0},
+              {"gauss", 5},
+              {"integration", "gauss"},
+              {"rcond_min", 1e-12},
+              {"protected_segments", Json::array()}});
   consistent_ = e.choice("integration", {"gauss", "consistent"}) == "consistent";
   Basis basis;
   basis.type = Basis::parse(e.choice("basis", Basis::names()));
   InfluenceDomain dom;
   dom.weight.type = Weight::parse(e.choice("weight", Weight::names()));
-  dom.shape = e.choice("domain", {"rectangular", "circular"}) == "circular" ? DomainShape::circular
-                                                                           : DomainShape::rectangular;
+  dom.shape =
+      e.choice("domain", {"rectangular", "circular"}) == "circular" ? DomainShape::circular : DomainShape::rectangular;
   const double alpha = e.positive("alpha");
   gauss_ = e.integer("gauss", 1);
   if (gauss_ > 12) e.fail("gauss", "at most 12 points per direction");
@@ -228,7 +244,8 @@ void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool d
   search_.within(x, rho_max_, cand);
   sup.clear();
   for (Index j : cand)
-    if (mls_.domain().contains(x, mesh_.nodes[j], rho_[j]) && (vis_.segments.empty() || vis_.visible(x, mesh_.nodes[j])))
+    if (mls_.domain().contains(x, mesh_.nodes[j], rho_[j]) &&
+        (vis_.segments.empty() || vis_.visible(x, mesh_.nodes[j])))
       sup.push_back(j);
   // The coupling element of the cell: Q4 on a linear mesh, Q9 on a quadratic one; its active nodes' functions.
   FeCorrection fe;
@@ -237,8 +254,10 @@ void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool d
   if (coupled) {
     const int npc = mesh_.nodes_per_cell();
     double Nf[9], fxi[9], feta[9];
-    if (mesh_.quadratic()) q9_shape(xi, eta, Nf, fxi, feta);
-    else q4_shape(xi, eta, Nf, fxi, feta);
+    if (mesh_.quadratic())
+      q9_shape(xi, eta, Nf, fxi, feta);
+    else
+      q4_shape(xi, eta, Nf, fxi, feta);
     const Mat2 Ji = J.inverse();  // dxi/dx = J^-T applied to (dxi, deta)
     for (int a = 0; a < npc; ++a) {
       const Index n = mesh_.cell_node(c, a);
@@ -280,7 +299,7 @@ void EfgModel::build_integration_points() {
   const auto t0 = Clock::now();
   std::vector<double> gx, gw, ex, ew;
   gauss_legendre(gauss_, gx, gw);
-  gauss_legendre(std::max(2, gauss_), ex, ew);   // the edge rule of the traction loads
+  gauss_legendre(std::max(2, gauss_), ex, ew);  // the edge rule of the traction loads
   const Index nc = mesh_.num_cells();
   cell_nodes_.assign(nc, {});
   cell_gp_begin_.assign(nc + 1, 0);
@@ -308,7 +327,8 @@ void EfgModel::build_integration_points() {
         }
         const double det = J.determinant();
         if (!(det > 0))
-          throw InputError(ctx_.case_file.string(), "/bodies", "background cell " + std::to_string(c) + " is inverted or degenerate");
+          throw InputError(ctx_.case_file.string(), "/bodies",
+                           "background cell " + std::to_string(c) + " is inverted or degenerate");
         ShapeValues& sh = sg[i * gauss_ + j];
         shape_at(c, gx[i], gx[j], sh, true);
         min_rcond_ = std::min(min_rcond_, sh.rcond);
@@ -428,7 +448,8 @@ void EfgModel::read_loads(Params b) {
     }
     l.validate({{"type", t}, {"select", nullptr}, {"value", Json::array({0.0, 0.0})}, {"profile", "uniform"}});
     // (the edge rule is the one of the consistent-integration correction: interior edges cancel, boundary ones match)
-    if (t == "exact_traction" && !exact_.available()) l.fail("type", "exact_traction needs an exact solution (exact.type)");
+    if (t == "exact_traction" && !exact_.available())
+      l.fail("type", "exact_traction needs an exact solution (exact.type)");
     const std::string profile = l.choice("profile", {"uniform", "parabolic", "triangular"});
     const Vec2 value = l.vec2("value");
     Params sel = l.at("select");
@@ -493,14 +514,19 @@ void EfgModel::read_loads(Params b) {
 
 void EfgModel::read_control(Params b) {
   Params c = b.at("control");
-  c.validate({{"type", "load"}, {"form", "V"}, {"increment", 0.0}, {"at", Json::array({0.0, 0.0})}, {"component", "y"},
+  c.validate({{"type", "load"},
+              {"form", "V"},
+              {"increment", 0.0},
+              {"at", Json::array({0.0, 0.0})},
+              {"component", "y"},
               {"complex_roots", "real_part"}});
-  const ControlType t = PathFollowing::parse(
-      c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
+  const ControlType t =
+      PathFollowing::parse(c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
   control_u_form_ = c.choice("form", {"U", "V"}) == "U";
   double inc = c.number("increment");
   if (inc == 0.0) {
-    if (t != ControlType::load) c.fail("increment", "required for this control (initial load factor or displacement increment)");
+    if (t != ControlType::load)
+      c.fail("increment", "required for this control (initial load factor or displacement increment)");
     inc = ctx_.analysis.dt;  // load control by default follows the driver's load factor (time)
   }
   if (t == ControlType::displacement) {

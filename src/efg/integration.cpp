@@ -5,9 +5,9 @@
 
 namespace lagfsi::efg {
 
-void correct_derivatives(int degree, const std::vector<Vec2>& xg, const std::vector<double>& wg, const Eigen::MatrixXd& N,
-                         const std::vector<Vec2>& xe, const std::vector<Vec2>& wn, const Eigen::MatrixXd& Ne,
-                         Eigen::MatrixXd& Nx, Eigen::MatrixXd& Ny) {
+void correct_derivatives(int degree, const std::vector<Vec2>& xg, const std::vector<double>& wg,
+                         const Eigen::MatrixXd& N, const std::vector<Vec2>& xe, const std::vector<Vec2>& wn,
+                         const Eigen::MatrixXd& Ne, Eigen::MatrixXd& Nx, Eigen::MatrixXd& Ny) {
   const int ng = static_cast<int>(xg.size()), ne = static_cast<int>(xe.size()), nn = static_cast<int>(N.cols());
   const int nq = degree >= 2 ? 3 : 1;
   // Q about the cell centre, scaled (conditioning).
@@ -29,7 +29,7 @@ void correct_derivatives(int degree, const std::vector<Vec2>& xg, const std::vec
       vy[2] = 1 / s;
     }
   };
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, nq);   // sum_g w q r
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nq, nq);  // sum_g w q r
   Eigen::MatrixXd Qg(ng, nq), Qgx(ng, nq), Qgy(ng, nq), Qe(ne, nq);
   for (int g = 0; g < ng; ++g) {
     double v[3], vx[3], vy[3];

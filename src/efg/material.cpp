@@ -21,9 +21,7 @@ Material::Material(double young, double poisson, bool plane_strain)
   }
 }
 
-double Material::eps_zz(const Vec3& eps) const {
-  return plane_strain_ ? 0.0 : -nu_ / (1 - nu_) * (eps[0] + eps[1]);
-}
+double Material::eps_zz(const Vec3& eps) const { return plane_strain_ ? 0.0 : -nu_ / (1 - nu_) * (eps[0] + eps[1]); }
 
 void Material::evaluate(const Vec3& eps, const History& h0, History& h1, Vec3& sig, Mat3& E, Operator op) const {
   stress(eps, h0, h1, sig, E);
@@ -100,8 +98,14 @@ std::unique_ptr<Material> make_material(Params p) {
     check(E, nu, ps);
     return make_exponential_damage(p, E, nu, ps);
   }
-  common({{"ft", nullptr}, {"fc", nullptr}, {"eps_c", 0.002}, {"tension", "exponential"}, {"Gf", 0.0},
-          {"band_width", 0.0}, {"eps_t", 0.0}, {"residual", 1e-4}});
+  common({{"ft", nullptr},
+          {"fc", nullptr},
+          {"eps_c", 0.002},
+          {"tension", "exponential"},
+          {"Gf", 0.0},
+          {"band_width", 0.0},
+          {"eps_t", 0.0},
+          {"residual", 1e-4}});
   check(E, nu, ps);
   return make_smeared_crack(p, E, nu, ps);
 }

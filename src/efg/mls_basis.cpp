@@ -9,17 +9,19 @@ namespace lagfsi::efg {
 
 int Basis::size() const {
   switch (type) {
-    case BasisType::linear: return 3;
-    case BasisType::bilinear: return 4;
-    case BasisType::quadratic: return 6;
-    case BasisType::biquadratic: return 9;
+    case BasisType::linear:
+      return 3;
+    case BasisType::bilinear:
+      return 4;
+    case BasisType::quadratic:
+      return 6;
+    case BasisType::biquadratic:
+      return 9;
   }
   return 0;
 }
 
-int Basis::complete_degree() const {
-  return (type == BasisType::quadratic || type == BasisType::biquadratic) ? 2 : 1;
-}
+int Basis::complete_degree() const { return (type == BasisType::quadratic || type == BasisType::biquadratic) ? 2 : 1; }
 
 void Basis::eval(double x, double y, double* p, double* px, double* py) const {
   // Monomials x^i y^j in the order of the thesis: 1, x, y, xy, x^2, (x^2 y), y^2, (x y^2), (x^2 y^2).

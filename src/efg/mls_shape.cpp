@@ -30,7 +30,7 @@ void MlsShape::compute(const Vec2& x, const std::vector<Vec2>& nodes, const std:
   out.Ny.clear();
   // Weights of the support; scale s = mean domain size (the shifted, scaled basis p((y - x)/s)).
   thread_local std::vector<double> w, wx, wy;
-  thread_local std::vector<double> P;   // p((x_j - x)/s), l per node
+  thread_local std::vector<double> P;  // p((x_j - x)/s), l per node
   w.clear();
   wx.clear();
   wy.clear();
@@ -47,7 +47,8 @@ void MlsShape::compute(const Vec2& x, const std::vector<Vec2>& nodes, const std:
     s += 0.5 * (rho[j].x() + (domain_.shape == DomainShape::circular ? rho[j].x() : rho[j].y()));
   }
   const int n = static_cast<int>(out.nodes.size());
-  if (n == 0 && !fe) throw SolverError(where_text(x, where) + ": no node's influence domain contains the point (enlarge alpha)");
+  if (n == 0 && !fe)
+    throw SolverError(where_text(x, where) + ": no node's influence domain contains the point (enlarge alpha)");
   if (n == 0) {  // a coupled point with no particle: pure FE there
     out.rcond = 1;
     return;
@@ -100,7 +101,8 @@ void MlsShape::compute(const Vec2& x, const std::vector<Vec2>& nodes, const std:
     gx = Mp * rx;
     gy = Mp * ry;
     double e = (M * g - p).norm() / std::max(1.0, p.norm());
-    if (derivatives) e += (M * gx - rx).norm() / std::max(1.0, rx.norm()) + (M * gy - ry).norm() / std::max(1.0, ry.norm());
+    if (derivatives)
+      e += (M * gx - rx).norm() / std::max(1.0, rx.norm()) + (M * gy - ry).norm() / std::max(1.0, ry.norm());
     if (!(e < 1e-8)) {
       char buf[240];
       std::snprintf(buf, sizeof buf,

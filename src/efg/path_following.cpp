@@ -1,5 +1,6 @@
 // Load, displacement, generalized displacement control and cylindrical arc length (Yang & Kuo 1994; Crisfield
-// 1981/1983), in the form used by the INSANE EFG thesis, with a remedy for the arc length's complex roots. See include/lagfsi/efg/path_following.hpp.
+// 1981/1983), in the form used by the INSANE EFG thesis, with a remedy for the arc length's complex roots. See
+// include/lagfsi/efg/path_following.hpp.
 #include <lagfsi/efg/path_following.hpp>
 #include <lagfsi/error.hpp>
 
@@ -28,10 +29,12 @@ double PathFollowing::predictor(const Vec& dUP, double scale) {
   scale_ = scale;
   dUP1_cur_ = dUP;
   switch (type_) {
-    case ControlType::load: return inc_ * scale;
+    case ControlType::load:
+      return inc_ * scale;
     case ControlType::displacement: {
       const double d = dUP[dof_];
-      if (std::abs(d) < 1e-300) throw SolverError("displacement control: the controlled dof does not respond to the load");
+      if (std::abs(d) < 1e-300)
+        throw SolverError("displacement control: the controlled dof does not respond to the load");
       return inc_ * scale / d;
     }
     case ControlType::generalized_displacement: {
@@ -60,8 +63,10 @@ double PathFollowing::predictor(const Vec& dUP, double scale) {
 
 double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
   switch (type_) {
-    case ControlType::load: return 0.0;
-    case ControlType::displacement: return -dUQ[dof_] / dUP[dof_];
+    case ControlType::load:
+      return 0.0;
+    case ControlType::displacement:
+      return -dUQ[dof_] / dUP[dof_];
     case ControlType::generalized_displacement: {
       const Vec& r = steps_ == 0 ? dUP1_cur_ : dUP1_prev_;
       return -r.dot(dUQ) / r.dot(dUP);
@@ -80,7 +85,8 @@ double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
             return -b / (2 * a);
           case ComplexRoots::normal_plane: {
             const double den = DU.dot(dUP);
-            if (std::abs(den) < 1e-300) throw SolverError("arc length: complex roots and a normal plane parallel to dUP");
+            if (std::abs(den) < 1e-300)
+              throw SolverError("arc length: complex roots and a normal plane parallel to dUP");
             ++stats_.complex_root_iterations;
             return -DU.dot(dUQ) / den;
           }

@@ -74,8 +74,8 @@ class SmearedCrack final : public Material {
     Dp(1, 1) = S[1] * c0;
     const double s1 = Dp(0, 0) * e1 + Dp(0, 1) * e2, s2 = Dp(1, 0) * e1 + Dp(1, 1) * e2;
     const double G0 = E_ / (2 * (1 + nu_));
-    Dp(2, 2) = std::abs(e1 - e2) > 1e-14 ? std::clamp((s1 - s2) / (2 * (e1 - e2)), 1e-6 * G0, G0)
-                                         : G0 * std::min(S[0], S[1]);
+    Dp(2, 2) =
+        std::abs(e1 - e2) > 1e-14 ? std::clamp((s1 - s2) / (2 * (e1 - e2)), 1e-6 * G0, G0) : G0 * std::min(S[0], S[1]);
     // Engineering strain transformation eps' = T eps, sigma = T^T sigma'.
     const double c = std::cos(th), s = std::sin(th);
     Mat3 T;
@@ -105,7 +105,8 @@ std::unique_ptr<Material> make_smeared_crack(Params p, double E, double nu, bool
     Gf = p.positive("Gf");
     h = p.positive("band_width");
     // Snap-back of the material law itself: the softening must dissipate at least the elastic energy.
-    if (ft * h / Gf >= 2 * E / ft) p.fail("band_width", "band too wide for Gf: h must be below 2 E Gf / ft^2 (softening snaps back)");
+    if (ft * h / Gf >= 2 * E / ft)
+      p.fail("band_width", "band too wide for Gf: h must be below 2 E Gf / ft^2 (softening snaps back)");
   }
   const double res = p.non_negative("residual");
   return std::make_unique<SmearedCrack>(E, nu, ps, ft, fc, ec, cc, et, Gf, h, res);

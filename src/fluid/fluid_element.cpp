@@ -8,7 +8,8 @@ namespace lagfsi {
 
 bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
                   double& inertia2, double& gravity2) {
-  const double A2 = (in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() - (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x();
+  const double A2 =
+      (in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() - (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x();
   if (!(A2 > 0.0)) return false;
   const double nu = in.rho > 0 ? in.mu / in.rho : 0.0;
   const double A = 0.5 * A2;
@@ -23,7 +24,8 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
   const Vec2 vmean = (in.v[0] + in.v[1] + in.v[2]) / 3.0;
   double tau;
   if (in.tau_U <= 0) {
-    const double s = std::pow(2.0 / in.dt, 2) + std::pow(2.0 * vmean.norm() / he, 2) + std::pow(4.0 * nu / (he * he), 2);
+    const double s =
+        std::pow(2.0 / in.dt, 2) + std::pow(2.0 * vmean.norm() / he, 2) + std::pow(4.0 * nu / (he * he), 2);
     tau = 1.0 / std::sqrt(s);
   } else {
     const double Re = in.tau_U * he / (2.0 * std::max(nu, 1e-300));
@@ -60,7 +62,8 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
     inertia2 += inertia.squaredNorm();
     gravity2 += grav.squaredNorm();
     // continuity
-    r[3 * a + 2] = A / 3.0 * (divv + in.c_vol) + tau * A * dN[a].dot(amean - in.g) + tau / in.rho * A * dN[a].dot(gradp);
+    r[3 * a + 2] =
+        A / 3.0 * (divv + in.c_vol) + tau * A * dN[a].dot(amean - in.g) + tau / in.rho * A * dN[a].dot(gradp);
     // Slight compressibility, (1/K) dp/dt (lumped): physical for water (K = 2.2 GPa) and it makes the
     // pressure of a fluid pocket without free surface (a corner filled by a wave, a trapped region)
     // determined instead of leaving a singular constant mode.

@@ -61,7 +61,7 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& 
   if (boundary_force_prev_.size() != boundary_force.size()) boundary_force_prev_ = boundary_force;
   for (Index i = 0; i < nb; ++i)
     boundary_work_ += 0.5 * (boundary_force_prev_.segment<2>(2 * i) + boundary_force.segment<2>(2 * i))
-                          .dot(x_new.segment<2>(2 * i) - x.segment<2>(2 * i));
+                                .dot(x_new.segment<2>(2 * i) - x.segment<2>(2 * i));
   boundary_force_prev_ = boundary_force;
   // Work of the walls through the constraints of the particles on them: the end-of-step force times the
   // step's displacement (first order: the constrained particles change from step to step).

@@ -2,10 +2,10 @@
 /// @file fluid_energy.hpp (private to src/fluid)
 /// The fluid's energy balance for the probes: kinetic and potential energy of the present mesh, and the work
 /// of gravity and the viscous dissipation summed over the steps (account).
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
 #include "fluid_walls.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 
 namespace lagfsi::fluid {
 
@@ -43,7 +43,7 @@ class FluidEnergy {
   const FluidWalls& walls_;
   double gravity_work_ = 0, dissipation_ = 0, boundary_work_ = 0;
   Vec boundary_force_prev_;  // the boundary forces at the start of the step
-  bool enabled_ = false;  // account() only for runs that probe it
+  bool enabled_ = false;     // account() only for runs that probe it
 };
 
 }  // namespace lagfsi::fluid

@@ -62,8 +62,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (wall_constraints_ && !c_.remesh)
     b.fail("wall_model", "\"constraints\" is for PFEM mode (a fixed mesh always constrains its nodes on walls)");
   if (wall_constraints_ && rs.detection == meshing::DomainDetection::Alpha)
-    b.fail("wall_model", "\"constraints\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
-                         "shape's particle removal does not keep particles on walls)");
+    b.fail("wall_model",
+           "\"constraints\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
+           "shape's particle removal does not keep particles on walls)");
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
 
@@ -148,7 +149,7 @@ void FluidModel::build_particles(Params b) {
 
   std::vector<Vec2> pts;
   std::vector<ParticleKind> kind;
-  PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);   // the particles so far, for the proximity tests
+  PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);  // the particles so far, for the proximity tests
   if (c_.remesh && !wall_constraints_) walls_.place_particles(walls, h, pts, kind, wall_grid);
   const Index n_wall = static_cast<Index>(pts.size());
 
@@ -182,8 +183,8 @@ void FluidModel::build_particles(Params b) {
           if (extent > 0 && (q[axis] < wall_lo[axis] - extent || q[axis] > wall_hi[axis] + extent)) {
             std::ostringstream os;
             const char* xy = axis ? "y" : "x";
-            os << "reaches " << xy << " = " << q[axis] << ", far beyond the walls (" << xy << " from "
-               << wall_lo[axis] << " to " << wall_hi[axis] << ")";
+            os << "reaches " << xy << " = " << q[axis] << ", far beyond the walls (" << xy << " from " << wall_lo[axis]
+               << " to " << wall_hi[axis] << ")";
             g.fail(rt == "rectangle" ? std::string(c == 0 ? "origin" : "size") : "points/" + std::to_string(c),
                    os.str());
           }
@@ -198,19 +199,19 @@ void FluidModel::build_particles(Params b) {
       const Vec2 sz = g.vec2("size");
       if (!(sz.x() >= 0.5 * h && sz.y() >= 0.5 * h))
         g.fail("size", "each side must be at least half the particle spacing (" + std::to_string(h) + ")");
-      if (!(sz.x() / h * (sz.y() / h) <= 5e6))
-        g.fail("size", "more than 5 million particles at this spacing");
-      mesh_params = {{"size", h},
-                     {"order", 1},
-                     {"type", "structured"},
-                     {"divisions",
-                      {std::max(1, (int)std::lround(sz.x() / h)), std::max(1, (int)std::lround(sz.y() / h))}},
-                     {"pattern", "crossed"}};
+      if (!(sz.x() / h * (sz.y() / h) <= 5e6)) g.fail("size", "more than 5 million particles at this spacing");
+      mesh_params = {
+          {"size", h},
+          {"order", 1},
+          {"type", "structured"},
+          {"divisions", {std::max(1, (int)std::lround(sz.x() / h)), std::max(1, (int)std::lround(sz.y() / h))}},
+          {"pattern", "crossed"}};
     }
     mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
     for (size_t e = 0; e + 2 < mesh.conn.size(); e += 3)
-      remesh_.add_region_triangle({mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});
-    std::vector<Index> new_particles;   // this region's, added to the grid after the region
+      remesh_.add_region_triangle(
+          {mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});
+    std::vector<Index> new_particles;  // this region's, added to the grid after the region
     std::vector<Index> map(mesh.nodes.size(), -1);
     for (size_t k = 0; k < mesh.nodes.size(); ++k) {
       const Vec2& q = mesh.nodes[k];
@@ -262,8 +263,8 @@ void FluidModel::build_particles(Params b) {
     // Divergence-free cellular flow of amplitude U on a square [x0, x0 + L]^2 (a test of energy stability:
     // without gravity the kinetic energy of a free blob can only decrease):
     // u = U sin(pi X) cos(pi Y), v = -U cos(pi X) sin(pi Y), X = (x - x0) / L, Y = (y - y0) / L.
-    is.validate({{"type", "taylor_green"}, {"amplitude", nullptr}, {"origin", Json::array({0.0, 0.0})},
-                 {"length", nullptr}});
+    is.validate(
+        {{"type", "taylor_green"}, {"amplitude", nullptr}, {"origin", Json::array({0.0, 0.0})}, {"length", nullptr}});
     const double U = is.number("amplitude"), Lc = is.positive("length");
     const Vec2 o = is.vec2("origin");
     for (Index i = 0; i < np; ++i) {

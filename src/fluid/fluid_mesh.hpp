@@ -12,9 +12,9 @@
 namespace lagfsi::fluid {
 
 struct FluidMesh {
-  std::vector<std::array<Index, 3>> tri;        // the step's elements (counter-clockwise)
-  std::vector<Index> conn;                      // tri flattened (flatten(): the matrices' pattern, the output)
-  std::vector<std::uint8_t> free, connected;    // per particle: on the free surface; in an element
+  std::vector<std::array<Index, 3>> tri;      // the step's elements (counter-clockwise)
+  std::vector<Index> conn;                    // tri flattened (flatten(): the matrices' pattern, the output)
+  std::vector<std::uint8_t> free, connected;  // per particle: on the free surface; in an element
 
   Index num_elements() const { return static_cast<Index>(tri.size()); }
   /// conn from tri.

@@ -54,7 +54,7 @@ void FluidModel::initialize() {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
     remesh_.mark_free_surface(walls_.on_wall(np));
   }
-  remesh_.free_regions();   // only the initial domain needs them
+  remesh_.free_regions();  // only the initial domain needs them
   volume_.start(mesh_.area(cloud_.x()));
   n_initial_ = np;
   KinematicState& s = cloud_.state();
@@ -149,7 +149,7 @@ void FluidModel::start_iterations() {
   Vec& x = step_.x;
   Vec& p = cloud_.p();
   p = step_.p_old;
-  x = s.x + step_.dt * s.v;  // constant-velocity predictor
+  x = s.x + step_.dt * s.v;                   // constant-velocity predictor
   walls_.place(step_.t_new, cloud_.X0(), x);  // prescribed wall motion, particles on walls
   ghosts_.place(x);
   for (Index i = 0; i < np; ++i)
@@ -201,8 +201,9 @@ Json FluidModel::summary() const {
   remeshing["domain_detection"] = c_.remesh ? detection : "none (fixed connectivity)";
   remeshing["volume_correction_energy"] = volume_.correction_energy();
   return {{"fluid_area", volume_.summary()},
-          {"wall_model", !c_.remesh ? "constraints (fixed connectivity)"
-                         : walls_.constraint_model() ? "constraints" : "particles"},
+          {"wall_model", !c_.remesh                  ? "constraints (fixed connectivity)"
+                         : walls_.constraint_model() ? "constraints"
+                                                     : "particles"},
           {"wall_crossings", walls_.crossings()},
           {"wall_snaps", walls_.snaps()},
           {"wall_releases", walls_.releases()},
@@ -266,9 +267,8 @@ void FluidModel::write_output(double t) {
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
-                                          "kinetic_energy", "potential_energy", "gravity_work",
-                                          "viscous_dissipation", "volume_correction_energy", "total_energy",
-                                          "boundary_work", "max_speed"});
+                                          "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
+                                          "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe
   // asks for them (an extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work") {

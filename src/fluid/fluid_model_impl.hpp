@@ -6,13 +6,13 @@
 /// correction (volume_correction.hpp), the energies (fluid_energy.hpp) and the scheme that solves a step
 /// (fluid_scheme.hpp: monolithic_pspg in pspg_scheme.cpp, fractional_step in fractional_step.cpp). The case
 /// is read by fluid_input.cpp, the probes are in fluid_probes.cpp.
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_energy.hpp"
 #include "fluid_mesh.hpp"
 #include "fluid_scheme.hpp"
 #include "fluid_walls.hpp"
 #include "ghosts.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 #include "remesh_pipeline.hpp"
 #include "volume_correction.hpp"
 
@@ -46,7 +46,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   bool can_checkpoint() const override { return true; }
-  void serialize(StateArchive& ar) override;   // fluid_checkpoint.cpp
+  void serialize(StateArchive& ar) override;  // fluid_checkpoint.cpp
 
   // InterfaceFluid (interface.hpp): ghost particles of a structure's wet boundary (ghosts.hpp).
   int add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) override;
@@ -109,11 +109,11 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   FluidStep step_;
   std::unique_ptr<FluidScheme> scheme_;
 
-  Index n_initial_ = 0;             // particles at the start (summary.json)
-  bool wall_constraints_ = false;   // "wall_model": "constraints" (read by the constructor for build_particles)
+  Index n_initial_ = 0;            // particles at the start (summary.json)
+  bool wall_constraints_ = false;  // "wall_model": "constraints" (read by the constructor for build_particles)
   bool solved_once_ = false;
-  bool step_open_ = false;          // predict called and the step not finalized yet (a retry if predicted again)
-  bool step_meshed_ = false;        // the open step's remesh completed (a retry keeps that mesh)
+  bool step_open_ = false;    // predict called and the step not finalized yet (a retry if predicted again)
+  bool step_meshed_ = false;  // the open step's remesh completed (a retry keeps that mesh)
   std::unique_ptr<PvdSeries> series_, wall_series_;
 };
 

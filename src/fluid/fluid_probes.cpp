@@ -71,14 +71,18 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
     // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
     // particle noise of the surface, kept for comparison).
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"},
-                {"band", 1.5 * h}});
+    p.validate(
+        {{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"}, {"band", 1.5 * h}});
     coord_ = p.number("x");
     inside("x", coord_, 0);
     read_band();
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"from", nullptr}, {"to", nullptr},
+    p.validate({{"name", nullptr},
+                {"type", type_},
+                {"body", nullptr},
+                {"from", nullptr},
+                {"to", nullptr},
                 {"tolerance", 0.5 * h}});
     a_ = p.vec2("from");
     b_ = p.vec2("to");

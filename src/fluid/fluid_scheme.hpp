@@ -5,11 +5,11 @@
 /// system) or "fractional_step" (fractional_step.cpp: a pressure-correction step). Each owns its matrices,
 /// patterns and linear solvers; the model calls, per step, begin_step (a new mesh), restart (the first
 /// iterate, again for each coupling pass), iterate until converged, and end_step.
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
 #include "fluid_walls.hpp"
 #include "ghosts.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 #include "volume_correction.hpp"
 
 #include <lagfsi/fluid_element.hpp>
@@ -50,8 +50,6 @@ struct FluidParts {
   PhaseTimes& times;
 };
 
-
-
 class FluidScheme {
  public:
   virtual ~FluidScheme() = default;
@@ -89,7 +87,7 @@ class FluidScheme {
  protected:
   explicit FluidScheme(const FluidParts& f) : f_(f) {}
   FluidParts f_;
-  double tau_U_ = 0;    // the PSPG kernel's tau (0: automatic) and mass
+  double tau_U_ = 0;  // the PSPG kernel's tau (0: automatic) and mass
   bool lumped_ = true;
 };
 

@@ -12,10 +12,8 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
   constraint_model_ = constraints;
   for (size_t i = 0; i < walls.size(); ++i) {
     Params w = walls.at(i);
-    w.validate({{"name", "wall" + std::to_string(i)},
-                {"points", nullptr},
-                {"slip", false},
-                {"motion", Json::object()}});
+    w.validate(
+        {{"name", "wall" + std::to_string(i)}, {"points", nullptr}, {"slip", false}, {"motion", Json::object()}});
     Wall wall;
     wall.name = w.string("name");
     wall.polyline = w.points("points");
@@ -46,8 +44,8 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
   }
 }
 
-void FluidWalls::place_particles(const Params& walls, double h, std::vector<Vec2>& pts,
-                                 std::vector<ParticleKind>& kind, PointGrid& grid) {
+void FluidWalls::place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
+                                 PointGrid& grid) {
   double wall_particles = 0;
   for (const auto& w : walls_)
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s) wall_particles += (w.polyline[s + 1] - w.polyline[s]).norm() / h;
@@ -186,9 +184,10 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
   std::sort(constraints_.begin(), constraints_.end(), [](const WallConstraint& p, const WallConstraint& q) {
     return p.i != q.i ? p.i < q.i : p.c != q.c ? p.c < q.c : p.tangential < q.tangential;
   });
-  constraints_.erase(std::unique(constraints_.begin(), constraints_.end(),
-                                 [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
-                     constraints_.end());
+  constraints_.erase(
+      std::unique(constraints_.begin(), constraints_.end(),
+                  [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
+      constraints_.end());
 }
 
 void FluidWalls::free_contact_line(const std::vector<std::uint8_t>& free) {
@@ -288,7 +287,8 @@ void FluidWalls::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, 
   // particles at 0.25 h made the film at a dam-break toe run ahead: dam_break_floor front RMS 0.21 -> 0.50;
   // 0.5 h leaves that film alone).
   const std::vector<ParticleKind>& kind = cloud.kind();
-  const std::vector<char> held = mesh.in_element_with(cloud.n(), [&](Index i) { return kind[i] == ParticleKind::Wall; });
+  const std::vector<char> held =
+      mesh.in_element_with(cloud.n(), [&](Index i) { return kind[i] == ParticleKind::Wall; });
   const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
   Vec& x = cloud.x();
   Vec& vel = cloud.v();

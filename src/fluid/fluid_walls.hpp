@@ -14,9 +14,9 @@
 ///    divergence that the continuity equation resists: cases/studies/conservation); nodes on the wall with a
 ///    normal constraint slide freely, as in a fixed mesh;
 ///  - fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 #include "point_grid.hpp"
 
 #include <lagfsi/params.hpp>

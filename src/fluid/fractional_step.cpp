@@ -92,7 +92,7 @@ class FractionalStep final : public FluidScheme {
   ElementPattern poisson_pattern_;
   SparseMatrix poisson_, viscous_, viscous_stiffness_;
   Vec v_new_;
-  bool step_factorized_ = false;   // the step's matrices are factorized (reused by re-solves)
+  bool step_factorized_ = false;                   // the step's matrices are factorized (reused by re-solves)
   long inverted_in_step_ = 0, inverted_kept_ = 0;  // inverted elements in the last solve / in the accepted
                                                    // steps ("inverted_elements": "remesh")
 };
@@ -236,7 +236,8 @@ IterationReport FractionalStep::iterate() {
             for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]));
         }
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
-        constrain(viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; }, [&](Index i) { return mass[i] / dt; });
+        constrain(
+            viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; }, [&](Index i) { return mass[i] / dt; });
         f_.times.assembly += seconds_since(t0);
         factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
@@ -276,7 +277,9 @@ IterationReport FractionalStep::iterate() {
   }
   // Unknown pressures: connected particles off the free surface (step.fixed from FluidModel::set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
-  if (assemble) constrain(poisson_, [&](Index i) { return fixed[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
+  if (assemble)
+    constrain(
+        poisson_, [&](Index i) { return fixed[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
   for (Index i = 0; i < np; ++i)
     if (fixed[3 * i + 2]) rhs[i] = 0.0;
   f_.times.assembly += seconds_since(t0);
@@ -310,7 +313,9 @@ IterationReport FractionalStep::iterate() {
     if (implicit)
       for (Index e = 0; e < ne; ++e) {
         const auto& t = tri[e];
-        if (f_.walls.inviscid(tri[e]) || !(f_.ghosts.is_ghost(t[0]) || f_.ghosts.is_ghost(t[1]) || f_.ghosts.is_ghost(t[2]))) continue;
+        if (f_.walls.inviscid(tri[e]) ||
+            !(f_.ghosts.is_ghost(t[0]) || f_.ghosts.is_ghost(t[1]) || f_.ghosts.is_ghost(t[2])))
+          continue;
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b)
             Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
@@ -322,8 +327,7 @@ IterationReport FractionalStep::iterate() {
         continue;
       }
       const Vec2 inertia = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt;
-      ghost_force.segment<2>(2 * gi) =
-          force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
+      ghost_force.segment<2>(2 * gi) = force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
     }
   }
   if (f_.step.energy) {
@@ -372,7 +376,8 @@ IterationReport FractionalStep::iterate() {
     if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
   for (const auto& k : f_.walls.constraints()) x_new[2 * k.i + k.c] = f_.walls.constraint_position(k, f_.step.t_new);
   if (!x_new.allFinite() || !pres.allFinite() || !v_new_.allFinite())
-    throw SolverError("body '" + f_.c.name + "': non-finite solution of the fractional step at t = " + std::to_string(f_.step.t_new));
+    throw SolverError("body '" + f_.c.name +
+                      "': non-finite solution of the fractional step at t = " + std::to_string(f_.step.t_new));
 
   // An element turned inside out within the step: a particle crossed the opposite side of its element
   // (a neighbour at an impact, a wall). With "inverted_elements": "retry" (the default) the step is
@@ -391,11 +396,12 @@ IterationReport FractionalStep::iterate() {
       if (!s_.retry_inverted) continue;
       if (std::getenv("LAGFSI_DEBUG_NEWTON"))
         for (Index i : tri[e])
-          std::fprintf(stderr, "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n", int(i),
-                       int(kind[i]), int(f_.mesh.free[i]), x[2 * i], x[2 * i + 1], x_new[2 * i], x_new[2 * i + 1], v_new_[2 * i],
-                       v_new_[2 * i + 1], ustar[2 * i], ustar[2 * i + 1]);
-      throw SolverError("body '" + f_.c.name + "': element " + std::to_string(e) + " turned inside out within the step at t = " +
-                        std::to_string(f_.step.t_new));
+          std::fprintf(stderr,
+                       "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n",
+                       int(i), int(kind[i]), int(f_.mesh.free[i]), x[2 * i], x[2 * i + 1], x_new[2 * i],
+                       x_new[2 * i + 1], v_new_[2 * i], v_new_[2 * i + 1], ustar[2 * i], ustar[2 * i + 1]);
+      throw SolverError("body '" + f_.c.name + "': element " + std::to_string(e) +
+                        " turned inside out within the step at t = " + std::to_string(f_.step.t_new));
     }
   // Report: the divergence left by the correction, relative to that of the predictor (the part the
   // Laplacian stabilization does not remove).

@@ -2,9 +2,9 @@
 /// @file ghosts.hpp (private to src/fluid)
 /// The ghost particles of the fluid's InterfaceFluid side (interface.hpp): particles that follow a
 /// structure's wet boundary, join the remeshing, and take the forces the fluid exerts on the structure.
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 
 #include <array>
 #include <string>

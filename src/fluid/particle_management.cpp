@@ -69,8 +69,7 @@ RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
 meshing::PreviousDomain RemeshPipeline::advected_domain() const {
   std::vector<std::array<Vec2, 3>> triangles;
   triangles.reserve(mesh_.tri.size());
-  for (const auto& t : mesh_.tri)
-    triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
+  for (const auto& t : mesh_.tri) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
   const BoundaryChains b = boundary_chains();
   std::vector<std::array<Vec2, 2>> boundary;
   for (Index i = 0; i < cloud_.n(); ++i)
@@ -92,7 +91,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   const auto on_boundary = [&](Index i) { return chain.next[i] >= 0 || chain.prev[i] >= 0; };
 
   std::vector<char> drop(np, 0), touched(np, 0);
-  std::vector<Index> alias(np);   // a merged particle's survivor (itself otherwise)
+  std::vector<Index> alias(np);  // a merged particle's survivor (itself otherwise)
   for (Index i = 0; i < np; ++i) alias[i] = i;
   // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
   const auto walled = [&](Index i) { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); };
@@ -190,7 +189,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     double p, h;
   };
   std::vector<NewParticle> fresh;
-  std::vector<Index> split_at(np, -1);   // boundary edge from a (to chain.next[a]) split by new particle k
+  std::vector<Index> split_at(np, -1);  // boundary edge from a (to chain.next[a]) split by new particle k
   // Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
   // or landed) may sit on a boundary edge between two others: no new particle within close_fraction h of an
   // existing one.

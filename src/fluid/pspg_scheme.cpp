@@ -125,38 +125,38 @@ IterationReport PspgScheme::iterate() {
   // One parallel loop over all elements with atomic additions (no colour barriers: on a loaded 2-core
   // machine each OpenMP barrier of busy-waiting threads can cost a time slice).
 #pragma omp parallel for schedule(static) if (ne >= 2000) reduction(+ : inertia2, gravity2)
-    for (Index e = 0; e < ne; ++e) {
-      const auto& t = mesh.tri[e];
-      const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
-      Eigen::Matrix<double, 9, 1> r;
-      Eigen::Matrix<double, 9, 9> K;
-      double i2 = 0, g2 = 0;
-      if (!pspg_element(in, r, K, i2, g2)) {
-        // Turned over by a structure's boundary sliding past another prescribed particle (see
-        // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
-        if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
+  for (Index e = 0; e < ne; ++e) {
+    const auto& t = mesh.tri[e];
+    const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
+    Eigen::Matrix<double, 9, 1> r;
+    Eigen::Matrix<double, 9, 9> K;
+    double i2 = 0, g2 = 0;
+    if (!pspg_element(in, r, K, i2, g2)) {
+      // Turned over by a structure's boundary sliding past another prescribed particle (see
+      // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
+      if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
 #pragma omp critical(lagfsi_fluid_failure)
-        failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
-                  std::to_string(t[1]) + ", " + std::to_string(t[2]) + ") inverted during the step at t = " +
-                  std::to_string(step.t_new) + " (area " + std::to_string(mesh.element_area(ev.x, e)) + ")";
-        continue;
-      }
-      inertia2 += i2;
-      gravity2 += g2;
-      for (int a = 0; a < 3; ++a) {
-        for (int c = 0; c < 3; ++c) {
-#pragma omp atomic
-          R[3 * t[a] + c] += r[3 * a + c];
-        }
-        has_mass[t[a]] = 1;
-      }
-      const int* sc = pattern_.scatter(e);
-      for (int j = 0; j < 9; ++j)
-        for (int i = 0; i < 9; ++i) {
-#pragma omp atomic
-          jv[sc[j * 9 + i]] += K(i, j);
-        }
+      failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
+                ", " + std::to_string(t[2]) + ") inverted during the step at t = " + std::to_string(step.t_new) +
+                " (area " + std::to_string(mesh.element_area(ev.x, e)) + ")";
+      continue;
     }
+    inertia2 += i2;
+    gravity2 += g2;
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c < 3; ++c) {
+#pragma omp atomic
+        R[3 * t[a] + c] += r[3 * a + c];
+      }
+      has_mass[t[a]] = 1;
+    }
+    const int* sc = pattern_.scatter(e);
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 9; ++i) {
+#pragma omp atomic
+        jv[sc[j * 9 + i]] += K(i, j);
+      }
+  }
   if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
 
   // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.
@@ -188,8 +188,7 @@ IterationReport PspgScheme::iterate() {
   // residual there is the force the structure applies to the fluid).
   Vec& ghost_force = f_.ghosts.forces();
   for (size_t gi = 0; gi < f_.ghosts.count(); ++gi)
-    for (int c = 0; c < 2; ++c)
-      ghost_force[2 * gi + c] = f_.ghosts.merged(gi) ? 0.0 : -R[3 * f_.ghosts.index(gi) + c];
+    for (int c = 0; c < 2; ++c) ghost_force[2 * gi + c] = f_.ghosts.merged(gi) ? 0.0 : -R[3 * f_.ghosts.index(gi) + c];
   // The force each wall or ghost particle applies to the fluid (its prescribed momentum row's residual):
   // the boundary work of the energy balance; that of each wall constraint also tells whether the wall
   // pushes or pulls (FluidWalls::release_pulled).
@@ -206,8 +205,10 @@ IterationReport PspgScheme::iterate() {
   }
   double rm2 = 0;
   for (Index i = 0; i < 3 * np; ++i) {
-    if (fixed[i]) R[i] = 0.0;
-    else if (i % 3 != 2) rm2 += R[i] * R[i];
+    if (fixed[i])
+      R[i] = 0.0;
+    else if (i % 3 != 2)
+      rm2 += R[i] * R[i];
   }
   IterationReport rep;
   rep.residual = std::sqrt(rm2);

@@ -25,7 +25,7 @@ ParticleCloud::Particle fluid_particle(const Vec2& x, const Vec2& v, const Vec2&
 }  // namespace
 
 void RemeshPipeline::set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const std::vector<Vec2>& pts) {
-  domain_lo_ = wall_lo;   // the walls' box (empty without walls), enlarged to every particle
+  domain_lo_ = wall_lo;  // the walls' box (empty without walls), enlarged to every particle
   domain_hi_ = wall_hi;
   for (const auto& q : pts) {
     domain_lo_ = domain_lo_.cwiseMin(q);
@@ -257,7 +257,8 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
   }
   if (!any) return false;
   if (fluid_left == 0)
-    throw SolverError("body '" + c_.name + "': all fluid particles left the domain box by t = " + std::to_string(t_new));
+    throw SolverError("body '" + c_.name +
+                      "': all fluid particles left the domain box by t = " + std::to_string(t_new));
   // The fluid that left is gone: its share of the last mesh (A_e / 3 per dropped particle of each element)
   // leaves the reference area too, so that the volume correction does not make it up elsewhere.
   for (Index e = 0; e < mesh_.num_elements(); ++e)

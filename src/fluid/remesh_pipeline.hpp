@@ -9,11 +9,11 @@
 ///    particles are managed on it (merged, split, inserted) before one Delaunay triangulation;
 /// what the remesh changed (area, kinetic energy) is measured, and the "surface" volume correction moves the
 /// free surface.
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_energy.hpp"
 #include "fluid_mesh.hpp"
 #include "ghosts.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 #include "volume_correction.hpp"
 
 #include <lagfsi/meshing/previous_domain.hpp>
@@ -110,7 +110,6 @@ class RemeshPipeline {
   /// Appends a fluid particle with the given state (an inserted particle: X0 = x).
   void append_particle(const Vec2& x, const Vec2& v, const Vec2& a, double p, double h);
 
-
   const FluidConstants& c_;
   ParticleCloud& cloud_;
   FluidMesh& mesh_;
@@ -118,7 +117,7 @@ class RemeshPipeline {
   Settings s_;
   Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
-  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
+  std::vector<Index> renumber_;                        // the last drop_particles: old index -> new index, -1 if dropped
   // Remeshing's effect per step (log.csv) and over the run (summary.json).
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;

@@ -29,12 +29,12 @@ void VolumeCorrection::restore_area() {
   const std::vector<char> at_wall = mesh_.in_element_with(np, [&](Index i) { return kind[i] != ParticleKind::Fluid; });
   for (Index i = 0; i < np; ++i)
     movable[i] = movable[i] && kind[i] == ParticleKind::Fluid && mesh_.free[i] && !at_wall[i];
-  const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {   // twice the signed area
+  const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {  // twice the signed area
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };
   Vec g(2 * np);
-  std::vector<double> lumped(np);   // lumped areas (the particles' masses / rho): the potential energy
-                                    // the correction moves is counted (probe volume_correction_energy)
+  std::vector<double> lumped(np);  // lumped areas (the particles' masses / rho): the potential energy
+                                   // the correction moves is counted (probe volume_correction_energy)
   for (int pass = 0; pass < 2; ++pass) {
     double area = 0;
     g.setZero();
@@ -101,7 +101,9 @@ void VolumeCorrection::set_remeshed(double area) {
 }
 
 Json VolumeCorrection::summary() const {
-  return {{"initial", area_initial_}, {"final", area_end_}, {"left_domain", area_left_},
+  return {{"initial", area_initial_},
+          {"final", area_end_},
+          {"left_domain", area_left_},
           {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}};
 }
 

@@ -3,9 +3,9 @@
 /// The fluid's area bookkeeping (initial, reference, after remeshing, at the end of the step, left through
 /// the domain box) and the two volume corrections: "surface" (restore_area: a geometric move of the free
 /// surface after remeshing) and "source" (c_vol: a uniform source in the continuity equation).
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
-#include <lagfsi/fluid/particle_cloud.hpp>
 
 #include <lagfsi/params.hpp>
 

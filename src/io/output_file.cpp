@@ -2,10 +2,10 @@
 // (std::ofstream reports a failed flush without a reason, or not at all when its destructor flushes).
 #include <lagfsi/output_file.hpp>
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
 
 namespace lagfsi {
 

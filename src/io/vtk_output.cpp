@@ -75,16 +75,14 @@ vtkSmartPointer<vtkPoints> make_points(const std::vector<Vec2>& points) {
 
 /// A vtkDoubleArray holding `field` for `n` points or cells (2-component fields padded to 3); `caller`
 /// prefixes error messages.
-vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, const char* where,
-                                           const char* caller) {
+vtkSmartPointer<vtkDoubleArray> make_array(const Field& field, vtkIdType n, const char* where, const char* caller) {
   if (field.n_components < 1)
     throw std::invalid_argument(std::string(caller) + ": field '" + field.name + "' has " +
                                 std::to_string(field.n_components) + " components");
   const auto nc = static_cast<vtkIdType>(field.n_components);
   if (static_cast<vtkIdType>(field.values.size()) != nc * n)
     throw std::invalid_argument(std::string(caller) + ": " + where + " field '" + field.name + "' has " +
-                                std::to_string(field.values.size()) + " values, expected " +
-                                std::to_string(nc * n));
+                                std::to_string(field.values.size()) + " values, expected " + std::to_string(nc * n));
   const vtkIdType out_nc = nc == 2 ? 3 : nc;
   auto array = vtkSmartPointer<vtkDoubleArray>::New();
   array->SetName(field.name.c_str());
@@ -139,10 +137,14 @@ void fill_vertex_cells(vtkIdType n, vtkIdTypeArray* offsets, vtkIdTypeArray* con
 
 int vtk_cell_type(int order) {
   switch (order) {
-    case 1: return VTK_TRIANGLE;
-    case 2: return VTK_QUADRATIC_TRIANGLE;
-    case 3: return VTK_LAGRANGE_TRIANGLE;
-    default: throw std::invalid_argument("write_vtu: unsupported triangle order " + std::to_string(order));
+    case 1:
+      return VTK_TRIANGLE;
+    case 2:
+      return VTK_QUADRATIC_TRIANGLE;
+    case 3:
+      return VTK_LAGRANGE_TRIANGLE;
+    default:
+      throw std::invalid_argument("write_vtu: unsupported triangle order " + std::to_string(order));
   }
 }
 
@@ -151,12 +153,23 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -202,8 +215,7 @@ void write_vtu(const fs::path& path, const VtuData& data) {
   int cell_type = VTK_VERTEX;
   vtkIdType nc = 0;
   if (ne > 0) {
-    if (data.vertices_as_cells)
-      throw std::invalid_argument("write_vtu: vertices_as_cells needs a mesh without cells");
+    if (data.vertices_as_cells) throw std::invalid_argument("write_vtu: vertices_as_cells needs a mesh without cells");
     const TriMesh& mesh = *data.mesh;
     cell_type = vtk_cell_type(mesh.order);
     const int npe = mesh.nodes_per_element();

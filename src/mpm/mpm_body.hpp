@@ -58,7 +58,8 @@ struct MpmBody {
   }
   /// "body 'NAME': particle P WHAT at t = T".
   SolverError particle_error(Index p, const std::string& what) const {
-    return SolverError("body '" + name + "': particle " + std::to_string(p) + " " + what + " at t = " + std::to_string(t));
+    return SolverError("body '" + name + "': particle " + std::to_string(p) + " " + what +
+                       " at t = " + std::to_string(t));
   }
 };
 

@@ -100,8 +100,10 @@ void GridBoundaries::step_free_fields(double t, double dt, const MpmMaterial& ma
       ff.v[k] += dt * f[k] / ff.mass[k];
     }
     for (int c = 0; c < 2; ++c) {  // the base moves with the grid's base
-      if (ff.base[c]) ff.v[0][c] = ff.base[c]->velocity(t + dt);
-      else if (ff.base_fixed[c]) ff.v[0][c] = 0.0;
+      if (ff.base[c])
+        ff.v[0][c] = ff.base[c]->velocity(t + dt);
+      else if (ff.base_fixed[c])
+        ff.v[0][c] = 0.0;
     }
     for (size_t k = 0; k < m; ++k) ff.u[k] += dt * ff.v[k];
   }
@@ -127,7 +129,10 @@ std::vector<ParticleLoad> read_particle_loads(Params loads, const std::vector<Ve
   std::vector<ParticleLoad> out;
   for (size_t i = 0; i < loads.size(); ++i) {
     Params l = loads.at(i);
-    l.validate({{"type", "particle_force"}, {"select", nullptr}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}});
+    l.validate({{"type", "particle_force"},
+                {"select", nullptr},
+                {"value", nullptr},
+                {"function", Json{{"type", "constant"}}}});
     l.choice("type", {"particle_force"});
     ParticleLoad pl;
     pl.particles = select_nodes(l.at("select"), reference_positions);
@@ -174,7 +179,8 @@ FreeField read_free_field(Params a, const std::vector<Index>& sel, const Vec2& n
   const double h = body.grid.h;
   const Particles& P = body.particles;
   const double rho = body.density;
-  if (std::abs(nrm.y()) > 1e-12) a.fail("normal", "a free-field boundary is lateral: its outward normal is [1, 0] or [-1, 0]");
+  if (std::abs(nrm.y()) > 1e-12)
+    a.fail("normal", "a free-field boundary is lateral: its outward normal is [1, 0] or [-1, 0]");
   FreeField ff;
   ff.normal = nrm;
   ff.start = a.non_negative("start");
@@ -196,7 +202,8 @@ FreeField read_free_field(Params a, const std::vector<Index>& sel, const Vec2& n
     if (y > top + 1e-9 * h) break;
     ff.nodes.push_back(col[k]);
     ff.sv.push_back(rho * gy * (top - y));
-    if (k + 1 < col.size() && nodes[col[k + 1]].y() <= top + 1e-9 * h) ff.le.push_back(h);
+    if (k + 1 < col.size() && nodes[col[k + 1]].y() <= top + 1e-9 * h)
+      ff.le.push_back(h);
     else if (top - y > 1e-9 * h) {  // a partial last element up to the top
       ff.le.push_back(top - y);
       ff.nodes.push_back(col[k + 1 < col.size() ? k + 1 : k]);
@@ -224,7 +231,8 @@ FreeField read_free_field(Params a, const std::vector<Index>& sel, const Vec2& n
     if (node == ff.nodes[0]) ff.base_fixed[comp] = true;
   for (const auto& mv : bounds.moving)
     for (size_t k = 1; k < m; ++k)
-      if (mv.node == ff.nodes[k]) a.fail("select", "a free-field node above the base must not have a prescribed motion");
+      if (mv.node == ff.nodes[k])
+        a.fail("select", "a free-field node above the base must not have a prescribed motion");
   return ff;
 }
 

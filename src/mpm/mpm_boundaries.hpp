@@ -52,12 +52,12 @@ struct Dashpot {
 /// boundary beyond the far field's geostatic stress). A column of a uniform layer moves as the 1D site
 /// response, so the boundary neither reflects the outgoing waves nor disturbs the incoming ones.
 struct FreeField {
-  std::vector<Index> nodes;      // boundary grid nodes from the base up (the column's nodes)
-  std::vector<double> length;    // tributary boundary length of each node
-  std::vector<double> le;        // column element lengths (node k to k+1; the last may stop at the top)
-  std::vector<double> mass;      // column node masses per unit width
-  std::vector<double> sv;        // geostatic vertical stress at the nodes (negative below the top)
-  std::vector<Vec2> u, v;        // column displacements and velocities (dynamic part)
+  std::vector<Index> nodes;    // boundary grid nodes from the base up (the column's nodes)
+  std::vector<double> length;  // tributary boundary length of each node
+  std::vector<double> le;      // column element lengths (node k to k+1; the last may stop at the top)
+  std::vector<double> mass;    // column node masses per unit width
+  std::vector<double> sv;      // geostatic vertical stress at the nodes (negative below the top)
+  std::vector<Vec2> u, v;      // column displacements and velocities (dynamic part)
   std::array<const PrescribedMotion*, 2> base{nullptr, nullptr};  // base motion per component
   std::array<bool, 2> base_fixed{false, false};
   Vec2 normal;                   // outward (+-1, 0)
@@ -78,7 +78,7 @@ struct ParticleLoad {
 
 /// The conditions on the grid nodes of one body.
 struct GridBoundaries {
-  std::vector<FixedComponent> fixed;    // grid node, component
+  std::vector<FixedComponent> fixed;  // grid node, component
   std::vector<PrescribedMotion> moving;
   std::vector<Dashpot> dashpots;
   std::vector<FreeField> free_fields;

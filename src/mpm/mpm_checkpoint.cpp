@@ -42,7 +42,8 @@ void MpmModel::serialize(StateArchive& ar) {
   ar.section("free fields");
   std::uint64_t nf = b.boundaries.free_fields.size();
   ar.io(nf);
-  if (ar.loading() && nf != b.boundaries.free_fields.size()) throw CheckpointError("another number of free-field columns");
+  if (ar.loading() && nf != b.boundaries.free_fields.size())
+    throw CheckpointError("another number of free-field columns");
   for (FreeField& f : b.boundaries.free_fields) ar.io(f.u, f.v, f.reaction);
   writer_->serialize(ar, b.name);
 }

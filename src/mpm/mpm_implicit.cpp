@@ -40,7 +40,8 @@ void Implicit::step(MpmBody& b, double t_new, double dt) {
   const Index np = static_cast<Index>(P.size());
   const Index nn = static_cast<Index>(grid.mass.size());
   b.locate_particles();
-  Vec mass = Vec::Zero(nn), mv = Vec::Zero(2 * nn), ma = Vec::Zero(2 * nn), fext = Vec::Zero(2 * nn), fint0 = Vec::Zero(2 * nn);
+  Vec mass = Vec::Zero(nn), mv = Vec::Zero(2 * nn), ma = Vec::Zero(2 * nn), fext = Vec::Zero(2 * nn),
+      fint0 = Vec::Zero(2 * nn);
   const Vec2 g = b.gravity();
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<size_t>(np) * 18 * 18);

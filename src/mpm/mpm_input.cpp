@@ -75,7 +75,8 @@ void fill_regions(Params regions, const Grid& grid, int ppc, double rho, Particl
         std::ostringstream os;
         os << "reaches (" << poly[c].x() << ", " << poly[c].y() << "), outside the grid (" << lo.x() << ".." << hi.x()
            << " x " << lo.y() << ".." << hi.y() << "): the region would be cut";
-        reg.fail(reg.string("type") == "rectangle" ? (c == 0 ? "origin" : "size") : "points/" + std::to_string(c), os.str());
+        reg.fail(reg.string("type") == "rectangle" ? (c == 0 ? "origin" : "size") : "points/" + std::to_string(c),
+                 os.str());
       }
     const size_t before = P.size();
     for (int j = 0; j < grid.ny * ppc; ++j)
@@ -107,8 +108,8 @@ void read_initial_state(const Vec2& v0, Params is, Particles& P) {
       P.v[q][ax] = A * std::exp(-r * r);
     }
   } else if (ist == "axial_mode") {
-    is.validate({{"type", "axial_mode"}, {"amplitude", nullptr}, {"wavenumber", nullptr}, {"start", 0.0},
-                 {"axis", "x"}});
+    is.validate(
+        {{"type", "axial_mode"}, {"amplitude", nullptr}, {"wavenumber", nullptr}, {"start", 0.0}, {"axis", "x"}});
     const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
     const double A = is.number("amplitude"), k = is.number("wavenumber"), x0 = is.number("start");
     for (size_t p = 0; p < P.size(); ++p) {
@@ -140,8 +141,11 @@ double read_initial_stress(Params st, const MpmMaterial& mat, double gy, Particl
 
 /// Saturated soil: the material's density is the grains'; the particle carries water (porosity n).
 void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
-  tp.validate({{"porosity", nullptr}, {"water_density", 1000.0}, {"water_bulk_modulus", 2.2e9},
-               {"hydraulic_conductivity", nullptr}, {"initial_pore_pressure", Json{{"type", "zero"}}}});
+  tp.validate({{"porosity", nullptr},
+               {"water_density", 1000.0},
+               {"water_bulk_modulus", 2.2e9},
+               {"hydraulic_conductivity", nullptr},
+               {"initial_pore_pressure", Json{{"type", "zero"}}}});
   body.two_phase = true;
   const double n0 = tp.number("porosity");
   if (!(n0 > 0 && n0 < 1)) tp.fail("porosity", "must lie in (0, 1)");
@@ -149,7 +153,8 @@ void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
   w.density = tp.positive("water_density");
   w.bulk_modulus = tp.positive("water_bulk_modulus");
   w.conductivity = tp.positive("hydraulic_conductivity");
-  if (body.material->plastic() || !musl) tp.fail("two-phase bodies are linear elastic with the MUSL update in this version");
+  if (body.material->plastic() || !musl)
+    tp.fail("two-phase bodies are linear elastic with the MUSL update in this version");
   Params ip = tp.at("initial_pore_pressure");
   if (!ip.has("type")) ip.fail("type", "required key is missing");
   double level = 0;
@@ -172,11 +177,13 @@ void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
 
 /// The explicit scheme of a body ("update" for a single-phase one); a stiff, light or nearly water-filled body
 /// could ask for billions of sub-steps cfl h / c (mpm_scheme.cpp) and the run would look hung: an error.
-std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& update, const MpmBody& B, const CaseContext& ctx) {
+std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& update, const MpmBody& B,
+                                                const CaseContext& ctx) {
   std::unique_ptr<ExplicitScheme> scheme =
       B.two_phase ? make_two_phase_scheme()
-                  : make_explicit_scheme(update == "usl" ? StressUpdate::Usl
-                                         : update == "usf" ? StressUpdate::Usf : StressUpdate::Musl,
+                  : make_explicit_scheme(update == "usl"   ? StressUpdate::Usl
+                                         : update == "usf" ? StressUpdate::Usf
+                                                           : StressUpdate::Musl,
                                          make_time_integrator(Params(Json{{"type", "central_difference"}}, b.file(),
                                                                      b.child_path("time_integration"))));
   const Grid& grid = B.grid;
@@ -186,8 +193,8 @@ std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& upd
   const double work = substeps * (static_cast<double>(B.particles.size()) + (grid.nx + 1.0) * (grid.ny + 1.0));
   if (!(substeps <= 1e8) || !(work <= 1e11)) {
     std::ostringstream os;
-    os << "the explicit scheme's stable step cfl h / c (wave speed c = " << c << " m/s, cell " << grid.h
-       << " m) needs " << substeps << " substeps over the run (" << work
+    os << "the explicit scheme's stable step cfl h / c (wave speed c = " << c << " m/s, cell " << grid.h << " m) needs "
+       << substeps << " substeps over the run (" << work
        << " particle and grid-node updates; the limits are 1e8 and 1e11): check the density, stiffness"
        << (B.two_phase ? ", porosity" : "") << " and cell size";
     b.fail("material", os.str());
@@ -276,7 +283,8 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx), body_(std::mak
   const BoundaryBody bb{grid, P, ppc, mat.density(), B.gravity_on ? ctx.gravity.y() : 0.0, B.two_phase};
   read_absorbing_boundaries(b.at("absorbing_boundaries"), nodes, bb, B.boundaries);
   if (implicit && (!B.boundaries.moving.empty() || !B.boundaries.dashpots.empty()))
-    b.fail("time_integration", "implicit MPM bodies take fixed nodes only (no prescribed motion or absorbing boundaries) in this version");
+    b.fail("time_integration",
+           "implicit MPM bodies take fixed nodes only (no prescribed motion or absorbing boundaries) in this version");
   grid.allocate();
   writer_ = std::make_unique<MpmWriter>(ctx.out_dir, particles_csv, grid_output);
 }

@@ -8,8 +8,7 @@
 
 namespace lagfsi::mpm {
 
-MpmMaterial::MpmMaterial(double young, double poisson, double density)
-    : E_(young), nu_(poisson), rho_(density) {
+MpmMaterial::MpmMaterial(double young, double poisson, double density) : E_(young), nu_(poisson), rho_(density) {
   mu_ = E_ / (2 * (1 + nu_));
   lambda_ = E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_));
 }
@@ -27,8 +26,13 @@ std::unique_ptr<MpmMaterial> make_mpm_material(Params mat) {
   const bool plastic = mat.choice("type", {"linear_elastic", "mohr_coulomb"}) == "mohr_coulomb";
   double cohesion = 0, phi = 0, psi = 0, tension_cutoff = -1;
   if (plastic) {
-    mat.validate({{"type", "mohr_coulomb"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
-                  {"cohesion", 0.0}, {"friction_angle", nullptr}, {"dilatancy_angle", 0.0},
+    mat.validate({{"type", "mohr_coulomb"},
+                  {"young", nullptr},
+                  {"poisson", 0.0},
+                  {"density", nullptr},
+                  {"cohesion", 0.0},
+                  {"friction_angle", nullptr},
+                  {"dilatancy_angle", 0.0},
                   {"tension_cutoff", -1.0}});
     cohesion = mat.non_negative("cohesion");
     phi = mat.number("friction_angle");
@@ -38,7 +42,8 @@ std::unique_ptr<MpmMaterial> make_mpm_material(Params mat) {
     const double apex = cohesion * std::cos(phi * M_PI / 180) / std::sin(phi * M_PI / 180);
     if (mat.number("tension_cutoff") >= 0) {  // -1: at the apex
       tension_cutoff = mat.number("tension_cutoff");
-      if (tension_cutoff > apex) mat.fail("tension_cutoff", "must not exceed c cot(phi) = " + std::to_string(apex) + " Pa");
+      if (tension_cutoff > apex)
+        mat.fail("tension_cutoff", "must not exceed c cot(phi) = " + std::to_string(apex) + " Pa");
     }
   } else {
     mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});

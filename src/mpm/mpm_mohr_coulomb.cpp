@@ -59,8 +59,10 @@ double MohrCoulomb::return_mapping(Stress& s) const {
   if (yields && !(out[0] >= out[1] && out[1] >= out[2])) {
     // The return left the sextant: two planes are active (an edge), s1 = s2 or s2 = s3 at the end.
     Vec3 m2, n2;
-    if (out[1] > out[0]) plane(1, 2, m2, n2);  // edge s1 = s2: planes (1, 3) and (2, 3)
-    else plane(0, 1, m2, n2);                  // edge s2 = s3: planes (1, 3) and (1, 2)
+    if (out[1] > out[0])
+      plane(1, 2, m2, n2);  // edge s1 = s2: planes (1, 3) and (2, 3)
+    else
+      plane(0, 1, m2, n2);  // edge s2 = s3: planes (1, 3) and (1, 2)
     const Vec3 Dn2 = D(n2);
     const double f2 = m2.dot(sig) - k;
     const double a11 = m1.dot(Dn1), a12 = m1.dot(Dn2), a21 = m2.dot(Dn1), a22 = m2.dot(Dn2);

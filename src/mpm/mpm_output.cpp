@@ -56,9 +56,10 @@ void MpmWriter::write(double t, const MpmBody& b) {
     grid_series_->write(t, g);
   }
   if (particles_csv_) {
-    std::ostringstream o;   // written through write_file_atomic: every write checked
+    std::ostringstream o;  // written through write_file_atomic: every write checked
     {
-      o << "# " << name << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume,pore_pressure\n" << std::setprecision(12);
+      o << "# " << name << " particles at t = " << t << "\nX,Y,x,y,vx,vy,sxx,syy,sxy,szz,volume,pore_pressure\n"
+        << std::setprecision(12);
       for (size_t p = 0; p < P.size(); ++p) {
         const auto& sg = P.stress[p];
         o << P.X[p].x() << "," << P.X[p].y() << "," << P.x[p].x() << "," << P.x[p].y() << "," << P.v[p].x() << ","

@@ -45,8 +45,10 @@ std::vector<double> MpmProbe::sample() const {
   if (quantity_ == "front" || quantity_ == "height") {
     double best = -std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < P.size(); ++k) {
-      if (quantity_ == "front") best = std::max(best, P.x[k].x());
-      else if (std::abs(P.x[k].x() - x_) <= band_) best = std::max(best, P.x[k].y());
+      if (quantity_ == "front")
+        best = std::max(best, P.x[k].x());
+      else if (std::abs(P.x[k].x() - x_) <= band_)
+        best = std::max(best, P.x[k].y());
     }
     return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
   }
@@ -86,7 +88,8 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
     return std::make_unique<MpmProbe>(*this, p.string("name"), "front", -1);
   }
   if (t == "height") {  // the largest y of the particles within `band` of the vertical line x
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h / B.shape.particles_per_cell}});
+    p.validate(
+        {{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h / B.shape.particles_per_cell}});
     const double x = p.number("x"), x0 = grid.origin.x(), x1 = grid.origin.x() + grid.nx * h;
     if (!(x >= x0 && x <= x1)) {  // outside the grid no particle can be: nan at every step
       std::ostringstream os;
@@ -104,9 +107,9 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   }
   // The particle nearest to a reference position.
   p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"quantity", "displacement_y"}});
-  const std::string q = p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y",
-                                              "stress_xx", "stress_yy", "stress_xy", "pore_pressure",
-                                              "acceleration_x", "acceleration_y"});
+  const std::string q =
+      p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y", "stress_xx", "stress_yy",
+                            "stress_xy", "pore_pressure", "acceleration_x", "acceleration_y"});
   const Vec2 at = p.vec2("at");
   Index best = 0;
   for (size_t k = 1; k < P.size(); ++k)

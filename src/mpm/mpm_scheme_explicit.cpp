@@ -53,8 +53,8 @@ class ExplicitSinglePhase final : public ExplicitScheme {
 
   StressUpdate update_;
   std::unique_ptr<TimeIntegrator> integrator_;  // central difference: the grid's velocity update
-  ScatterBuffers buffers_;  // per-thread grid copies of the scatter
-  KinematicState grid_state_;  // the sub-step's grid dofs (2 per node; scratch, reset every sub-step)
+  ScatterBuffers buffers_;                      // per-thread grid copies of the scatter
+  KinematicState grid_state_;                   // the sub-step's grid dofs (2 per node; scratch, reset every sub-step)
   Vec no_inverse_mass_, end_force_;  // the end force is not formed (zero inverse mass): see the file's header
 };
 

@@ -100,8 +100,8 @@ void velocities_from_momentum(Grid& grid) {
     grid.velocity[i] = grid.mass[i] > 0 ? Vec2(grid.momentum[i] / grid.mass[i]) : Vec2::Zero();
 }
 
-double grid_to_particles(const Grid& grid, const std::vector<Support>& support, double dt, double flip,
-                         const Vec2& g, Particles& P) {
+double grid_to_particles(const Grid& grid, const std::vector<Support>& support, double dt, double flip, const Vec2& g,
+                         Particles& P) {
   // Grid to particles: FLIP velocity, positions with the grid velocity.
   const Index np = static_cast<Index>(P.size());
   double gw = 0;

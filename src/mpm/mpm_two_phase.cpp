@@ -83,7 +83,8 @@ void TwoPhase::substep(MpmBody& b, double dt) {
       G.solid_momentum[I] += N * (1 - n) * ms * P.v[q];
       G.water_momentum[I] += N * n * mw * P.water_velocity[q];
       const double sxx = sg[0] + pw, syy = sg[1] + pw;  // total stress
-      G.solid_force[I] += N * ((1 - n) * ms + n * mw) * g - V * Vec2(sxx * d.x() + sg[2] * d.y(), sg[2] * d.x() + syy * d.y());
+      G.solid_force[I] +=
+          N * ((1 - n) * ms + n * mw) * g - V * Vec2(sxx * d.x() + sg[2] * d.y(), sg[2] * d.x() + syy * d.y());
       G.water_force[I] += N * mw * g - V * pw * d;
     }
   }

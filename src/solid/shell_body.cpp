@@ -34,8 +34,8 @@ ShellBody::ShellBody(int order, std::vector<Vec2> midline, const ShellSection& s
   if (order_ < 1 || order_ > 3) throw std::invalid_argument("shell elements must be of order 1, 2 or 3");
   const Index n = static_cast<Index>(mid_.size());
   if (n < order_ + 1 || (n - 1) % order_ != 0)
-    throw std::invalid_argument("a shell of order " + std::to_string(order_) + " needs order * elements + 1 nodes, got " +
-                                std::to_string(n));
+    throw std::invalid_argument("a shell of order " + std::to_string(order_) +
+                                " needs order * elements + 1 nodes, got " + std::to_string(n));
   if (!(sec_.thickness > 0.0)) throw std::invalid_argument("shell thickness must be positive");
   if (!(sec_.width > 0.0)) throw std::invalid_argument("shell width must be positive");
   if (!(sec_.young > 0.0) || !(sec_.density > 0.0)) throw std::invalid_argument("young and density must be positive");
@@ -59,7 +59,8 @@ ShellBody::ShellBody(int order, std::vector<Vec2> midline, const ShellSection& s
     }
   normal_.resize(n);
   for (Index a = 0; a < n; ++a) {
-    if (!(tangent[a].norm() > 1e-6)) throw std::invalid_argument("shell folds back on itself at node " + std::to_string(a));
+    if (!(tangent[a].norm() > 1e-6))
+      throw std::invalid_argument("shell folds back on itself at node " + std::to_string(a));
     normal_[a] = perp(tangent[a].normalized());
   }
   X_.resize(2 * num_nodes());
@@ -215,9 +216,12 @@ double ShellBody::assemble(const Vec& x, Vec* f, SparseMatrix* K) const {
 double ShellBody::internal_force(const Vec& x, Vec& f, SparseMatrix* K) const {
   if (x.size() != num_dofs()) throw std::invalid_argument("position vector has the wrong size");
   switch (order_) {
-    case 1: return assemble<4>(x, &f, K);
-    case 2: return assemble<6>(x, &f, K);
-    default: return assemble<8>(x, &f, K);
+    case 1:
+      return assemble<4>(x, &f, K);
+    case 2:
+      return assemble<6>(x, &f, K);
+    default:
+      return assemble<8>(x, &f, K);
   }
 }
 
@@ -359,8 +363,8 @@ void ShellBody::write_output(PvdSeries& series, double t, const KinematicState& 
   }
   d.lines.push_back(line);
   const Resultants r = resultants(st.x);
-  d.point_fields = {u, v, g, th, rot, {"axial_force", 1, r.axial}, {"shear_force", 1, r.shear},
-                    {"bending_moment", 1, r.moment}};
+  d.point_fields = {
+      u, v, g, th, rot, {"axial_force", 1, r.axial}, {"shear_force", 1, r.shear}, {"bending_moment", 1, r.moment}};
   series.write(t, d);
 }
 

@@ -74,7 +74,8 @@ void SolidBody::build_mass() {
     for (size_t q = 0; q < rule.w.size(); ++q) {
       const Mat2 A0 = Xe.transpose() * rule.dN[q];
       const double detA0 = A0.determinant();
-      if (!(detA0 > 0.0)) throw std::invalid_argument("element " + std::to_string(e) + " has non-positive area or is clockwise");
+      if (!(detA0 > 0.0))
+        throw std::invalid_argument("element " + std::to_string(e) + " has non-positive area or is clockwise");
       Me += rule.N[q] * rule.N[q].transpose() * (rho * rule.w[q] * detA0 * thickness_);
     }
     assembly_.add_per_component(e, Me, val);
@@ -152,18 +153,24 @@ double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_forc
 double SolidBody::internal_force(const Vec& x, Vec& f, SparseMatrix* K) const {
   if (x.size() != num_dofs()) throw std::invalid_argument("position vector has the wrong size");
   switch (mesh_.order) {
-    case 1: return assemble<3>(x, f, K, true);
-    case 2: return assemble<6>(x, f, K, true);
-    default: return assemble<10>(x, f, K, true);
+    case 1:
+      return assemble<3>(x, f, K, true);
+    case 2:
+      return assemble<6>(x, f, K, true);
+    default:
+      return assemble<10>(x, f, K, true);
   }
 }
 
 double SolidBody::strain_energy(const Vec& x) const {
   Vec dummy;
   switch (mesh_.order) {
-    case 1: return assemble<3>(x, dummy, nullptr, false);
-    case 2: return assemble<6>(x, dummy, nullptr, false);
-    default: return assemble<10>(x, dummy, nullptr, false);
+    case 1:
+      return assemble<3>(x, dummy, nullptr, false);
+    case 2:
+      return assemble<6>(x, dummy, nullptr, false);
+    default:
+      return assemble<10>(x, dummy, nullptr, false);
   }
 }
 
@@ -227,8 +234,8 @@ void SolidBody::write_output(PvdSeries& series, double t, const KinematicState& 
     }
   }
   auto s = nodal_stress(st.x);
-  d.point_fields = {u, v, a, {"cauchy_stress", 4, s.cauchy}, {"von_mises", 1, s.von_mises},
-                    {"green_strain", 3, s.green}};
+  d.point_fields = {
+      u, v, a, {"cauchy_stress", 4, s.cauchy}, {"von_mises", 1, s.von_mises}, {"green_strain", 3, s.green}};
   series.write(t, d);
 }
 

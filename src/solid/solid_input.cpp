@@ -65,8 +65,8 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   name_ = b.identifier("name");
 
   Params mat = b.at("material");
-  mat.validate({{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr},
-                {"hypothesis", "plane_strain"}});
+  mat.validate(
+      {{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}, {"hypothesis", "plane_strain"}});
   const double E = mat.positive("young"), nu = mat.number("poisson"), rho = mat.positive("density");
   if (!(nu > -1.0 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
   const std::string hyp_name = mat.choice("hypothesis", {"plane_strain", "plane_stress"});
@@ -129,8 +129,9 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   for (size_t i = 0; i < bcs.size(); ++i) {
     Params bc = bcs.at(i);
     if (!bc.json().is_object() || !bc.has("type")) bc.fail("type", "required key is missing");
-    const std::string t = shell ? bc.choice("type", {"fixed", "pinned", "prescribed_displacement", "prescribed_velocity"})
-                                : bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
+    const std::string t = shell
+                              ? bc.choice("type", {"fixed", "pinned", "prescribed_displacement", "prescribed_velocity"})
+                              : bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
     Json bdef{{"type", t}, {"select", nullptr}, {"components", "xy"}};
     if (t != "fixed" && t != "pinned") {
       bdef["value"] = nullptr;
@@ -167,8 +168,10 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   // singular tangent would fail at the first Newton step with a less telling message.
   const auto held = std::count(fixed_mask_.begin(), fixed_mask_.end(), 1);
   if (is_static_ && held < 3)
-    bcs.fail("a static analysis needs boundary conditions that hold the body (at least 3 fixed components; "
-             "this body has " + std::to_string(held) + ")");
+    bcs.fail(
+        "a static analysis needs boundary conditions that hold the body (at least 3 fixed components; "
+        "this body has " +
+        std::to_string(held) + ")");
 
   // Loads: point loads (value split equally over the selected stations), tractions and pressures on
   // boundary edges (all of whose points are selected), body forces.

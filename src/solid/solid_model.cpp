@@ -69,8 +69,7 @@ void SolidModel::finalize_step() {
     f_iface_old_ = f_iface_;
   }
   x_aug_prev_.resize(0);
-  if (!is_static_ && (damp_mass_ > 0 || damp_stiff_ > 0))
-  {
+  if (!is_static_ && (damp_mass_ > 0 || damp_stiff_ > 0)) {
     // Newmark's discrete dissipation: dt v_mid^T C v_mid with v_mid = (v_n + v_{n+1})/2 (exact balance
     // for linear problems; the trapezoid of v^T C v would count high modes that flip sign every step).
     const Vec vmid = 0.5 * (old_state_.v + state_.v);

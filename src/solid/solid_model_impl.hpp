@@ -59,7 +59,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   void initialize() override;
   void predict(double t_new, double dt) override;
   IterationReport solve_iteration() override;
-  IterationReport newton_iteration();   // solve_iteration without the body's name on its errors
+  IterationReport newton_iteration();  // solve_iteration without the body's name on its errors
   void finalize_step() override;
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
@@ -72,9 +72,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   void restart_step() override;
   void set_augmented_mass(double factor) override { aug_factor_ = factor; }
   void interface_kinematics(const std::vector<Index>& nodes, const Vec& x, Vec& v, Vec& a) const override;
-  Vec interface_positions(const std::vector<Index>& points) const override {
-    return body_->surface_values(points, x_);
-  }
+  Vec interface_positions(const std::vector<Index>& points) const override { return body_->surface_values(points, x_); }
   Vec interface_positions_old(const std::vector<Index>& points) const override {
     return body_->surface_values(points, state_.x);
   }
@@ -112,14 +110,14 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   std::unique_ptr<LinearSolver> solver_;
   std::string solver_type_;
   double damp_mass_ = 0, damp_stiff_ = 0;
-  SparseMatrix K0_;           // initial tangent (stiffness-proportional damping)
+  SparseMatrix K0_;  // initial tangent (stiffness-proportional damping)
   std::vector<Load> loads_;
   std::vector<Prescribed> prescribed_;
   std::vector<char> fixed_mask_;
-  double length_ = 1;         // body size, for the position tolerance
+  double length_ = 1;  // body size, for the position tolerance
 
   KinematicState state_, old_state_;
-  Vec x_;                     // current iterate of x_{n+1}
+  Vec x_;  // current iterate of x_{n+1}
   double t_new_ = 0, dt_ = 0;
   double last_increment_ = 0;  // |dx| of the last correction of this step (inf before the first)
   double last_residual_ = 0;   // residual norm of the previous iteration of this step
@@ -129,7 +127,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   bool need_reaction_ = false;
   Vec reaction_;
   std::unique_ptr<PvdSeries> series_;
-  std::string fallback_note_;   // why and when the solver switched to LU (summary.json; a warning unless --quiet)
+  std::string fallback_note_;  // why and when the solver switched to LU (summary.json; a warning unless --quiet)
   // Partitioned coupling: interface forces of the step (and of the last step, for the work), augmented mass.
   Vec f_iface_, f_iface_old_;
   double work_iface_ = 0;  // part of work_ext_ done by the interface forces

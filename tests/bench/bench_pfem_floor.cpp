@@ -32,15 +32,14 @@
 #include "bench_timing.hpp"
 
 using namespace lagfsi;
-using lagfsi::meshing::ParticleKind;
 using lagfsi::bench::best_of;
 using lagfsi::bench::Clock;
 using lagfsi::bench::seconds;
+using lagfsi::meshing::ParticleKind;
 
 namespace {
 
 constexpr double kL = 0.146;
-
 
 struct Cloud {
   std::vector<Vec2> points;
@@ -89,7 +88,7 @@ struct Local3 {
 Local3 laplacian(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double y[3] = {b.y() - c.y(), c.y() - a.y(), a.y() - b.y()};
   const double x[3] = {c.x() - b.x(), a.x() - c.x(), b.x() - a.x()};
-  const double A2 = x[2] * y[1] - x[1] * y[2];   // 2 A (positive for counter-clockwise)
+  const double A2 = x[2] * y[1] - x[1] * y[2];  // 2 A (positive for counter-clockwise)
   Local3 K;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) K.k[j * 3 + i] = (y[i] * y[j] + x[i] * x[j]) / (2 * A2);
@@ -110,19 +109,24 @@ int main(int argc, char** argv) {
   std::vector<std::string> hs;
   for (int a = 1; a < argc; ++a) {
     const std::string s = argv[a];
-    if (s == "--repeats" && a + 1 < argc) repeats = std::max(1, std::atoi(argv[++a]));
-    else if (s == "--jitter" && a + 1 < argc) jitter = std::atof(argv[++a]);
-    else if (s == "--csv") csv = true;
+    if (s == "--repeats" && a + 1 < argc)
+      repeats = std::max(1, std::atoi(argv[++a]));
+    else if (s == "--jitter" && a + 1 < argc)
+      jitter = std::atof(argv[++a]);
+    else if (s == "--csv")
+      csv = true;
     else if (s == "-h" || s == "--help") {
       std::printf("usage: bench_pfem_floor [--repeats N] [--jitter f] [--csv] [h ... | L/k ...]\n");
       return 0;
-    } else hs.push_back(s);
+    } else
+      hs.push_back(s);
   }
   if (hs.empty()) hs = {"L/20", "L/40", "L/80"};
 
   if (csv)
-    std::printf("h,L_over_h,particles,fluid,walls,triangles,free_surface,nonzeros,remesh_us,assembly_us,"
-                "pattern_us,factorization_us,solve_us,chol_us,floor_us\n");
+    std::printf(
+        "h,L_over_h,particles,fluid,walls,triangles,free_surface,nonzeros,remesh_us,assembly_us,"
+        "pattern_us,factorization_us,solve_us,chol_us,floor_us\n");
   else {
     std::printf("bench_pfem_floor: dam-break cloud, alpha 1.2, best of %d, jitter %.2f h; times in us per particle\n",
                 repeats, jitter);
@@ -169,8 +173,10 @@ int main(int argc, char** argv) {
         const bool fixed_j = r.free_surface[j] || !r.connected[j];
         for (int q = op[j]; q < op[j + 1]; ++q) {
           const Index i = ip[q];
-          if (i == j) val[q] = fixed_j ? 1.0 : val[q] + 1e-9;
-          else if (fixed_j || r.free_surface[i] || !r.connected[i]) val[q] = 0.0;
+          if (i == j)
+            val[q] = fixed_j ? 1.0 : val[q] + 1e-9;
+          else if (fixed_j || r.free_surface[i] || !r.connected[i])
+            val[q] = 0.0;
         }
       }
     });

@@ -24,11 +24,10 @@
 #include "bench_timing.hpp"
 
 using namespace lagfsi;
-using lagfsi::meshing::ParticleKind;
 using lagfsi::bench::best_of;
+using lagfsi::meshing::ParticleKind;
 
 namespace {
-
 
 struct Cloud {
   std::vector<Vec2> points;
@@ -39,7 +38,7 @@ struct Cloud {
 // Fluid block of (2 m) x m particles with spacing h = 1/m (perturbed by up to 0.15 h), in a tank of
 // width 4 and height 2 (in block heights) whose walls are two lines of particles at spacing h.
 Cloud dam_break(int target) {
-  const int m = std::max(4, static_cast<int>(std::sqrt(target / 2.0) * 0.94));   // walls add ~12 m
+  const int m = std::max(4, static_cast<int>(std::sqrt(target / 2.0) * 0.94));  // walls add ~12 m
   const double h = 1.0 / m;
   Cloud c;
   std::mt19937_64 rng(12345);
@@ -54,7 +53,7 @@ Cloud dam_break(int target) {
       const double jx = jitter(rng), jy = jitter(rng);
       add((i + 1) * h + jx, (j + 1) * h + jy, ParticleKind::Fluid);
     }
-  const int nx = 4 * m + 1, ny = 2 * m;   // wall particles along x (bottom) and y (sides)
+  const int nx = 4 * m + 1, ny = 2 * m;  // wall particles along x (bottom) and y (sides)
   for (int layer = 0; layer < 2; ++layer) {
     for (int i = -layer; i <= nx + layer; ++i) add(i * h, -layer * h, ParticleKind::Wall);
     for (int j = 1; j <= ny; ++j) {

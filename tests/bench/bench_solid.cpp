@@ -7,11 +7,11 @@
 #include <lagfsi/meshing/primitives.hpp>
 #include <lagfsi/solid.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <vector>
 
 #include "bench_timing.hpp"
@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
   H += body.mass() * 1e4;
   Vec b = Vec::Ones(nd), sol;
 
-  std::printf("bench_solid: T10 strip, %d elements, %d nodes, %d unknowns, %ld nonzeros\n",
-              body.mesh().num_elements(), body.num_nodes(), nd, static_cast<long>(H.nonZeros()));
+  std::printf("bench_solid: T10 strip, %d elements, %d nodes, %d unknowns, %ld nonzeros\n", body.mesh().num_elements(),
+              body.num_nodes(), nd, static_cast<long>(H.nonZeros()));
   auto solver = make_linear_solver("cholmod");
   solver->factorize(H);  // symbolic analysis once (reused for the whole run, as in a real step)
   const double t_fact = best_of(repeats, [&] { solver->factorize(H); });

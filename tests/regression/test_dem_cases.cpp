@@ -96,7 +96,8 @@ TEST(DemCases, MovingWallPushesADisc) {
     }],
     "probes": [{"name": "vy", "type": "disc", "body": "disc", "id": 0, "quantity": "vy"}],
     "output": {"every": 50}
-  })", "--quiet --threads 1");
+  })",
+                                    "--quiet --threads 1");
   const Csv c = probes_of(r);
   ASSERT_GT(c.rows(), 10u);
   std::printf("disc speed after the hit %.6f m/s\n", c["vy"].back());
@@ -121,7 +122,8 @@ TEST(DemCases, MovingWallReachesADiscBeyondTheSkin) {
     }],
     "probes": [{"name": "vy", "type": "disc", "body": "disc", "id": 0, "quantity": "vy"}],
     "output": {"every": 100}
-  })", "--quiet --threads 1");
+  })",
+                                    "--quiet --threads 1");
   const Csv c = probes_of(r);
   ASSERT_GT(c.rows(), 10u);
   EXPECT_NEAR(c["vy"].back(), 0.2, 0.002);
@@ -140,8 +142,8 @@ TEST(DemCases, ColumnCollapseCi) {
   double ke_max = 0;
   for (double k : c["kinetic"]) ke_max = std::max(ke_max, k);
   const double runout = (front - l0) / l0, a = h0 / l0;
-  std::printf("a = %.3f, (L - L0)/L0 = %.3f (1.2a %.3f, 1.8a %.3f), final KE / peak %.2e\n", a, runout, 1.2 * a, 1.8 * a,
-              c["kinetic"].back() / ke_max);
+  std::printf("a = %.3f, (L - L0)/L0 = %.3f (1.2a %.3f, 1.8a %.3f), final KE / peak %.2e\n", a, runout, 1.2 * a,
+              1.8 * a, c["kinetic"].back() / ke_max);
   EXPECT_GT(a, 0.4);
   EXPECT_LT(a, 0.6);
   EXPECT_GT(runout, 0.5 * 1.2 * a);  // it collapsed, and not much less than the scalings say

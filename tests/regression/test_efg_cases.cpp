@@ -43,15 +43,15 @@ TEST(EfgCases, PlateWithHoleStressConcentration) {
 TEST(EfgCases, TensionPlateMazarsPeak) {
   // CI size: 4 x 4 cells, 6 x 6 Gauss, secant operator, CDG initial load factor 0.2 (the peak at step 10).
   const RunResult r = run_case_file("cases/efg_tension_plate/case.json", "efg_tension_plate",
-                                    {"bodies.0.domain.divisions=[4,4]", "bodies.0.efg.gauss=6", "analysis.load_steps=30",
-                                     "bodies.0.control.increment=0.2"});
+                                    {"bodies.0.domain.divisions=[4,4]", "bodies.0.efg.gauss=6",
+                                     "analysis.load_steps=30", "bodies.0.control.increment=0.2"});
   const Csv c = probes_of(r);
   const auto& lam = c["lambda"];
   const double peak = *std::max_element(lam.begin(), lam.end());
   std::printf("peak lambda %.4f (homogeneous solution 2.0), last %.4f, max damage %.3f\n", peak, lam.back(),
               c["damage_max"].back());
   EXPECT_NEAR(peak, 2.0, 0.02);
-  EXPECT_LT(lam.back(), 0.8 * peak);   // the limit point was passed
+  EXPECT_LT(lam.back(), 0.8 * peak);  // the limit point was passed
 }
 
 TEST(EfgCases, LPanelCoarse) {
@@ -86,27 +86,30 @@ TEST(EfgCases, LPanelPathFollowingMethodsAgreeAndLoadControlFailsAtTheLimit) {
   int code;
   const auto cdg = peak_of("efg_lp_cdg", {"bodies.0.control.increment=0.05"}, &code);
   EXPECT_EQ(code, 0);
-  const auto arc = peak_of("efg_lp_arc", {"bodies.0.control.type=arc_length", "bodies.0.control.increment=0.05"}, &code);
+  const auto arc =
+      peak_of("efg_lp_arc", {"bodies.0.control.type=arc_length", "bodies.0.control.increment=0.05"}, &code);
   EXPECT_EQ(code, 0);
-  const auto cdd = peak_of("efg_lp_cdd", {"bodies.0.control.type=displacement", "bodies.0.control.form=U",
-                                          "bodies.0.control.at=[500,500]", "bodies.0.control.increment=0.01"}, &code);
+  const auto cdd = peak_of("efg_lp_cdd",
+                           {"bodies.0.control.type=displacement", "bodies.0.control.form=U",
+                            "bodies.0.control.at=[500,500]", "bodies.0.control.increment=0.01"},
+                           &code);
   EXPECT_EQ(code, 0);
   EXPECT_NEAR(arc.first / cdg.first, 1.0, 0.01);
   EXPECT_NEAR(cdd.first / cdg.first, 1.0, 0.01);
   EXPECT_LT(arc.second, 0.9 * arc.first);
   EXPECT_LT(cdd.second, 0.9 * cdd.first);
   const auto lc = peak_of("efg_lp_load", {"bodies.0.control.type=load", "bodies.0.control.increment=0.02"}, &code);
-  EXPECT_EQ(code, 3);   // solver error after the step halvings
+  EXPECT_EQ(code, 3);  // solver error after the step halvings
   EXPECT_NEAR(lc.second / cdg.first, 1.0, 0.02);
 }
 
 TEST(EfgCases, BadInputIsOneLineWithThePath) {
-  const RunResult r = run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad",
-                                    {"bodies.0.efg.basis=cubic"});
+  const RunResult r =
+      run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad", {"bodies.0.efg.basis=cubic"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.stderr_text.find("/bodies/0/efg/basis"), std::string::npos) << r.stderr_text;
-  const RunResult r2 = run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad2",
-                                     {"bodies.0.efg.alpha=0.4"});
+  const RunResult r2 =
+      run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad2", {"bodies.0.efg.alpha=0.4"});
   EXPECT_NE(r2.exit_code, 0);
   EXPECT_NE(r2.stderr_text.find("MLS at ("), std::string::npos) << r2.stderr_text;
 }

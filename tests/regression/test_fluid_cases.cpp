@@ -27,8 +27,8 @@ TEST(Hydrostatic, PressureStaysHydrostaticAndFluidAtRest) {
 TEST(DamBreakTank, FrontReachesTheWallAndAreaIsKept) {
   // Koshizuka & Oka (1996): column L = 0.146 m, 2L high, tank 4L. CI size: the default resolution over
   // 0.35 s (through the wall impact).
-  const Csv c = probes_of(run_case_file("cases/dam_break_tank/case.json", "dam_break_tank",
-                                        {"analysis.end_time=0.35"}));
+  const Csv c =
+      probes_of(run_case_file("cases/dam_break_tank/case.json", "dam_break_tank", {"analysis.end_time=0.35"}));
   const auto [rms, t_impact] = dam_break_tank_front(c);
   EXPECT_LT(rms, 0.35) << "front RMS in Z";
   EXPECT_GT(t_impact, 0.23);
@@ -44,15 +44,15 @@ TEST(DamBreakTank, AreaDriftAfterTheSplashStaysSmall) {
   // area stays within 0.5 % of the initial one (the issue's goal; measured at most 0.2 % with the default
   // "surface" volume correction; 3.0 % with the "source" one, 5.5 % with none). A change that lets particles
   // through the walls (an inverted wall element skipped instead of a retried step) gives +8 %.
-  const Csv c = probes_of(run_case_1thread("cases/dam_break_tank/case.json", "dam_break_tank_1s", {"output.every=1000"}));
+  const Csv c =
+      probes_of(run_case_1thread("cases/dam_break_tank/case.json", "dam_break_tank_1s", {"output.every=1000"}));
   ASSERT_GT(c.rows(), 900u);
   EXPECT_LT(max_area_drift(c), 0.005);
 }
 
 TEST(SloshingFree, PeriodWithinTwoPercentOfLinearTheory) {
   // First sloshing mode of a 1 m tank with 0.5 m of water: omega^2 = g k tanh(k d), k = pi / L.
-  const RunResult r = run_case_file("cases/sloshing_free/case.json", "sloshing_free",
-                                    {"analysis.end_time=3.6"});
+  const RunResult r = run_case_file("cases/sloshing_free/case.json", "sloshing_free", {"analysis.end_time=3.6"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv c = read_csv(r.out_dir / "probes.csv");
   const auto& e = c["eta_left"];
@@ -75,7 +75,6 @@ TEST(SloshingFree, PeriodWithinTwoPercentOfLinearTheory) {
   for (size_t i = 0; i < c.rows(); ++i) EXPECT_LT(wave_energy(i), 1.005 * E0) << "t " << c["time"][i];
   EXPECT_GT(wave_energy(c.rows() - 1), 0.95 * E0) << "no more than 5 % lost in 3 periods";
 }
-
 
 TEST(SolitaryWave, CrestReachesTheRightWall) {
   const RunResult r = run_case_file("cases/solitary_wave/case.json", "solitary_wave", {"analysis.end_time=2.7"});
@@ -104,8 +103,8 @@ TEST(DamBreakFloor, FixedConnectivitySlipWalls) {
   // Seed 6.9.1 as in the seed: fixed mesh, slip left wall and floor, natural free-surface pressure (with
   // p = 0 imposed the toe tangles at T = 1.8). CI size h = a/15 through T = 4.1. Measured: front RMS 0.362
   // (issue 0.10: not met, converged in h), height RMS 0.012, area drift 0.000 %.
-  const Csv c = probes_of(run_case_1thread("cases/dam_break_floor/case.json", "dam_break_floor_fixed",
-                                           {"bodies.0.spacing=0.00381"}));
+  const Csv c = probes_of(
+      run_case_1thread("cases/dam_break_floor/case.json", "dam_break_floor_fixed", {"bodies.0.spacing=0.00381"}));
   EXPECT_NEAR(c["time"].back(), 0.22, 1e-9) << "the fixed mesh must stay valid to T = 4";
   const MartinMoyceErrors e = martin_moyce_errors(c);
   EXPECT_EQ(e.front_points, 13);
@@ -113,17 +112,18 @@ TEST(DamBreakFloor, FixedConnectivitySlipWalls) {
   EXPECT_GE(e.height_points, 10);
   EXPECT_LT(e.height_rms, 0.02) << "column height RMS in H";
   EXPECT_LT(max_area_drift(c), 1e-4);
-  std::printf("dam break on a floor, fixed mesh: front RMS %.3f (%d points), height RMS %.4f (%d points), "
-              "max area drift %.4f %%\n", e.front_rms, e.front_points, e.height_rms, e.height_points,
-              100 * max_area_drift(c));
+  std::printf(
+      "dam break on a floor, fixed mesh: front RMS %.3f (%d points), height RMS %.4f (%d points), "
+      "max area drift %.4f %%\n",
+      e.front_rms, e.front_points, e.height_rms, e.height_points, 100 * max_area_drift(c));
 }
 
 TEST(DamBreakFloor, RemeshedNoSlipWalls) {
   // The same column with PFEM remeshing and no-slip walls, default size, to T = 3.15. Measured: front RMS
   // 0.211 (sensitive to a one-particle film on the floor: 0.16-0.52 with dt, alpha, h), height RMS 0.013,
   // area drift below 0.01 % by then (up to 2.0 % with the "source" volume correction).
-  const Csv c = probes_of(run_case_1thread("cases/dam_break_floor/case_remesh.json", "dam_break_floor_remesh",
-                                           {"analysis.end_time=0.17"}));
+  const Csv c = probes_of(
+      run_case_1thread("cases/dam_break_floor/case_remesh.json", "dam_break_floor_remesh", {"analysis.end_time=0.17"}));
   EXPECT_NEAR(c["time"].back(), 0.17, 1e-9);
   const MartinMoyceErrors e = martin_moyce_errors(c);
   EXPECT_EQ(e.front_points, 13);
@@ -131,9 +131,10 @@ TEST(DamBreakFloor, RemeshedNoSlipWalls) {
   EXPECT_GE(e.height_points, 9);
   EXPECT_LT(e.height_rms, 0.03) << "column height RMS in H";
   EXPECT_LT(max_area_drift(c), 0.005);
-  std::printf("dam break on a floor, remeshed: front RMS %.3f (%d points), height RMS %.4f (%d points), "
-              "max area drift %.3f %%\n", e.front_rms, e.front_points, e.height_rms, e.height_points,
-              100 * max_area_drift(c));
+  std::printf(
+      "dam break on a floor, remeshed: front RMS %.3f (%d points), height RMS %.4f (%d points), "
+      "max area drift %.3f %%\n",
+      e.front_rms, e.front_points, e.height_rms, e.height_points, 100 * max_area_drift(c));
 }
 
 TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
@@ -157,8 +158,10 @@ TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
   EXPECT_LE(t_wet, 0.35);
   EXPECT_LT(max_area_drift(c), 0.01);
   for (size_t i = 0; i < c.rows(); ++i) EXPECT_TRUE(std::isfinite(c["kinetic_energy"][i])) << "t " << c["time"][i];
-  std::printf("dam break with obstacle: jet at the right wall %.4f s, wall sensor wet %.4f s, max area drift "
-              "%.2f %%\n", t_jet, t_wet, 100 * max_area_drift(c));
+  std::printf(
+      "dam break with obstacle: jet at the right wall %.4f s, wall sensor wet %.4f s, max area drift "
+      "%.2f %%\n",
+      t_jet, t_wet, 100 * max_area_drift(c));
 }
 
 TEST(SloshingViscous, DecaysAndKeepsArea) {
@@ -168,8 +171,10 @@ TEST(SloshingViscous, DecaysAndKeepsArea) {
   const Csv c = probes_of(run_case_1thread("cases/sloshing_viscous/case.json", "sloshing_viscous",
                                            {"bodies.0.spacing=0.015", "analysis.dt=2e-3", "analysis.end_time=2.0"}));
   const auto [ke_ratio, period, T_lin] = check_sloshing_viscous(c);
-  std::printf("viscous sloshing: max area drift %.3f %%, kinetic energy 1.5-2 s / 0-0.5 s %.3f, period %.4f s "
-              "(linear %.4f s)\n", 100 * max_area_drift(c), ke_ratio, period, T_lin);
+  std::printf(
+      "viscous sloshing: max area drift %.3f %%, kinetic energy 1.5-2 s / 0-0.5 s %.3f, period %.4f s "
+      "(linear %.4f s)\n",
+      100 * max_area_drift(c), ke_ratio, period, T_lin);
 }
 
 TEST(SloshingForced, ShakenTankFollowsLinearTheory) {
@@ -177,15 +182,15 @@ TEST(SloshingForced, ShakenTankFollowsLinearTheory) {
   // resolution over 3 s (advected domain, slip walls as constraints, no volume correction). Measured over
   // 0-3 s: RMS error / linear peak 0.029 (left) and 0.032 (right) (with wall particles and the alpha shape:
   // 0.148, 0.168); area drift below 1e-6. Issue #16's target: 0.05.
-  const Csv c = probes_of(run_case_1thread("cases/sloshing_forced/case.json", "sloshing_forced",
-                                           {"analysis.end_time=3.0"}));
+  const Csv c =
+      probes_of(run_case_1thread("cases/sloshing_forced/case.json", "sloshing_forced", {"analysis.end_time=3.0"}));
   EXPECT_NEAR(c["time"].back(), 3.0, 1e-9);
   const double el = shaken_tank_error(c, "eta_left", 3.0), er = shaken_tank_error(c, "eta_right", 3.0);
   EXPECT_LT(el, 0.05);
   EXPECT_LT(er, 0.05);
   EXPECT_LT(max_area_drift(c), 1e-4);
-  std::printf("shaken tank: elevation RMS error / linear peak %.3f (left), %.3f (right), max area drift %.3f %%\n",
-              el, er, 100 * max_area_drift(c));
+  std::printf("shaken tank: elevation RMS error / linear peak %.3f (left), %.3f (right), max area drift %.3f %%\n", el,
+              er, 100 * max_area_drift(c));
 }
 
 }  // namespace

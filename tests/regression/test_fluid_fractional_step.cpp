@@ -23,15 +23,15 @@ TEST(FractionalStep, HydrostaticPressureAndRest) {
   // 0.2 s, and the volume correction's response then excites surface motion above the test's speed bound
   // (kinetic energy 5e-4 J at 1 s): the explicit free surface of this scheme is less damped than the
   // monolithic one (see the README of cases/dam_break_tank).
-  check_hydrostatic(probes_of(run_case_1thread("cases/hydrostatic/case.json", "fs_hydrostatic",
-                                               {kScheme, "analysis.dt=5e-4"})));
+  check_hydrostatic(
+      probes_of(run_case_1thread("cases/hydrostatic/case.json", "fs_hydrostatic", {kScheme, "analysis.dt=5e-4"})));
 }
 
 TEST(FractionalStep, DamBreakTankFrontAndImpact) {
   // Koshizuka & Oka at the default resolution over 0.35 s. Measured: front RMS 0.279 (monolithic 0.238),
   // impact 0.266 s, area within 1.3 % up to 0.35 s.
-  const Csv c = probes_of(run_case_1thread("cases/dam_break_tank/case.json", "fs_dam_break_tank",
-                                           {kScheme, "analysis.end_time=0.35"}));
+  const Csv c = probes_of(
+      run_case_1thread("cases/dam_break_tank/case.json", "fs_dam_break_tank", {kScheme, "analysis.end_time=0.35"}));
   EXPECT_NEAR(c["time"].back(), 0.35, 1e-9);
   const auto [rms, t_impact] = dam_break_tank_front(c);
   EXPECT_LT(rms, 0.32) << "front RMS in Z";
@@ -46,10 +46,10 @@ TEST(FractionalStep, SloshingFreePeriodFixedMesh) {
   // Fixed mesh, slip walls, p = 0 imposed on the free surface (the scheme's only option), dt = T/400:
   // measured period +0.32 %, amplitude +0.6 % after 4 periods. At dt = T/200 the free-surface mode of the
   // fixed mesh grows (an element turns inside out after 4 periods), as with the monolithic scheme and p = 0.
-  const Csv c = probes_of(run_case_1thread(
-      "cases/sloshing_free/case.json", "fs_sloshing_free",
-      {"bodies.0.scheme={\"type\": \"fractional_step\", \"volume_correction\": \"none\"}", "analysis.dt=0.0029545",
-       "analysis.end_time=3.6"}));
+  const Csv c =
+      probes_of(run_case_1thread("cases/sloshing_free/case.json", "fs_sloshing_free",
+                                 {"bodies.0.scheme={\"type\": \"fractional_step\", \"volume_correction\": \"none\"}",
+                                  "analysis.dt=0.0029545", "analysis.end_time=3.6"}));
   EXPECT_NEAR(c["time"].back(), 3.6, 1e-6);
   const double d = 0.5, T = sloshing_period(c, "eta_left", d), T1 = linear_sloshing_period(1.0, d);
   EXPECT_NEAR(T, T1, 0.02 * T1) << "period " << T;
@@ -82,12 +82,14 @@ TEST(FractionalStep, SloshingViscousImplicitViscousStep) {
   // mu = 5 Pa s: the explicit viscous predictor's limit (dt <= rho (0.3 h)^2 / (8 mu) = 5e-4 s here) is
   // below dt = 2 ms, so the automatic choice is the implicit one. Measured: max area drift 0.41 %, kinetic
   // energy ratio late/early 0.14, period 0.820 s (linear 0.836 s; monolithic 0.842 s).
-  const Csv c = probes_of(run_case_1thread("cases/sloshing_viscous/case.json", "fs_sloshing_viscous",
-                                           {"bodies.0.scheme.type=fractional_step", "bodies.0.spacing=0.015",
-                                            "analysis.dt=2e-3", "analysis.end_time=2.0"}));
+  const Csv c = probes_of(run_case_1thread(
+      "cases/sloshing_viscous/case.json", "fs_sloshing_viscous",
+      {"bodies.0.scheme.type=fractional_step", "bodies.0.spacing=0.015", "analysis.dt=2e-3", "analysis.end_time=2.0"}));
   const auto [ke_ratio, period, T_lin] = check_sloshing_viscous(c);
-  std::printf("fractional step, viscous sloshing: max area drift %.3f %%, kinetic energy ratio %.3f, period %.4f s "
-              "(linear %.4f s)\n", 100 * max_area_drift(c), ke_ratio, period, T_lin);
+  std::printf(
+      "fractional step, viscous sloshing: max area drift %.3f %%, kinetic energy ratio %.3f, period %.4f s "
+      "(linear %.4f s)\n",
+      100 * max_area_drift(c), ke_ratio, period, T_lin);
 }
 
 TEST(FractionalStep, ShakenTank) {
@@ -95,16 +97,18 @@ TEST(FractionalStep, ShakenTank) {
   // on the surface) over 3 s. Measured: RMS error / linear peak 0.034 (left), 0.038 (right) over 0-3 s, area
   // drift 0.33 % (monolithic, natural surface pressure: 0.029, 0.032; with wall particles and the alpha shape
   // the fractional step gave 0.145, 0.178).
-  const Csv c = probes_of(run_case_1thread("cases/sloshing_forced/case.json", "fs_sloshing_forced",
-                                           {"bodies.0.scheme={\"type\": \"fractional_step\"}",
-                                            "analysis.end_time=3.0"}));
+  const Csv c =
+      probes_of(run_case_1thread("cases/sloshing_forced/case.json", "fs_sloshing_forced",
+                                 {"bodies.0.scheme={\"type\": \"fractional_step\"}", "analysis.end_time=3.0"}));
   EXPECT_NEAR(c["time"].back(), 3.0, 1e-9);
   const double el = shaken_tank_error(c, "eta_left", 3.0), er = shaken_tank_error(c, "eta_right", 3.0);
   EXPECT_LT(el, 0.06);
   EXPECT_LT(er, 0.06);
   EXPECT_LT(max_area_drift(c), 0.01);
-  std::printf("fractional step, shaken tank: elevation RMS error / linear peak %.3f (left), %.3f (right), max area "
-              "drift %.3f %%\n", el, er, 100 * max_area_drift(c));
+  std::printf(
+      "fractional step, shaken tank: elevation RMS error / linear peak %.3f (left), %.3f (right), max area "
+      "drift %.3f %%\n",
+      el, er, 100 * max_area_drift(c));
 }
 
 }  // namespace

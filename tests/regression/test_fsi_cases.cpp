@@ -25,8 +25,9 @@ double check_coupling(const RunResult& r, int min_coupled_steps) {
 
 /// Reference series (time, value) from a CSV; `component` and `source` keep the rows with those labels (label
 /// columns of the same names).
-std::vector<std::pair<double, double>> reference(const std::string& rel, const std::string& tcol, const std::string& vcol,
-                                                 const std::string& component = "", const std::string& source = "") {
+std::vector<std::pair<double, double>> reference(const std::string& rel, const std::string& tcol,
+                                                 const std::string& vcol, const std::string& component = "",
+                                                 const std::string& source = "") {
   const Csv c = read_csv(fs::path(LAGFSI_SOURCE_DIR) / rel);
   std::vector<std::pair<double, double>> out;
   for (size_t i = 0; i < c.rows(); ++i)
@@ -37,7 +38,8 @@ std::vector<std::pair<double, double>> reference(const std::string& rel, const s
   return out;
 }
 
-double rms_against(const Csv& c, const std::string& col, const std::vector<std::pair<double, double>>& ref, double t_max) {
+double rms_against(const Csv& c, const std::string& col, const std::vector<std::pair<double, double>>& ref,
+                   double t_max) {
   double e2 = 0;
   int n = 0;
   for (const auto& [t, v] : ref) {
@@ -91,7 +93,8 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
   const auto r = run_case_1thread("cases/elastic_obstacle_walhorn/case.json", "fsi_walhorn",
                                   {"analysis.end_time=0.45", "output.every=50"});
   const Csv c = probes_of(r);
-  const auto ref = reference("cases/elastic_obstacle_walhorn/reference/idelsohn_2008_pfem_tip_ux.csv", "time", "tip_ux");
+  const auto ref =
+      reference("cases/elastic_obstacle_walhorn/reference/idelsohn_2008_pfem_tip_ux.csv", "time", "tip_ux");
   double peak = 0, t_peak = 0;
   for (size_t i = 0; i < c.rows(); ++i)
     if (c["tip_ux"][i] > peak) {

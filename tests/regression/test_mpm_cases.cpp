@@ -23,7 +23,8 @@ TEST(MpmGranularCollapse, FinalSurfaceAndRunOutMatchTheExperiment) {
                                   {"bodies.0.grid.cell=0.005", "output.every=1000"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv c = read_csv(r.out_dir / "bars_particles.csv");
-  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/mpm_granular_collapse/reference/bui2008_final_free_surface.csv");
+  const Csv ref =
+      read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/mpm_granular_collapse/reference/bui2008_final_free_surface.csv");
   const double hp = 0.005 / 2;
   auto surface = [&](double xr) {
     double top = -1;
@@ -42,8 +43,8 @@ TEST(MpmGranularCollapse, FinalSurfaceAndRunOutMatchTheExperiment) {
   double exp_end = 0;
   for (size_t k = 1; k < ref.rows(); ++k)
     if (ref["z_m"][k - 1] >= 0.005 && ref["z_m"][k] < 0.005)
-      exp_end = ref["x_m"][k - 1] + (ref["x_m"][k] - ref["x_m"][k - 1]) * (ref["z_m"][k - 1] - 0.005) /
-                                         (ref["z_m"][k - 1] - ref["z_m"][k]);
+      exp_end = ref["x_m"][k - 1] +
+                (ref["x_m"][k] - ref["x_m"][k - 1]) * (ref["z_m"][k - 1] - 0.005) / (ref["z_m"][k - 1] - ref["z_m"][k]);
   double reach = 0;
   for (size_t i = 0; i < c.rows(); ++i) reach = std::max(reach, c["x"][i]);
   std::printf("surface RMS %.2f mm; deposit >= 5 mm to %.3f m (experiment %.3f m); last particle %.3f m (0.44 m)\n",
@@ -81,7 +82,8 @@ TEST(MpmDamEarthquake, StaysStableAndBelowMakdisiSeed) {
   EXPECT_NEAR(a_base, 0.38 * 9.81, 0.1 * 0.38 * 9.81);
   EXPECT_GT(a_crest / a_base, 0.5);
   EXPECT_LT(a_crest / a_base, 3.0);
-  const double permanent = mean_between(c, "crest_ux", 80, 90, "base_ux") - mean_between(c, "crest_ux", 15, 20, "base_ux");
+  const double permanent =
+      mean_between(c, "crest_ux", 80, 90, "base_ux") - mean_between(c, "crest_ux", 15, 20, "base_ux");
   EXPECT_LT(std::abs(permanent), 0.11);
 }
 

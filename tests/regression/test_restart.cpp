@@ -70,7 +70,7 @@ void expect_restart_is_seamless(const std::string& tag, const std::string& case_
   EXPECT_EQ(s["steps"], stop);
   EXPECT_EQ(s["checkpoint"]["step"], stop);
   EXPECT_TRUE(fs::exists(part / "checkpoint.bin"));
-  EXPECT_TRUE(fs::exists(part / "checkpoint.prev.bin"));   // keep: 2 (the default)
+  EXPECT_TRUE(fs::exists(part / "checkpoint.prev.bin"));  // keep: 2 (the default)
   EXPECT_FALSE(fs::exists(part / ".lagfsi.lock"));
   // The stopped run wrote its last state into the series (stop is not a multiple of output.every).
   r = run_args(args({"--restart", part.string()}), dir);

@@ -53,7 +53,8 @@ double shell_against_t10(const std::string& name, const std::vector<std::string>
 TEST(FlexibleTankShell, TipHistoryWithinThreePercentOfTheT10Wall) {
   // Fractional-step fluid, 0.3 s (the first overshoot and trough); the full monolithic second is in the
   // case README (1.6 % of the peak with IQN-IMVJ, 0.5 % RMS).
-  const std::vector<std::string> sets{"analysis.end_time=0.3", "bodies.0.scheme.type=fractional_step", "output.every=100"};
+  const std::vector<std::string> sets{"analysis.end_time=0.3", "bodies.0.scheme.type=fractional_step",
+                                      "output.every=100"};
   double peak = 0;
   const double d = shell_against_t10("flexible_tank", sets, peak);
   EXPECT_GT(peak, 0.015);
@@ -64,9 +65,10 @@ TEST(ElasticGateAntociShell, TipHistoryWithinFourPercentOfTheT10Gate) {
   // The opening, to the largest opening (0.11 s) and a little after, 0.12 s: the shell's SVK-type law
   // against the T10 gate's neo-Hookean law (both E = 12 MPa, nu = 0.4, plane strain); measured 3.5 % of
   // the peak (2.0 % with the "source" volume correction of the fluid, which lets the area drift by 1.4 %;
-  // the fluid's correction alone moves each gate's tip by 1-2 % of the peak). Later, as the gate closes onto the falling water, the case itself is sensitive: two shell runs
-  // that differ by round-off (the same element computed in another order) part by 6 % of the peak at
-  // 0.2 s, and T10 runs with the svk and neo-Hookean laws by 5 % over 0.4 s (README).
+  // the fluid's correction alone moves each gate's tip by 1-2 % of the peak). Later, as the gate closes onto the
+  // falling water, the case itself is sensitive: two shell runs that differ by round-off (the same element computed in
+  // another order) part by 6 % of the peak at 0.2 s, and T10 runs with the svk and neo-Hookean laws by 5 % over 0.4 s
+  // (README).
   const std::vector<std::string> sets{"analysis.end_time=0.12", "output.every=100"};
   double peak = 0;
   const double d = shell_against_t10("elastic_gate_antoci", sets, peak);

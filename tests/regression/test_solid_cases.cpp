@@ -34,8 +34,8 @@ TEST(CantileverStepLoad, StaticWithinHalfAPercentOfTimoshenko) {
 }
 
 TEST(CantileverStepLoad, UndampedPeakIsTwiceStatic) {
-  const Csv c = probes_of(run_case_file("cases/cantilever_step_load/case.json", "cantilever_undamped",
-                                        {"analysis.end_time=0.0125"}));
+  const Csv c = probes_of(
+      run_case_file("cases/cantilever_step_load/case.json", "cantilever_undamped", {"analysis.end_time=0.0125"}));
   const auto& u = c["tip_uy_axis"];
   const double peak = -*std::min_element(u.begin(), u.end());
   EXPECT_LT(rel_err(peak, 2 * cantilever_timoshenko()), 0.005) << "peak " << peak;  // README: within 0.5 %
@@ -49,8 +49,8 @@ TEST(CantileverStepLoad, UndampedPeakIsTwiceStatic) {
 }
 
 TEST(CantileverStepLoad, DampedSettlesOnStatic) {
-  const Csv c = probes_of(run_case_file("cases/cantilever_step_load/case.json", "cantilever_damped",
-                                        {"bodies.0.damping.mass=200"}));
+  const Csv c = probes_of(
+      run_case_file("cases/cantilever_step_load/case.json", "cantilever_damped", {"bodies.0.damping.mass=200"}));
   EXPECT_LT(rel_err(-c["tip_uy_axis"].back(), cantilever_timoshenko()), 0.02) << c["tip_uy_axis"].back();
 }
 
@@ -58,9 +58,9 @@ TEST(CantileverStepLoad, DampedSettlesOnStatic) {
 TEST(ClampedBeamNonlinear, LinearStaticMatchesBeamTheory) {
   // A load 1000x smaller than the case's keeps the response linear: delta = P L^3 / (192 E I).
   const double P = 0.64, L = 20, E = 30e6, I = 0.125 * 0.125 * 0.125 / 12.0;
-  const Csv c = probes_of(run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_linear",
-                                        {"analysis.type=static", "analysis.load_steps=1",
-                                         "bodies.0.loads.0.value=[0,-0.64]"}));
+  const Csv c =
+      probes_of(run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_linear",
+                              {"analysis.type=static", "analysis.load_steps=1", "bodies.0.loads.0.value=[0,-0.64]"}));
   const double expected = P * L * L * L / (192 * E * I);
   EXPECT_NEAR(expected, 5.4613e-3, 1e-6);  // the seed's number, scaled by 1/1000
   EXPECT_LT(rel_err(-c["mid_uy"].back(), expected), 0.002) << c["mid_uy"].back();  // README: within 0.2 %
@@ -69,8 +69,8 @@ TEST(ClampedBeamNonlinear, LinearStaticMatchesBeamTheory) {
 TEST(ClampedBeamNonlinear, NonlinearAmplitudeAboutSevenPercentOfLinear) {
   // First peak (about 1.1 ms): the seed reports the nonlinear amplitude is about 7 % of the linear one
   // (linear dynamic peak = 2 x 5.4613 in). The README states 7.0 %, within 5 % of the seed's 7 %.
-  const Csv c = probes_of(run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_nonlinear",
-                                        {"analysis.end_time=1.5e-3"}));
+  const Csv c = probes_of(
+      run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_nonlinear", {"analysis.end_time=1.5e-3"}));
   const auto& u = c["mid_uy"];
   const double ratio = -*std::min_element(u.begin(), u.end()) / (2 * 5.4613);
   EXPECT_GT(ratio, 0.07 * 0.95);
@@ -112,8 +112,8 @@ TEST(TurekCsm3, MeanAmplitudeFrequency) {
   // CI size: dt = 0.01 s over 5 s (about 5 periods); the full case uses dt = 0.005 s over 10 s, and the `cases` tier
   // checks it against the README's agreement (0.05 % on mean and amplitude, 0.6 % on the frequency). At this size
   // the bounds are the (2 %, 1 %): the coarser step lengthens the period.
-  const Csv c = probes_of(run_case_file("cases/turek_csm3/case.json", "csm3",
-                                        {"analysis.dt=0.01", "analysis.end_time=5.0"}));
+  const Csv c =
+      probes_of(run_case_file("cases/turek_csm3/case.json", "csm3", {"analysis.dt=0.01", "analysis.end_time=5.0"}));
   for (const auto& [col, q] : {std::pair{"tip_ux", "ux_A"}, std::pair{"tip_uy", "uy_A"}}) {
     const auto s = periodic_stats(c["time"], c[col]);
     ASSERT_TRUE(s.has_value());

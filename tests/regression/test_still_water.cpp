@@ -21,11 +21,13 @@ std::string still_tank(const std::string& detection, const std::string& correcti
     "gravity": [0.0, -9.81],
     "bodies": [{
       "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
-      "domain_detection": ")" + detection + R"(", "wall_model": ")" + walls + R"(",
+      "domain_detection": ")" +
+         detection + R"(", "wall_model": ")" + walls + R"(",
       "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.4, 0.2]}],
       "walls": [{"name": "tank", "points": [[0, 0.3], [0, 0], [0.4, 0], [0.4, 0.3]]}],
       "initial_pressure": {"type": "hydrostatic", "level": 0.2},
-      "scheme": {"volume_correction": ")" + correction + R"("}
+      "scheme": {"volume_correction": ")" +
+         correction + R"("}
     }],
     "probes": [{"name": "max_speed", "type": "max_speed", "body": "water"},
                {"name": "area", "type": "fluid_area", "body": "water"}],
@@ -33,8 +35,7 @@ std::string still_tank(const std::string& detection, const std::string& correcti
   })";
 }
 
-void expect_still(const std::string& detection, const std::string& correction,
-                  const std::string& walls = "particles") {
+void expect_still(const std::string& detection, const std::string& correction, const std::string& walls = "particles") {
   const RunResult r =
       run_case_text(fresh_dir("still_water_" + detection + "_" + walls), still_tank(detection, correction, walls));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;

@@ -60,7 +60,8 @@ std::string blob_in_tank(const std::string& scheme) {
       "regions": [{"type": "rectangle", "origin": [0.1, 0.1], "size": [0.1, 0.1]}],
       "walls": [{"points": [[0, 0.4], [0, 0], [0.3, 0], [0.3, 0.4]], "slip": true}],
       "initial_velocity": [1.0, 0.0],
-      "scheme": {"type": ")" + scheme + R"("}
+      "scheme": {"type": ")" +
+         scheme + R"("}
     }],
     "probes": [{"name": "area", "type": "fluid_area", "body": "water"}],
     "output": {"every": 50}
@@ -97,7 +98,8 @@ std::string blob_under_ceiling(const std::string& scheme) {
       "regions": [{"type": "rectangle", "origin": [0.1, 0.4], "size": [0.1, 0.1]}],
       "walls": [{"name": "tank", "points": [[0, 0.6], [0, 0], [0.3, 0], [0.3, 0.6]], "slip": true},
                 {"name": "ceiling", "points": [[0, 0.5], [0.3, 0.5]], "slip": true}],
-      "scheme": {"type": ")" + scheme + R"("}
+      "scheme": {"type": ")" +
+         scheme + R"("}
     }],
     "probes": [{"name": "top", "type": "column_height", "body": "water", "wall": 0.15, "band": 0.3}],
     "output": {"every": 50}

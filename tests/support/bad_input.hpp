@@ -15,7 +15,6 @@ namespace lagfsi::testing::bad_input {
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-
 /// A small valid static case (cantilever strip, T3), used as the base for each mutation.
 inline json base_case() {
   return json::parse(R"({

@@ -68,7 +68,8 @@ inline RunResult run_case_text(const fs::path& dir, const std::string& text, con
     std::ofstream o(dir / "case.json");
     o << text;
   }
-  RunResult r = run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" " + options, dir);
+  RunResult r =
+      run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "out").string() + "\" " + options, dir);
   r.out_dir = dir / "out";
   return r;
 }
@@ -156,7 +157,8 @@ inline double at_time(const Csv& c, const std::string& col, double t) {
 /// against Mattiasson's table in `case_dir`/reference/mattiasson_1981_cantilever_elastica.csv: expects the
 /// four rows and |w / w_ref - 1|, |u / u_ref - 1| below `tol` at each (u = -tip_ux, w = tip_uy, over L).
 inline void expect_tip_matches_mattiasson(const Csv& c, const std::string& case_dir, double tol) {
-  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / case_dir / "reference/mattiasson_1981_cantilever_elastica.csv");
+  const Csv ref =
+      read_csv(fs::path(LAGFSI_SOURCE_DIR) / case_dir / "reference/mattiasson_1981_cantilever_elastica.csv");
   ASSERT_EQ(ref.rows(), 4u);
   for (size_t i = 0; i < ref.rows(); ++i) {
     const double lambda = ref["lambda"][i];

@@ -50,7 +50,8 @@ inline MartinMoyceErrors martin_moyce_errors(const Csv& c) {
     Z.push_back(c["front_x"][i] / a);
     H.push_back(c["column_height"][i] / (2 * a));
   }
-  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/dam_break_floor/reference/martin_moyce_1952_tables_2_6.csv");
+  const Csv ref =
+      read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/dam_break_floor/reference/martin_moyce_1952_tables_2_6.csv");
   EXPECT_GT(ref.rows(), 0u);
   MartinMoyceErrors e;
   double sf = 0, sh = 0;
@@ -82,7 +83,6 @@ inline double max_area_drift(const Csv& c) {
   return m;
 }
 
-
 /// The hydrostatic case's checks (issue #3): at every sample the bottom pressure within 1 % of rho g H, the
 /// kinetic energy that of speeds below 1e-3 sqrt(g H), the fluid area within 0.1 %; the run reaches 1 s.
 inline void check_hydrostatic(const Csv& c) {
@@ -101,8 +101,8 @@ inline void check_hydrostatic(const Csv& c) {
 /// front comes within 1.5 h of the right wall (-1 if it does not).
 inline std::pair<double, double> dam_break_tank_front(const Csv& c) {
   const double L = 0.146, g = 9.81;
-  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) /
-                           "cases/dam_break_tank/reference/koshizuka_oka_1996_surge_front_pysph.csv");
+  const Csv ref =
+      read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/dam_break_tank/reference/koshizuka_oka_1996_surge_front_pysph.csv");
   std::vector<double> Z;
   for (double x : c["front_x"]) Z.push_back(x / L);
   double sum2 = 0;

@@ -2,19 +2,19 @@
 // Running the lagfsi executable as a child process without a shell: arguments passed as they are (bytes that
 // are not UTF-8, 100 000-character keys), stdout and stderr to files, an optional file-size limit
 // (RLIMIT_FSIZE: a full disk without a small file system), and the child's pid for sending it signals.
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 namespace lagfsi::testing {
@@ -32,7 +32,8 @@ inline Spawned spawn_lagfsi(const std::vector<std::string>& args, const std::fil
   s.pid = ::fork();
   if (s.pid == 0) {
     const int e = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int o = out_file == "/dev/full" ? ::open("/dev/full", O_WRONLY) : ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int o = out_file == "/dev/full" ? ::open("/dev/full", O_WRONLY)
+                                          : ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (e < 0 || o < 0) ::_exit(126);
     ::dup2(e, 2);
     ::dup2(o, 1);

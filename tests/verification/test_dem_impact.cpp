@@ -38,7 +38,8 @@ TEST(DemHertzImpact, DurationPeakForceAndOverlapWithinOnePercentOfHertz) {
   const auto r = run_case_1thread("cases/dem_hertz_impact/case.json", "dem_hertz_impact");
   const Csv c = probes_of(r);
   ASSERT_GT(c.rows(), 100u);
-  const Csv ref = read_csv(std::string(LAGFSI_SOURCE_DIR) + "/cases/dem_hertz_impact/reference/dem_hertz_impact_chung_ooi_analytic.csv");
+  const Csv ref = read_csv(std::string(LAGFSI_SOURCE_DIR) +
+                           "/cases/dem_hertz_impact/reference/dem_hertz_impact_chung_ooi_analytic.csv");
   auto row = [&](const std::string& material) {
     for (size_t i = 0; i < ref.rows(); ++i)
       if (ref.text.at("material")[i] == material) return i;
@@ -72,16 +73,17 @@ TEST(DemHertzImpact, DurationPeakForceAndOverlapWithinOnePercentOfHertz) {
 }
 
 void expect_restitution(double e, const std::string& tag) {
-  const auto r = run_case_1thread("cases/dem_restitution/case.json", tag,
-                                  {"bodies.0.contact.restitution=" + std::to_string(e),
-                                   "bodies.1.contact.restitution=" + std::to_string(e)});
+  const auto r = run_case_1thread(
+      "cases/dem_restitution/case.json", tag,
+      {"bodies.0.contact.restitution=" + std::to_string(e), "bodies.1.contact.restitution=" + std::to_string(e)});
   const Csv c = probes_of(r);
   ASSERT_GT(c.rows(), 10u);
   const std::vector<std::pair<std::string, double>> runs = {{"v005", 0.05}, {"v05", 0.5}, {"v5", 5.0}};
   for (const std::string law : {"linear", "hertz"})
     for (const auto& [col, v] : runs) {
       const double got = c[law + "_" + col].back() / v;
-      std::printf("%s e = %.3f, impact %.2f m/s: restitution %.5f (%+.3f %%)\n", law.c_str(), e, v, got, 100 * (got / e - 1));
+      std::printf("%s e = %.3f, impact %.2f m/s: restitution %.5f (%+.3f %%)\n", law.c_str(), e, v, got,
+                  100 * (got / e - 1));
       EXPECT_LT(std::abs(got / e - 1), 0.01) << law << " at " << v << " m/s";
     }
   // the dissipated energy accounts for the lost kinetic energy (within 1 %)

@@ -15,8 +15,8 @@
 #include <lagfsi/efg/path_following.hpp>
 #include <lagfsi/error.hpp>
 
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>

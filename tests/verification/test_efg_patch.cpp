@@ -24,8 +24,8 @@ struct PatchSetup {
   std::string integration = "consistent";
   std::string essential = "coupling";
   bool quadratic = false;
-  std::string cells = "q4";   // "q9": Q9 cells and coupling elements (s.n cells, 2 s.n + 1 nodes a side)
-  bool boundary_held = false; // the exact displacements on the whole boundary (coupling along every edge)
+  std::string cells = "q4";    // "q9": Q9 cells and coupling elements (s.n cells, 2 s.n + 1 nodes a side)
+  bool boundary_held = false;  // the exact displacements on the whole boundary (coupling along every edge)
 };
 
 /// Max |v - u_exact(x_node)| over the nodes / max |u_exact|.
@@ -39,10 +39,14 @@ double patch_error(const PatchSetup& s) {
   Json bcs = {{{"type", "exact"}, {"select", {{"type", "point"}, {"at", {0, 0}}}}},
               {{"type", "exact"}, {"select", {{"type", "point"}, {"at", {1, 0}}}}, {"components", "y"}}};
   if (s.boundary_held) bcs = Json::array();
-  for (auto [from, to] : {std::pair{Json{0, 0}, Json{1, 0}}, {Json{1, 0}, Json{1, 1}}, {Json{1, 1}, Json{0, 1}},
+  for (auto [from, to] : {std::pair{Json{0, 0}, Json{1, 0}},
+                          {Json{1, 0}, Json{1, 1}},
+                          {Json{1, 1}, Json{0, 1}},
                           {Json{0, 1}, Json{0, 0}}})
-    if (s.boundary_held) bcs.push_back({{"type", "exact"}, {"select", {{"type", "segment"}, {"from", from}, {"to", to}}}});
-    else loads.push_back({{"type", "exact_traction"}, {"select", {{"type", "segment"}, {"from", from}, {"to", to}}}});
+    if (s.boundary_held)
+      bcs.push_back({{"type", "exact"}, {"select", {{"type", "segment"}, {"from", from}, {"to", to}}}});
+    else
+      loads.push_back({{"type", "exact_traction"}, {"select", {{"type", "segment"}, {"from", from}, {"to", to}}}});
   loads.push_back({{"type", "exact_body_force"}});
   Json body = {{"name", "patch"},
                {"type", "efg"},
@@ -118,10 +122,10 @@ TEST(EfgPatch, PlainGaussIsExactOnlyWhereEfgIsQ4) {
   s.alpha = 1.0;
   s.gauss = 2;
   s.integration = "gauss";
-  EXPECT_LT(patch_error(s), 1e-10);   // rho = h, bilinear: the Q4 element
+  EXPECT_LT(patch_error(s), 1e-10);  // rho = h, bilinear: the Q4 element
   s.alpha = 2.0;
   s.gauss = 8;
-  const double e = patch_error(s);    // quadrature error of the rational MLS functions
+  const double e = patch_error(s);  // quadrature error of the rational MLS functions
   EXPECT_GT(e, 1e-12);
   EXPECT_LT(e, 1e-2);
 }
@@ -130,7 +134,7 @@ TEST(EfgPatch, PenaltyAndLagrangeEssentialConditions) {
   PatchSetup s;
   s.essential = "lagrange";
   EXPECT_LT(patch_error(s), 1e-10);
-  s.essential = "penalty";   // error of order 1/penalty on the held dofs only: still a rigid-motion constraint
+  s.essential = "penalty";  // error of order 1/penalty on the held dofs only: still a rigid-motion constraint
   EXPECT_LT(patch_error(s), 1e-6);
 }
 
@@ -157,5 +161,5 @@ TEST(EfgPatch, QuadraticFieldThroughQ9CouplingElementsToRoundOff) {
   s.n = 6;
   s.quadratic = true;
   s.boundary_held = true;
-  EXPECT_GT(patch_error(s), 1e-6);   // Q4 coupling: the quadratic field is not reproduced
+  EXPECT_GT(patch_error(s), 1e-6);  // Q4 coupling: the quadratic field is not reproduced
 }

@@ -56,8 +56,9 @@ TEST_P(StiffWall, CarriesTheHydrostaticForce) {
   EXPECT_LE(s["coupling"]["residual_max"].get<double>(), 1e-6);
 }
 
-INSTANTIATE_TEST_SUITE_P(Interface, StiffWall, ::testing::Values(0.0, 0.0025),
-                         [](const auto& info) { return info.param > 0 ? std::string("NonMatching") : std::string("Matching"); });
+INSTANTIATE_TEST_SUITE_P(Interface, StiffWall, ::testing::Values(0.0, 0.0025), [](const auto& info) {
+  return info.param > 0 ? std::string("NonMatching") : std::string("Matching");
+});
 
 TEST(FsiCoupling, TheConvergedStepDoesNotDependOnTheAccelerator) {
   struct Run {
@@ -74,11 +75,10 @@ TEST(FsiCoupling, TheConvergedStepDoesNotDependOnTheAccelerator) {
                            {R"({"type": "iqn_imvj"})", 1.0, "forces"}};
   for (size_t k = 0; k < runs.size(); ++k) {
     auto& run = runs[k];
-    const auto r = run_case_1thread(kCase, "fsi_accelerator_" + std::to_string(k),
-                                    {kFs, "analysis.end_time=0.1", "output.vtk=false", kProbes,
-                                     "couplings.0.acceleration=" + run.acc,
-                                     "couplings.0.augmented_mass=" + std::to_string(run.aug),
-                                     "couplings.0.predictor=" + run.predictor});
+    const auto r = run_case_1thread(
+        kCase, "fsi_accelerator_" + std::to_string(k),
+        {kFs, "analysis.end_time=0.1", "output.vtk=false", kProbes, "couplings.0.acceleration=" + run.acc,
+         "couplings.0.augmented_mass=" + std::to_string(run.aug), "couplings.0.predictor=" + run.predictor});
     const Csv c = probes_of(r);
     ASSERT_GT(c.rows(), 100u);
     run.tip = c["tip_ux"].back();
@@ -99,10 +99,11 @@ TEST(FsiCoupling, TheConvergedStepDoesNotDependOnTheAccelerator) {
   EXPECT_LE(runs[0].iterations, 6.0);
   EXPECT_LE(runs[4].iterations, runs[0].iterations);  // IQN-IMVJ <= IQN-ILS
   EXPECT_LT(runs[5].iterations, runs[4].iterations);  // the structure's own first guess saves passes
-  std::printf("iterations per coupled step: IQN-ILS %.2f, Aitken %.2f, constant %.2f, augmented mass x3 (relaxation 1) %.2f, "
-              "IQN-IMVJ %.2f, IQN-IMVJ with the force predictor %.2f\n",
-              runs[0].iterations, runs[1].iterations, runs[2].iterations, runs[3].iterations, runs[4].iterations,
-              runs[5].iterations);
+  std::printf(
+      "iterations per coupled step: IQN-ILS %.2f, Aitken %.2f, constant %.2f, augmented mass x3 (relaxation 1) %.2f, "
+      "IQN-IMVJ %.2f, IQN-IMVJ with the force predictor %.2f\n",
+      runs[0].iterations, runs[1].iterations, runs[2].iterations, runs[3].iterations, runs[4].iterations,
+      runs[5].iterations);
 }
 
 TEST(FsiCoupling, TheStructuresEnergyBalanceClosesWithTheInterfaceWork) {
@@ -138,20 +139,23 @@ TEST(FsiCoupling, TheCoupledEnergyBalanceCloses) {
                  {"name": "e_s", "type": "energy", "body": "plate", "kind": "total"},
                  {"name": "wext_s", "type": "energy", "body": "plate", "kind": "external_work"},
                  {"name": "wif_s", "type": "energy", "body": "plate", "kind": "interface_work"}])";
-  const auto r = run_case_1thread(kCase, "fsi_coupled_energy", {kFs, "analysis.end_time=0.3", "output.vtk=false", probes});
+  const auto r =
+      run_case_1thread(kCase, "fsi_coupled_energy", {kFs, "analysis.end_time=0.3", "output.vtk=false", probes});
   const Csv c = probes_of(r);
   double e_max = 0, b_max = 0, wif_max = 0, corr_max = 0;
   for (size_t i = 0; i < c.rows(); ++i) {
     const double es = c["e_s"][i] - c["e_s"][0];
-    const double b = (c["ke_f"][i] - c["ke_f"][0]) + es - c["wg_f"][i] - (c["wext_s"][i] - c["wif_s"][i]) + c["d_f"][i] -
-                     c["c_f"][i];
+    const double b = (c["ke_f"][i] - c["ke_f"][0]) + es - c["wg_f"][i] - (c["wext_s"][i] - c["wif_s"][i]) +
+                     c["d_f"][i] - c["c_f"][i];
     e_max = std::max(e_max, std::abs(es));
     b_max = std::max(b_max, std::abs(b));
     wif_max = std::max(wif_max, std::abs(c["wif_s"][i]));
     corr_max = std::max(corr_max, std::abs(c["c_f"][i]));
   }
-  std::printf("coupled energy balance: largest |B| %.2f %%, the volume correction's energy %.2f %% of the plate's largest energy\n",
-              100 * b_max / e_max, 100 * corr_max / e_max);
+  std::printf(
+      "coupled energy balance: largest |B| %.2f %%, the volume correction's energy %.2f %% of the plate's largest "
+      "energy\n",
+      100 * b_max / e_max, 100 * corr_max / e_max);
   ASSERT_GT(e_max, 0.05) << "J per metre: the plate must take a real share of the water's energy";
   EXPECT_GT(wif_max, 0.5 * e_max) << "the plate's energy comes through the interface";
   EXPECT_LT(b_max, 0.04 * e_max) << "largest |energy balance| against the largest energy of the plate";

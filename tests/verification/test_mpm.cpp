@@ -60,7 +60,8 @@ TEST(MpmBar, LinearShapeFunctionsSufferCellCrossing) {
   // With linear shape functions and 2 particles per cell the particles near the free end (amplitude 0.16 m)
   // cross cell boundaries (0.125 m away) and the energy drifts (measured +2.6 % at CFL 0.5, and USL blows
   // up); with one particle per cell, 0.25 m from the boundaries, none crosses and the energy stays within 1 %.
-  const BarResult crossing = bar("mpm_bar_linear2", {"output.vtk=false", "bodies.0.shape_functions=linear", "bodies.0.cfl=0.5"});
+  const BarResult crossing =
+      bar("mpm_bar_linear2", {"output.vtk=false", "bodies.0.shape_functions=linear", "bodies.0.cfl=0.5"});
   EXPECT_GT(crossing.energy_dev, 0.015);
   const BarResult single = bar("mpm_bar_linear1", {"output.vtk=false", "bodies.0.shape_functions=linear",
                                                    "bodies.0.cfl=0.5", "bodies.0.particles_per_cell=1"});
@@ -106,8 +107,9 @@ TEST(MpmBar, RayleighDampingDecaysAtTheModalRate) {
 
 /// Energy left in the bar after a velocity pulse (centre, 1.5 m wide) has had time to leave through the end x = L.
 double energy_left(const std::string& tag, const std::vector<std::string>& end) {
-  std::vector<std::string> sets = {"output.vtk=false", "analysis.end_time=6", "bodies.0.grid.size=[25.0, 0.5]",
-                                   R"(bodies.0.initial_state={"type": "pulse", "amplitude": 0.1, "centre": 12.5, "width": 1.5})"};
+  std::vector<std::string> sets = {
+      "output.vtk=false", "analysis.end_time=6", "bodies.0.grid.size=[25.0, 0.5]",
+      R"(bodies.0.initial_state={"type": "pulse", "amplitude": 0.1, "centre": 12.5, "width": 1.5})"};
   sets.insert(sets.end(), end.begin(), end.end());
   const auto r = run_case_1thread("cases/mpm_bar_vibration/case.json", tag, sets);
   const Csv c = probes_of(r);
@@ -118,17 +120,23 @@ TEST(MpmBar, AbsorbingBoundaryLetsThePulseOut) {
   // A pulse splits into two waves (c = 10 m/s); one leaves through x = 25 m at 1.25 s, the other reflects at
   // the fixed end x = 0 and leaves at 3.75 s. With a Lysmer-Kuhlemeyer dashpot at x = 25 m the bar keeps under
   // 2 % of the energy at 6 s (measured 0.35 %); with that end fixed it keeps all of it (measured 99.9 %).
-  EXPECT_LT(energy_left("mpm_bar_absorbing", {R"(bodies.0.absorbing_boundaries=[{"select": {"type": "segment", "from": [25, 0], "to": [25, 0.5]}, "normal": [1, 0]}])"}),
-            0.02);
-  EXPECT_GT(energy_left("mpm_bar_reflecting", {R"(bodies.0.boundary_conditions.1.select={"type": "segment", "from": [25, 0], "to": [25, 0.5]})"}),
-            0.95);
+  EXPECT_LT(
+      energy_left(
+          "mpm_bar_absorbing",
+          {R"(bodies.0.absorbing_boundaries=[{"select": {"type": "segment", "from": [25, 0], "to": [25, 0.5]}, "normal": [1, 0]}])"}),
+      0.02);
+  EXPECT_GT(
+      energy_left("mpm_bar_reflecting",
+                  {R"(bodies.0.boundary_conditions.1.select={"type": "segment", "from": [25, 0], "to": [25, 0.5]})"}),
+      0.95);
 }
 
 TEST(MpmImplicit, BarWithTheSharedNewmarkAtTenTimesTheExplicitStep) {
   // The analysis' Newmark (beta 1/4, gamma 1/2) on the grid: Delta t = 0.25 s, ten times the explicit
   // sub-step of the case (CFL 0.2) and five times the explicit stability limit. Period elongation of the
   // trapezoidal rule (omega dt)^2/12 = 0.21 %: measured +0.26 %; energy within 1 % (measured 0.33 %).
-  const BarResult b = bar("mpm_bar_implicit", {"output.vtk=false", "bodies.0.time_integration=implicit", "analysis.dt=0.25"});
+  const BarResult b =
+      bar("mpm_bar_implicit", {"output.vtk=false", "bodies.0.time_integration=implicit", "analysis.dt=0.25"});
   EXPECT_NEAR(b.period, 10.0, 0.05);
   EXPECT_LT(b.energy_dev, 0.01);
 }
@@ -136,10 +144,10 @@ TEST(MpmImplicit, BarWithTheSharedNewmarkAtTenTimesTheExplicitStep) {
 TEST(MpmImplicit, ColumnQuasiStaticWithGeneralizedAlpha) {
   // Generalized-alpha with rho_inf = 0 damps the column's vibration (period 17 ms) at Delta t = 10 ms: 50
   // steps to the static state, settlement within 2 % (measured -0.05 %), stress within 2 % of rho g H (1.29 %).
-  const auto r = run_case_1thread("cases/mpm_column_selfweight/case.json", "mpm_column_implicit",
-                                  {"bodies.0.time_integration=implicit", "bodies.0.damping={}",
-                                   R"(analysis.integrator={"type": "generalized_alpha", "rho_inf": 0.0})",
-                                   "analysis.dt=0.01", "probes=[]"});
+  const auto r = run_case_1thread(
+      "cases/mpm_column_selfweight/case.json", "mpm_column_implicit",
+      {"bodies.0.time_integration=implicit", "bodies.0.damping={}",
+       R"(analysis.integrator={"type": "generalized_alpha", "rho_inf": 0.0})", "analysis.dt=0.01", "probes=[]"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv c = read_csv(r.out_dir / "column_particles.csv");
   const double rho = 1800, g = 9.81, E = 1e6, H = 0.1;
@@ -210,7 +218,8 @@ TEST(MpmTwoPhase, TerzaghiConsolidation) {
   // Tv = 0.05, 0.197, 0.5, 0.848 (measured -0.97, -0.22, -0.07, -0.03 %; c_v = 1.019 m2/s, H = 1 m).
   const auto r = run_case_1thread("cases/mpm_consolidation/case.json", "mpm_terzaghi", {"output.every=500"});
   const Csv c = probes_of(r);
-  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) / "cases/mpm_consolidation/reference/mpm_terzaghi_average_consolidation.csv");
+  const Csv ref = read_csv(fs::path(LAGFSI_SOURCE_DIR) /
+                           "cases/mpm_consolidation/reference/mpm_terzaghi_average_consolidation.csv");
   const double cv = 1e-3 * 1e7 / (1000 * 9.81);
   for (double tv : {0.05, 0.197, 0.5, 0.848}) {
     const double U = 1 - interp(c["time"], c["p_mean"], tv / cv) / 1e4;
@@ -219,7 +228,8 @@ TEST(MpmTwoPhase, TerzaghiConsolidation) {
   }
   // Isochrone at t = 0.2 s (Tv = 0.204): every particle's pore pressure within 3 % of p0 of the series
   // (measured 1.7 %).
-  const auto r2 = run_case_1thread("cases/mpm_consolidation/case.json", "mpm_terzaghi_isochrone", {"analysis.end_time=0.2"});
+  const auto r2 =
+      run_case_1thread("cases/mpm_consolidation/case.json", "mpm_terzaghi_isochrone", {"analysis.end_time=0.2"});
   ASSERT_EQ(r2.exit_code, 0) << r2.stderr_text;
   const Csv pc = read_csv(r2.out_dir / "soil_particles.csv");
   const double tv = cv * 0.2;
@@ -239,7 +249,8 @@ TEST(MpmTwoPhase, TerzaghiConsolidation) {
 TEST(MpmTwoPhase, SaturatedSquareReachesHydrostatic) {
   // Seed 000 example 2: after 1 s the pore pressure is hydrostatic at the cell centres (measured within 0.02 %
   // of gamma_w H) and extrapolates to 10 kPa at the base within 2 % (measured 10 001 Pa).
-  const auto r = run_case_1thread("cases/mpm_saturated_square/case.json", "mpm_saturated_square", {"output.every=1000"});
+  const auto r =
+      run_case_1thread("cases/mpm_saturated_square/case.json", "mpm_saturated_square", {"output.every=1000"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv c = read_csv(r.out_dir / "square_particles.csv");
   const double gw = 1019.37 * 9.81, h = 0.1;
@@ -287,7 +298,8 @@ double surface_velocity(double t, double depth) {
 std::pair<double, double> layer(const std::string& lateral, double cell) {
   const fs::path dir = fresh_dir("mpm_free_field_" + lateral + "_" + std::to_string(int(1 / cell)));
   std::string table = "time,value\n";
-  for (int i = 0; i <= 2000; ++i) table += std::to_string(i * 5e-4) + "," + std::to_string(base_velocity(i * 5e-4)) + "\n";
+  for (int i = 0; i <= 2000; ++i)
+    table += std::to_string(i * 5e-4) + "," + std::to_string(base_velocity(i * 5e-4)) + "\n";
   write_text(dir / "pulse.csv", table);
   const double c = cell / 4;  // a particle centre next to the surface (2 x 2 particles per cell)
   nlohmann::json j = nlohmann::json::parse(R"({
@@ -305,22 +317,31 @@ std::pair<double, double> layer(const std::string& lateral, double cell) {
     "output": {"vtk": false}})");
   auto& b = j["bodies"][0];
   b["grid"]["cell"] = cell;
-  const nlohmann::json sides = nlohmann::json::array({nlohmann::json::array({0.0, -1.0}), nlohmann::json::array({kW, 1.0})});
+  const nlohmann::json sides =
+      nlohmann::json::array({nlohmann::json::array({0.0, -1.0}), nlohmann::json::array({kW, 1.0})});
   for (const auto& s : sides) {
     const double x = s[0];
     const nlohmann::json seg = {{"type", "segment"}, {"from", {x, 0.0}}, {"to", {x, 22.0}}};
     if (lateral == "box")
-      b["boundary_conditions"].push_back({{"type", "prescribed_velocity"}, {"select", seg}, {"value", {1, 0}},
+      b["boundary_conditions"].push_back({{"type", "prescribed_velocity"},
+                                          {"select", seg},
+                                          {"value", {1, 0}},
                                           {"function", {{"type", "table"}, {"file", "pulse.csv"}}}});
     else
-      b["absorbing_boundaries"].push_back({{"select", seg}, {"normal", {s[1], 0.0}}, {"free_field", lateral == "free_field"}});
+      b["absorbing_boundaries"].push_back(
+          {{"select", seg}, {"normal", {s[1], 0.0}}, {"free_field", lateral == "free_field"}});
   }
   if (lateral == "dashpots") {
     j["gravity"] = {0.0, 0.0};
     b["initial_stress"] = {{"type", "zero"}};
   }
-  j["probes"] = {{{"name", "centre"}, {"type", "particle"}, {"body", "soil"}, {"at", {40.0 + c, kH - c}}, {"quantity", "velocity_x"}},
-                 {{"name", "side"}, {"type", "particle"}, {"body", "soil"}, {"at", {c, kH - c}}, {"quantity", "velocity_x"}}};
+  j["probes"] = {
+      {{"name", "centre"},
+       {"type", "particle"},
+       {"body", "soil"},
+       {"at", {40.0 + c, kH - c}},
+       {"quantity", "velocity_x"}},
+      {{"name", "side"}, {"type", "particle"}, {"body", "soil"}, {"at", {c, kH - c}}, {"quantity", "velocity_x"}}};
   const Csv p = probes_of(run_case_text(dir, j.dump(2), "--quiet --threads 1"));
   double e_c = 0, e_s = 0;
   for (size_t i = 0; i < p.rows(); ++i) {
@@ -329,8 +350,8 @@ std::pair<double, double> layer(const std::string& lateral, double cell) {
     e_s += std::pow(p["side"][i] - v, 2);
   }
   const double n = static_cast<double>(p.rows()), peak = 2 * kA;
-  std::printf("%-10s cell %.2f m: surface velocity RMS error / peak: centre %.3f, next to the side %.3f\n", lateral.c_str(),
-              cell, std::sqrt(e_c / n) / peak, std::sqrt(e_s / n) / peak);
+  std::printf("%-10s cell %.2f m: surface velocity RMS error / peak: centre %.3f, next to the side %.3f\n",
+              lateral.c_str(), cell, std::sqrt(e_c / n) / peak, std::sqrt(e_s / n) / peak);
   return {std::sqrt(e_c / n) / peak, std::sqrt(e_s / n) / peak};
 }
 
@@ -354,7 +375,8 @@ TEST(MpmFreeField, LayerMovesAsTheOneDimensionalSiteResponse) {
 TEST(MpmOutput, GridSeriesBesideTheParticles) {
   // "grid_output": a <body>_grid.pvd series with one .vtp per output step (the grid nodes that carry mass at the
   // last sub-step): as many steps as the particle series, and nodes in every file after the first.
-  const auto r = run_case_1thread("cases/mpm_column_selfweight/case.json", "mpm_grid_output", {"bodies.0.grid_output=true"});
+  const auto r =
+      run_case_1thread("cases/mpm_column_selfweight/case.json", "mpm_grid_output", {"bodies.0.grid_output=true"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   auto entries = [](const fs::path& pvd) {
     std::ifstream in(pvd);
@@ -368,8 +390,9 @@ TEST(MpmOutput, GridSeriesBesideTheParticles) {
   const size_t n = entries(r.out_dir / "column.pvd");
   ASSERT_GT(n, 2u);
   EXPECT_EQ(entries(r.out_dir / "column_grid.pvd"), n);
-  std::ifstream last(r.out_dir / "column_grid" / ("column_grid_" + std::string(5 - std::to_string(n - 1).size(), '0') +
-                                                   std::to_string(n - 1) + ".vtp"));
+  std::ifstream last(
+      r.out_dir / "column_grid" /
+      ("column_grid_" + std::string(5 - std::to_string(n - 1).size(), '0') + std::to_string(n - 1) + ".vtp"));
   ASSERT_TRUE(last.good());
   std::string head(400, '\0');
   last.read(head.data(), 400);

@@ -110,8 +110,8 @@ TEST_P(ShellTangent, HessianGradientSymmetryObjectivity) {
     const Vec2 P = X.segment<2>(2 * i);
     const double a = std::atan2(P.y(), P.x());
     x.segment<2>(2 * i) = 1.1 * Vec2(std::cos(1.4 * a), std::sin(1.4 * a)) + 0.01 * Vec2(u(gen), u(gen));
-    x.segment<2>(2 * (n + i)) = 1.15 * rotation(0.4 * a + 0.1) * X.segment<2>(2 * (n + i)) +
-                                0.002 * Vec2(u(gen), u(gen));
+    x.segment<2>(2 * (n + i)) =
+        1.15 * rotation(0.4 * a + 0.1) * X.segment<2>(2 * (n + i)) + 0.002 * Vec2(u(gen), u(gen));
   }
   SparseMatrix K = body.pattern();
   Vec f;
@@ -254,7 +254,8 @@ TEST(ShellBody, SimplySupportedBeamUnderPressure) {
     }
   const Vec u = Kd.lu().solve(r);
   const double EI = s.young * std::pow(s.thickness, 3) / 12.0;
-  const double w_ref = 5.0 * q * std::pow(L, 4) / (384.0 * EI) + q * L * L / (8.0 * (5.0 / 6.0) * 0.5 * s.young * s.thickness);
+  const double w_ref =
+      5.0 * q * std::pow(L, 4) / (384.0 * EI) + q * L * L / (8.0 * (5.0 / 6.0) * 0.5 * s.young * s.thickness);
   const Index mid = (n - 1) / 2;
   const double w = -u[2 * mid + 1];
   const ShellBody::Resultants res = body.resultants(X + u);
@@ -315,7 +316,8 @@ TEST(CantileverStepLoadShell, StepResponsePeakAndEnergyBalance) {
     worst = std::max(worst, std::abs(c["energy_balance"][i]));
     emax = std::max(emax, std::abs(c["energy_total"][i]));
   }
-  std::printf("peak %.6f m = %.4f x static; |balance| / E = %.2e\n", peak, -peak / cantilever_timoshenko(), worst / emax);
+  std::printf("peak %.6f m = %.4f x static; |balance| / E = %.2e\n", peak, -peak / cantilever_timoshenko(),
+              worst / emax);
   EXPECT_LT(std::abs(-peak / (2.0 * cantilever_timoshenko()) - 1.0), 0.01);
   EXPECT_LT(worst, 1e-4 * emax);
 }
@@ -326,17 +328,22 @@ namespace {
 
 /// A shell case written by the test (static, unit width): a beam L = 1 m, t = 0.02 m, E = 1e7 Pa, nu = 0 with
 /// the given boundary conditions and loads; returns the probes.
-Csv run_beam(const std::string& tag, const nlohmann::json& bcs, const nlohmann::json& loads, const nlohmann::json& probes,
-             int load_steps = 1) {
+Csv run_beam(const std::string& tag, const nlohmann::json& bcs, const nlohmann::json& loads,
+             const nlohmann::json& probes, int load_steps = 1) {
   const fs::path dir = fresh_dir(tag);
   nlohmann::json j = {
       {"name", tag},
       {"analysis", {{"type", "static"}, {"load_steps", load_steps}, {"linear_solver", {{"type", "umfpack"}}}}},
       {"bodies",
-       {{{"name", "beam"}, {"type", "shell"},
-         {"material", {{"type", "svk"}, {"young", 1e7}, {"poisson", 0.0}, {"density", 1000.0}, {"hypothesis", "plane_stress"}}},
-         {"thickness", 0.02}, {"geometry", {{"type", "line"}, {"from", {0, 0}}, {"to", {1, 0}}}},
-         {"mesh", {{"elements", 4}, {"order", 3}}}, {"boundary_conditions", bcs}, {"loads", loads}}}},
+       {{{"name", "beam"},
+         {"type", "shell"},
+         {"material",
+          {{"type", "svk"}, {"young", 1e7}, {"poisson", 0.0}, {"density", 1000.0}, {"hypothesis", "plane_stress"}}},
+         {"thickness", 0.02},
+         {"geometry", {{"type", "line"}, {"from", {0, 0}}, {"to", {1, 0}}}},
+         {"mesh", {{"elements", 4}, {"order", 3}}},
+         {"boundary_conditions", bcs},
+         {"loads", loads}}}},
       {"probes", probes},
       {"output", {{"vtk", false}}}};
   return probes_of(run_case_text(dir, j.dump(2)));
@@ -353,11 +360,14 @@ TEST(ShellCase, PinnedBeamUnderDeadAndFollowerPressure) {
   const double EI = 1e7 * 8e-6 / 12.0, w_ref = 5.0 / (384.0 * EI) + 1.0 / (8.0 * (5.0 / 6.0) * 0.5e7 * 0.02);
   const nlohmann::json bcs = {{{"type", "pinned"}, {"select", point(0, 0)}},
                               {{"type", "pinned"}, {"select", point(1, 0)}, {"components", "y"}}};
-  const nlohmann::json probes = {{{"name", "mid"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.5, 0.0}}, {"component", "y"}},
-                                 {{"name", "end_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {1.0, 0.0}}, {"component", "x"}}};
+  const nlohmann::json probes = {
+      {{"name", "mid"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.5, 0.0}}, {"component", "y"}},
+      {{"name", "end_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {1.0, 0.0}}, {"component", "x"}}};
   for (bool follower : {false, true}) {
-    const nlohmann::json loads = {{{"type", "pressure"}, {"select", {{"type", "segment"}, {"from", {0, 0.01}}, {"to", {1, 0.01}}}},
-                                   {"value", 1.0}, {"follower", follower}}};
+    const nlohmann::json loads = {{{"type", "pressure"},
+                                   {"select", {{"type", "segment"}, {"from", {0, 0.01}}, {"to", {1, 0.01}}}},
+                                   {"value", 1.0},
+                                   {"follower", follower}}};
     const Csv c = run_beam(std::string("shell_pinned_") + (follower ? "follower" : "dead"), bcs, loads, probes);
     std::printf("pinned beam, %s pressure: midspan %.6e m (Timoshenko %.6e)\n", follower ? "follower" : "dead",
                 -c["mid"].back(), w_ref);
@@ -371,8 +381,9 @@ TEST(ShellCase, PrescribedEndMotionStretchesTheShellUniformly) {
   // uniform), and the shell stays straight.
   const nlohmann::json bcs = {{{"type", "fixed"}, {"select", point(0, 0)}},
                               {{"type", "prescribed_displacement"}, {"select", point(1, 0)}, {"value", {0.05, 0.0}}}};
-  const nlohmann::json probes = {{{"name", "q_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, 0.01}}, {"component", "x"}},
-                                 {{"name", "q_y"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, -0.01}}, {"component", "y"}}};
+  const nlohmann::json probes = {
+      {{"name", "q_x"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, 0.01}}, {"component", "x"}},
+      {{"name", "q_y"}, {"type", "displacement"}, {"body", "beam"}, {"at", {0.3, -0.01}}, {"component", "y"}}};
   const Csv c = run_beam("shell_prescribed", bcs, nlohmann::json::array(), probes, 2);
   EXPECT_NEAR(c["q_x"].back(), 0.3 * 0.05, 1e-9);
   EXPECT_LT(std::abs(c["q_y"].back()), 2e-4);  // the faces move in by the thickness change only

@@ -95,8 +95,8 @@ struct Errors {
 };
 
 Errors solve_and_measure(int order, int n) {
-  auto mat = std::shared_ptr<const SolidMaterial>(
-      make_solid_material("svk", kE, kNu, 1.0, PlaneHypothesis::PlaneStrain));
+  auto mat =
+      std::shared_ptr<const SolidMaterial>(make_solid_material("svk", kE, kNu, 1.0, PlaneHypothesis::PlaneStrain));
   SolidBody body(meshing::elevate(meshing::mesh_rectangle_structured(0, 0, 1, 1, n, n, "crossed"), order), mat, 1.0);
   const TriMesh& m = body.mesh();
   const Index nd = body.num_dofs();
@@ -209,9 +209,9 @@ TEST_P(SpatialConvergence, OptimalOrdersL2AndH1) {
   const int p = GetParam();
   // Mesh sequences chosen so that the finest error is far above round-off (the T10 H1 error is about
   // 2e-6 at n = 16) and each order runs in under a second.
-  const std::vector<int> ns = p == 1 ? std::vector<int>{8, 16, 32, 64}
-                            : p == 2 ? std::vector<int>{4, 8, 16, 32}
-                                     : std::vector<int>{2, 4, 8, 16};
+  const std::vector<int> ns = p == 1   ? std::vector<int>{8, 16, 32, 64}
+                              : p == 2 ? std::vector<int>{4, 8, 16, 32}
+                                       : std::vector<int>{2, 4, 8, 16};
   std::vector<Errors> errs;
   for (int n : ns) errs.push_back(solve_and_measure(p, n));
   for (size_t i = 0; i < errs.size(); ++i) {

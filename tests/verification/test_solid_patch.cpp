@@ -42,8 +42,7 @@ namespace {
 /// Newton for f_int(x) = f_ext with the dofs in `fixed` driven to `target` (non-homogeneous Dirichlet
 /// conditions by row / column elimination: the first iteration carries the interior along linearly).
 /// Returns the number of iterations; fails the test if it does not converge.
-int solve_static(const SolidBody& body, const std::vector<char>& fixed, const Vec& target, const Vec& fext,
-                 Vec& x) {
+int solve_static(const SolidBody& body, const std::vector<char>& fixed, const Vec& target, const Vec& fext, Vec& x) {
   auto solver = make_linear_solver("umfpack");
   SparseMatrix K = body.pattern();
   Vec f, dx;
@@ -210,7 +209,8 @@ TEST_P(DisplacementPatch, HomogeneousDeformationIsReproduced) {
   // Round-off of f at small strain: E = (F^T F - I)/2 loses |F - I| ~ 1e-3 of its digits, so the floor is
   // ~1e-13 / 1e-3 of the boundary forces (measured 1e-10 for T10); 1e-8 keeps a margin, while a
   // consistency defect gives O(1) of the boundary forces.
-  EXPECT_LT(fint, (pc.finite ? 1e-11 : 1e-8) * fbnd) << name_of(pc) << ": interior nodes not in equilibrium at the exact state";
+  EXPECT_LT(fint, (pc.finite ? 1e-11 : 1e-8) * fbnd)
+      << name_of(pc) << ": interior nodes not in equilibrium at the exact state";
 }
 
 std::vector<PatchCase> patch_cases() {
@@ -240,8 +240,7 @@ class TractionPatch : public ::testing::TestWithParam<TractionCase> {};
 TEST_P(TractionPatch, UniaxialSvkPlaneStress) {
   const auto [order, nu] = GetParam();
   const double E = 1000.0, L = 2.0, H = 1.0, t = 300.0;  // t = 0.3 E: stretch about 1.2
-  auto mat = std::shared_ptr<const SolidMaterial>(
-      make_solid_material("svk", E, nu, 1.0, PlaneHypothesis::PlaneStress));
+  auto mat = std::shared_ptr<const SolidMaterial>(make_solid_material("svk", E, nu, 1.0, PlaneHypothesis::PlaneStress));
   SolidBody body(distorted_mesh(L, H, 0.25, 0.25, order, 31u + order), mat, 0.7);
   const TriMesh& m = body.mesh();
   const Index nd = body.num_dofs();
@@ -290,9 +289,10 @@ TEST_P(TractionPatch, UniaxialSvkPlaneStress) {
   for (Index n = 0; n < m.num_nodes(); ++n)
     serr = std::max({serr, std::abs(s.cauchy[4 * n] - sigma11), std::abs(s.cauchy[4 * n + 1]),
                      std::abs(s.cauchy[4 * n + 2]), std::abs(s.cauchy[4 * n + 3])});
-  std::printf("T%-2d nu=%.2f  lambda = %.10f mu = %.10f  Newton its %d  max position error %.2e  "
-              "max stress error / t %.2e\n",
-              TriMesh::nodes_per_element(order), nu, lam, mu, iters, err, serr / t);
+  std::printf(
+      "T%-2d nu=%.2f  lambda = %.10f mu = %.10f  Newton its %d  max position error %.2e  "
+      "max stress error / t %.2e\n",
+      TriMesh::nodes_per_element(order), nu, lam, mu, iters, err, serr / t);
   // The exact solution is homogeneous, hence in every FE space, and the consistent traction load is
   // exact: round-off only. Positions to 1e-10 of L, stresses to 1e-9 of t (stress recovery
   // differentiates positions: eps cond / h).

@@ -33,6 +33,7 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
@@ -48,7 +49,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 using namespace lagfsi;
 namespace fs = std::filesystem;
@@ -106,8 +106,9 @@ struct Problem {
 /// Undamped free vibration, omega = 2 pi (T = 1).
 Problem free_problem() {
   const double m = 2.0, w = 2 * kPi, k = m * w * w, x0 = 1.0, v0 = 0.5;
-  return {{m, 0.0, k, [](double) { return 0.0; }}, x0, v0,
-          [=](double t) { return x0 * std::cos(w * t) + v0 / w * std::sin(w * t); }};
+  return {{m, 0.0, k, [](double) { return 0.0; }}, x0, v0, [=](double t) {
+            return x0 * std::cos(w * t) + v0 / w * std::sin(w * t);
+          }};
 }
 
 /// Damped, harmonically forced: x'' + 2 zeta w x' + w^2 x = F0 cos(W t) (per unit mass, m = 1.5).
@@ -151,8 +152,8 @@ TEST_P(TimeOrder, SecondOrderInTime) {
   }
   for (size_t i = 1; i < err.size(); ++i) {
     const double order = std::log2(err[i - 1] / err[i]);
-    std::printf("%-18s %-6s dt = T/%-4d error %.3e  order %.3f\n", which.c_str(), forced ? "forced" : "free",
-                40 << i, err[i], order);
+    std::printf("%-18s %-6s dt = T/%-4d error %.3e  order %.3f\n", which.c_str(), forced ? "forced" : "free", 40 << i,
+                err[i], order);
     EXPECT_GE(order, 1.8) << which;
     EXPECT_LE(order, 2.2) << which;
   }
@@ -189,8 +190,8 @@ TEST(TimeIntegratorSpectrum, HighFrequencyDissipation) {
   const double rho_nm_inf = spectral_radius("newmark", 1e4);
   const double rho_ga_0 = spectral_radius("generalized_alpha", 1e-2);
   const double rho_nm_0 = spectral_radius("newmark", 1e-2);
-  std::printf("spectral radius at omega dt = 1e4: generalized-alpha %.6f (rho_inf 0.8), newmark %.12f\n",
-              rho_ga_inf, rho_nm_inf);
+  std::printf("spectral radius at omega dt = 1e4: generalized-alpha %.6f (rho_inf 0.8), newmark %.12f\n", rho_ga_inf,
+              rho_nm_inf);
   std::printf("spectral radius at omega dt = 1e-2: generalized-alpha %.9f, newmark %.12f\n", rho_ga_0, rho_nm_0);
   // At omega dt = 1e4 the roots differ from their limit by O(1 / (omega dt)) ~ 1e-4; the eigenvalues of
   // the nearly defective (triple root) matrix carry round-off ~ eps^(1/3) ~ 1e-5.
@@ -283,25 +284,35 @@ BeamRun run_beam(const std::string& tag, int order, double v0, double pulse, dou
   std::ostringstream js;
   js.precision(17);
   js << R"({
-  "name": "free_vibration_)" << tag << R"(",
-  "analysis": {"type": "dynamic", "dt": )" << dt << R"(, "end_time": )" << t_end << R"(,
+  "name": "free_vibration_)"
+     << tag << R"(",
+  "analysis": {"type": "dynamic", "dt": )"
+     << dt << R"(, "end_time": )" << t_end << R"(,
                "integrator": {"type": "newmark", "beta": 0.25, "gamma": 0.5},
                "newton": {"max_iterations": 20, "residual_tolerance": 1e-10, "position_tolerance": 1e-12},
                "linear_solver": {"type": "cholmod"}},
   "bodies": [{
     "name": "strip", "type": "solid",
-    "material": {"type": "svk", "young": )" << kE << R"(, "poisson": 0.0, "density": )" << kRho << R"(,
+    "material": {"type": "svk", "young": )"
+     << kE << R"(, "poisson": 0.0, "density": )" << kRho << R"(,
                  "hypothesis": "plane_stress"},
     "thickness": 1.0,
-    "damping": {"mass": )" << mass_damping << R"(},
-    "initial_velocity": [0.0, )" << v0 << R"(],
-    "geometry": {"type": "rectangle", "origin": [0, 0], "size": [)" << kL << ", " << kH << R"(]},
-    "mesh": {"type": "structured", "size": 0.05, "divisions": [20, 2], "pattern": "crossed", "order": )" << order << R"(},
-    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, )" << kH << R"(]}}],
-    "loads": [{"type": "body_force", "value": [0, )" << pulse << R"(], "function": {"type": "table", "file": "pulse.csv"}}]
+    "damping": {"mass": )"
+     << mass_damping << R"(},
+    "initial_velocity": [0.0, )"
+     << v0 << R"(],
+    "geometry": {"type": "rectangle", "origin": [0, 0], "size": [)"
+     << kL << ", " << kH << R"(]},
+    "mesh": {"type": "structured", "size": 0.05, "divisions": [20, 2], "pattern": "crossed", "order": )"
+     << order << R"(},
+    "boundary_conditions": [{"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0, )"
+     << kH << R"(]}}],
+    "loads": [{"type": "body_force", "value": [0, )"
+     << pulse << R"(], "function": {"type": "table", "file": "pulse.csv"}}]
   }],
   "probes": [
-    {"name": "tip_uy", "type": "displacement", "body": "strip", "at": [)" << kL << ", " << kH / 2 << R"(], "component": "y"},
+    {"name": "tip_uy", "type": "displacement", "body": "strip", "at": [)"
+     << kL << ", " << kH / 2 << R"(], "component": "y"},
     {"name": "e_total", "type": "energy", "body": "strip", "kind": "total"},
     {"name": "e_balance", "type": "energy", "body": "strip", "kind": "balance"},
     {"name": "e_work", "type": "energy", "body": "strip", "kind": "external_work"},
@@ -309,9 +320,7 @@ BeamRun run_beam(const std::string& tag, int order, double v0, double pulse, dou
   ],
   "output": {"every": 1000000, "vtk": false}
 })";
-  {
-    std::ofstream(dir / "case.json") << js.str();
-  }
+  { std::ofstream(dir / "case.json") << js.str(); }
   RunOptions opt;
   opt.case_file = dir / "case.json";
   opt.out_dir = dir / "out";
@@ -329,10 +338,9 @@ BeamRun run_beam(const std::string& tag, int order, double v0, double pulse, dou
 /// Initial kinetic energy 1/2 v0^T M v0 with v0 = (0, V) on the free nodes, computed from SolidBody's
 /// mass on the same mesh (the clamped nodes, x = 0, have zero velocity).
 double initial_kinetic_energy(int order, double V) {
-  auto mat = std::shared_ptr<const SolidMaterial>(
-      make_solid_material("svk", kE, 0.0, kRho, PlaneHypothesis::PlaneStress));
-  SolidBody body(meshing::elevate(meshing::mesh_rectangle_structured(0, 0, kL, kH, 20, 2, "crossed"), order), mat,
-                 1.0);
+  auto mat =
+      std::shared_ptr<const SolidMaterial>(make_solid_material("svk", kE, 0.0, kRho, PlaneHypothesis::PlaneStress));
+  SolidBody body(meshing::elevate(meshing::mesh_rectangle_structured(0, 0, kL, kH, 20, 2, "crossed"), order), mat, 1.0);
   Vec v = Vec::Zero(body.num_dofs());
   for (Index n = 0; n < body.num_nodes(); ++n)
     if (body.mesh().nodes[n].x() > 1e-12) v[2 * n + 1] = V;
@@ -389,20 +397,20 @@ TEST_P(FreeVibration, NewmarkConservesEnergyOver20Periods) {
     bal = std::max(bal, std::abs(ebal[i]) / etot[0]);
   }
   const double Tm = measured_period(t, r.cols.at("tip_uy"));
-  std::printf("T%d free vibration: %zu steps in %.2f s, max |E - E0| / E0 = %.2e, max |balance| / E0 = %.2e, "
-              "tip amplitude %.3e m, period %.5f s (beam theory %.5f s, ratio %.4f)\n",
-              TriMesh::nodes_per_element(order), t.size() - 1, r.seconds, drift, bal, max_abs(r.cols.at("tip_uy")),
-              Tm, T, Tm / T);
+  std::printf(
+      "T%d free vibration: %zu steps in %.2f s, max |E - E0| / E0 = %.2e, max |balance| / E0 = %.2e, "
+      "tip amplitude %.3e m, period %.5f s (beam theory %.5f s, ratio %.4f)\n",
+      TriMesh::nodes_per_element(order), t.size() - 1, r.seconds, drift, bal, max_abs(r.cols.at("tip_uy")), Tm, T,
+      Tm / T);
   EXPECT_LT(drift, 5e-3);
   EXPECT_LT(bal, 5e-3);
   EXPECT_NEAR(Tm / T, 1.0, 0.05);
   // The run time is printed, not asserted: speed lives in tests/bench (issue #17).
 }
 
-INSTANTIATE_TEST_SUITE_P(Elements, FreeVibration, ::testing::Values(2, 3),
-                         [](const ::testing::TestParamInfo<int>& i) {
-                           return "T" + std::to_string(TriMesh::nodes_per_element(i.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Elements, FreeVibration, ::testing::Values(2, 3), [](const ::testing::TestParamInfo<int>& i) {
+  return "T" + std::to_string(TriMesh::nodes_per_element(i.param));
+});
 
 // At rest, loaded by a smooth body-force pulse (half sine over T1 / 2, impulse rho * 0.05 m/s per unit
 // volume), then free: the pulse puts nearly all the energy into well-resolved low modes. Checked: the
@@ -427,10 +435,11 @@ TEST(PulseExcitation, EnergyConservedAfterThePulse) {
     bal = std::max(bal, std::abs(ebal[i]) / Ep);
     if (i >= ip) drift = std::max(drift, std::abs(etot[i] - Ep) / Ep);
   }
-  std::printf("pulse: E after pulse %.5e J (external work %.5e J), max |E - E_p| / E_p = %.2e, "
-              "max |balance| / E_p = %.2e, tip amplitude %.3e m, %.2f s\n",
-              Ep, work.back(), drift, bal, max_abs(r.cols.at("tip_uy")), r.seconds);
-  EXPECT_GT(Ep, 0.01);  // ~0.047 J: the pulse did load the beam
+  std::printf(
+      "pulse: E after pulse %.5e J (external work %.5e J), max |E - E_p| / E_p = %.2e, "
+      "max |balance| / E_p = %.2e, tip amplitude %.3e m, %.2f s\n",
+      Ep, work.back(), drift, bal, max_abs(r.cols.at("tip_uy")), r.seconds);
+  EXPECT_GT(Ep, 0.01);                             // ~0.047 J: the pulse did load the beam
   EXPECT_NEAR(work.back(), work[ip], 1e-12 * Ep);  // no work after the pulse
   EXPECT_LT(drift, 1e-4);
   EXPECT_LT(bal, 1e-4);

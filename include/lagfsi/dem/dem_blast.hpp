@@ -63,8 +63,8 @@ class Blast {
   double w_, w13_, t_end_, beta_, p0_, a0_;
   bool integrated_, projected_;
   int every_, calls_ = 0;
-  std::vector<double> exposed_;      // loaded length per disc
-  std::vector<int> order_;           // discs by distance from G at the last update
+  std::vector<double> exposed_;  // loaded length per disc
+  std::vector<int> order_;       // discs by distance from G at the last update
   bool order_valid_ = false;
   std::vector<double> dist_, lo_, hi_;  // scratch: distance, tangent directions (pseudo-angles)
   std::map<double, double> occupied_;   // scratch: blocked directions

@@ -175,8 +175,8 @@ class HertzMindlin final : public ContactLaw {
   inline ContactForce compute(const ContactKinematics& k, double& xi) const {
     ContactForce f;
     const double es = k.wall ? e_wall_ : e_pair_, gs = k.wall ? g_wall_ : g_pair_;
-    const double a = std::sqrt(k.r_eff * k.overlap);  // contact radius
-    const double kn_t = 2.0 * es * a;                 // dF/dx = 2 E* sqrt(R* x)
+    const double a = std::sqrt(k.r_eff * k.overlap);   // contact radius
+    const double kn_t = 2.0 * es * a;                  // dF/dx = 2 E* sqrt(R* x)
     const double fe = (2.0 / 3.0) * kn_t * k.overlap;  // 4/3 E* sqrt(R*) x^(3/2)
     // Tsuji: alpha sqrt(m K) x^(1/4) = alpha sqrt(m_eff fe / x)
     const double cn = alpha_ > 0 ? alpha_ * std::sqrt(k.m_eff * fe / k.overlap) : 0.0;

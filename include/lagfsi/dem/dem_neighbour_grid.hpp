@@ -19,10 +19,10 @@
 namespace lagfsi::dem {
 
 struct PairList {
-  std::vector<Index> i, j;    ///< pair k = (i[k], j[k]), owner i
-  std::vector<Index> row;     ///< size n + 1: pairs of owner p are row[p] .. row[p + 1]
-  std::vector<Index> inc_row; ///< size n + 1: incidences of disc p are inc[inc_row[p] .. inc_row[p + 1]]
-  std::vector<Index> inc;     ///< 2 k (disc is i of pair k) or 2 k + 1 (disc is j)
+  std::vector<Index> i, j;     ///< pair k = (i[k], j[k]), owner i
+  std::vector<Index> row;      ///< size n + 1: pairs of owner p are row[p] .. row[p + 1]
+  std::vector<Index> inc_row;  ///< size n + 1: incidences of disc p are inc[inc_row[p] .. inc_row[p + 1]]
+  std::vector<Index> inc;      ///< 2 k (disc is i of pair k) or 2 k + 1 (disc is j)
   size_t size() const { return i.size(); }
   /// Index of the pair (a, b) or (b, a), or -1.
   Index find(Index a, Index b) const;
@@ -45,10 +45,10 @@ class NeighbourGrid {
   int cell_of(double x, double y) const;
   double x0_ = 0, y0_ = 0, h_ = 1;
   int nx_ = 1, ny_ = 1;
-  std::vector<Index> cell_;       ///< cell of each disc
-  std::vector<Index> cell_start_; ///< discs of cell c: order_[cell_start_[c] .. cell_start_[c + 1]]
+  std::vector<Index> cell_;        ///< cell of each disc
+  std::vector<Index> cell_start_;  ///< discs of cell c: order_[cell_start_[c] .. cell_start_[c + 1]]
   std::vector<Index> order_;
-  std::vector<Index> pos_;        ///< position of disc p in order_
+  std::vector<Index> pos_;  ///< position of disc p in order_
 };
 
 /// All pairs with |c_i - c_j| < r_i + r_j + skin by testing every pair (for tests), as (min, max) sorted.

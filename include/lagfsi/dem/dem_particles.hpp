@@ -38,8 +38,8 @@ struct DiscSpec {
 /// Per-disc properties (the positions and velocities are the model's dofs, in the same order).
 struct Discs {
   std::vector<double> radius, mass, inertia;
-  std::vector<Index> id;            ///< number at generation (stable through reordering)
-  std::vector<std::uint8_t> mark;   ///< ruptured (Sabatucci law), or other flags for output
+  std::vector<Index> id;           ///< number at generation (stable through reordering)
+  std::vector<std::uint8_t> mark;  ///< ruptured (Sabatucci law), or other flags for output
   std::vector<int> group;
   size_t size() const { return radius.size(); }
 };

@@ -16,10 +16,10 @@ namespace lagfsi::dem {
 
 struct Wall {
   std::string name;
-  std::vector<Vec2> points;            ///< the polyline at t = 0
-  Vec2 velocity0 = Vec2::Zero();       ///< v(t) = velocity0 f(t)
+  std::vector<Vec2> points;                ///< the polyline at t = 0
+  Vec2 velocity0 = Vec2::Zero();           ///< v(t) = velocity0 f(t)
   std::shared_ptr<TimeFunction> function;  ///< null: f = 1
-  Vec2 offset = Vec2::Zero();          ///< translation at the current time
+  Vec2 offset = Vec2::Zero();              ///< translation at the current time
 
   /// The translation at time t (velocity0 times the integral of f from 0 to t).
   Vec2 displacement(double t) const;

@@ -35,16 +35,16 @@ namespace lagfsi::efg {
 
 /// Analytical solutions for boundary data and the energy-norm error (the benchmarks).
 struct ExactSolution {
-  std::string type = "none";   ///< "none", "timoshenko" (cantilever, parabolic end shear), "kirsch" (plate with hole),
-                               ///< "polynomial" (u_x, u_y quadratic polynomials: patch tests)
-  double cx[6] = {0, 0, 0, 0, 0, 0}, cy[6] = {0, 0, 0, 0, 0, 0};   ///< polynomial: coefficients of 1, x, y, x^2, xy, y^2
+  std::string type = "none";  ///< "none", "timoshenko" (cantilever, parabolic end shear), "kirsch" (plate with hole),
+                              ///< "polynomial" (u_x, u_y quadratic polynomials: patch tests)
+  double cx[6] = {0, 0, 0, 0, 0, 0}, cy[6] = {0, 0, 0, 0, 0, 0};  ///< polynomial: coefficients of 1, x, y, x^2, xy, y^2
   double P = 0, L = 0, D = 0;  ///< Timoshenko & Goodier: load, length, depth (x from the clamped end, y centred)
   double sigma0 = 0, a = 0;    ///< Kirsch: remote stress in x, hole radius
   double E = 1, nu = 0;
   bool available() const { return type != "none"; }
   Vec3 stress(const Vec2& x) const;
-  Vec2 displacement(const Vec2& x) const;   ///< Timoshenko and polynomial
-  Vec2 body_force(const Vec2& x) const;     ///< -div sigma (polynomial; zero for the others)
+  Vec2 displacement(const Vec2& x) const;  ///< Timoshenko and polynomial
+  Vec2 body_force(const Vec2& x) const;    ///< -div sigma (polynomial; zero for the others)
 };
 
 class EfgModel final : public PhysicsModel {
@@ -90,7 +90,7 @@ class EfgModel final : public PhysicsModel {
   /// Solves K dx = rhs with dofs fixed to `fixed_values` (nullptr: zero); K is factorized by factorize().
   void factorize();
   Vec solve(const Vec& rhs, bool with_prescribed);
-  Vec to_control(const Vec& dx) const;   ///< U or V form vector of the control
+  Vec to_control(const Vec& dx) const;  ///< U or V form vector of the control
 
   std::string name_;
   CaseContext ctx_;
@@ -101,26 +101,36 @@ class EfgModel final : public PhysicsModel {
   NodeSearch search_;
   double rho_max_ = 0, thickness_ = 1;
   int gauss_ = 2;
-  bool consistent_ = false;   // integration-consistent derivative correction (integration.hpp)
+  bool consistent_ = false;  // integration-consistent derivative correction (integration.hpp)
   std::unique_ptr<Material> material_;
   std::vector<std::unique_ptr<Material>> region_materials_;
   std::vector<std::array<Vec2, 2>> region_boxes_;
-  std::vector<int> cell_material_;   // -1: body material, else index into region_materials_
+  std::vector<int> cell_material_;  // -1: body material, else index into region_materials_
   Operator operator_ = Operator::tangent;
   ExactSolution exact_;
 
   // essential conditions
   std::string essential_ = "coupling";
-  std::vector<char> active_;            // per node: an active FE node (coupling)
-  std::vector<char> coupling_cell_;     // per cell
-  std::vector<Index> fixed_dofs_;       // coupling: dofs held directly
-  std::vector<double> fixed_ref_;       // their values at lambda = 1
-  struct Constraint { Index node; int comp; double value; ShapeValues sh; };
+  std::vector<char> active_;         // per node: an active FE node (coupling)
+  std::vector<char> coupling_cell_;  // per cell
+  std::vector<Index> fixed_dofs_;    // coupling: dofs held directly
+  std::vector<double> fixed_ref_;    // their values at lambda = 1
+  struct Constraint {
+    Index node;
+    int comp;
+    double value;
+    ShapeValues sh;
+  };
   std::vector<Constraint> constraints_;  // penalty / lagrange collocation
   double penalty_ = 0;
 
   // integration points (flat shape data)
-  struct GaussPoint { Vec2 x; double w; Index cell; Index begin, n; };
+  struct GaussPoint {
+    Vec2 x;
+    double w;
+    Index cell;
+    Index begin, n;
+  };
   std::vector<GaussPoint> gps_;
   std::vector<Index> gnode_;
   std::vector<double> gN_, gNx_, gNy_;
@@ -135,13 +145,13 @@ class EfgModel final : public PhysicsModel {
   std::vector<std::vector<std::pair<Index, double>>> node_eval_;
 
   // system
-  Index ndof_ = 0, nsys_ = 0;   // 2 n, plus multipliers
+  Index ndof_ = 0, nsys_ = 0;  // 2 n, plus multipliers
   SparseMatrix K_;
   std::unique_ptr<LinearSolver> solver_;
-  Vec P_;                       // reference vector at lambda = 1 (loads + penalty / Lagrange prescribed values)
-  Vec Ptr_;                     // its applied-load part (tractions)
-  Vec fint0_;                   // internal force (with constraint terms) of the committed state
-  Vec Kfix_ref_;                // K_:,fixed * fixed_ref (before elimination)
+  Vec P_;         // reference vector at lambda = 1 (loads + penalty / Lagrange prescribed values)
+  Vec Ptr_;       // its applied-load part (tractions)
+  Vec fint0_;     // internal force (with constraint terms) of the committed state
+  Vec Kfix_ref_;  // K_:,fixed * fixed_ref (before elimination)
   std::vector<char> is_fixed_;
 
   // state

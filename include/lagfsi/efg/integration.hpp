@@ -22,8 +22,8 @@ namespace lagfsi::efg {
 
 /// Corrects Nx, Ny (Gauss points x nodes) of one cell in place. xg, wg: Gauss points and weights; N: values there;
 /// xe, wn: edge points and (weight x outward normal); Ne: values at the edge points; degree 1 or 2.
-void correct_derivatives(int degree, const std::vector<Vec2>& xg, const std::vector<double>& wg, const Eigen::MatrixXd& N,
-                         const std::vector<Vec2>& xe, const std::vector<Vec2>& wn, const Eigen::MatrixXd& Ne,
-                         Eigen::MatrixXd& Nx, Eigen::MatrixXd& Ny);
+void correct_derivatives(int degree, const std::vector<Vec2>& xg, const std::vector<double>& wg,
+                         const Eigen::MatrixXd& N, const std::vector<Vec2>& xe, const std::vector<Vec2>& wn,
+                         const Eigen::MatrixXd& Ne, Eigen::MatrixXd& Nx, Eigen::MatrixXd& Ny);
 
 }  // namespace lagfsi::efg

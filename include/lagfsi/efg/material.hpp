@@ -19,8 +19,8 @@
 ///    eb_i = (eps_i + nu eps_j)/(1 - nu^2) follow uniaxial laws with secant unloading: compression Carreira & Chu
 ///    (1985) s/f_c = b (e/e_c)/(b - 1 + (e/e_c)^b), b = 1/(1 - f_c/(e_c E0)); tension either linear to f_t then
 ///    exponential softening s = f_t exp[-(e - e0)/e_f], e0 = f_t/E0, e_f = G_f/(h f_t) - e0/2 (area under the
-///    curve G_f/h: fracture energy over the crack band h; the digest's default for Boone et al. 1986) or Carreira & Chu (1986) with f_t, e_t; shear modulus from
-///    coaxiality (s_1 - s_2)/(2 (e_1 - e_2)).
+///    curve G_f/h: fracture energy over the crack band h; the digest's default for Boone et al. 1986) or Carreira & Chu
+///    (1986) with f_t, e_t; shear modulus from coaxiality (s_1 - s_2)/(2 (e_1 - e_2)).
 #include <lagfsi/params.hpp>
 
 #include <Eigen/Core>
@@ -49,7 +49,10 @@ class Material {
   /// Stress and secant operator at strain eps from committed history h0; trial history into h1.
   virtual void stress(const Vec3& eps, const History& h0, History& h1, Vec3& sig, Mat3& Es) const = 0;
   /// A scalar damage measure of a history (0 intact, 1 fully damaged) for output.
-  virtual double damage(const History& h) const { (void)h; return 0.0; }
+  virtual double damage(const History& h) const {
+    (void)h;
+    return 0.0;
+  }
   /// Strain scale of the law (kappa0, f_t/E0): sets the finite-difference step of the tangent.
   virtual double strain_scale() const { return 1e-4; }
   /// Stress, trial history and the operator asked for (tangent by forward differences of stress()).

@@ -86,7 +86,7 @@ struct FeCorrection {
 struct ShapeValues {
   std::vector<Index> nodes;
   std::vector<double> N, Nx, Ny;
-  double rcond = 1;   ///< reciprocal condition estimate of the moment matrix
+  double rcond = 1;  ///< reciprocal condition estimate of the moment matrix
 };
 
 class MlsShape {

@@ -72,12 +72,12 @@ class PathFollowing {
   double inc_ = 0.1;
   Index dof_ = -1;
   double scale_ = 1;
-  int steps_ = 0;              // committed steps
-  Vec dUP1_first_;             // dUP_1 of the first step (CDG)
-  Vec dUP1_prev_, dUP1_cur_;   // dUP_1 of the last committed step, of this step
-  Vec DU_prev_;                // increment of the last committed step (arc length)
+  int steps_ = 0;             // committed steps
+  Vec dUP1_first_;            // dUP_1 of the first step (CDG)
+  Vec dUP1_prev_, dUP1_cur_;  // dUP_1 of the last committed step, of this step
+  Vec DU_prev_;               // increment of the last committed step (arc length)
   double sign_ = 1, sign_cur_ = 1;
-  double dl_ = 0;              // arc length
+  double dl_ = 0;  // arc length
   ArcLengthStats stats_;
 };
 

@@ -14,23 +14,23 @@ using meshing::ParticleKind;
 
 /// The fluid's material and discretization constants and the case's settings the pieces read.
 struct FluidConstants {
-  std::string name;              // the body's name (error messages, output files)
+  std::string name;  // the body's name (error messages, output files)
   double rho = 1000, mu = 1e-3, h = 0.01;
-  bool remesh = true;            // PFEM mode (remeshed every step) or fixed connectivity
-  double bulk = 2.2e9;           // bulk modulus of the slight compressibility (0: incompressible)
+  bool remesh = true;   // PFEM mode (remeshed every step) or fixed connectivity
+  double bulk = 2.2e9;  // bulk modulus of the slight compressibility (0: incompressible)
   Vec2 gravity = Vec2::Zero();
-  double analysis_dt = 0;        // the analysis' time step (what the kernels use before the first step)
+  double analysis_dt = 0;           // the analysis' time step (what the kernels use before the first step)
   double wall_snap_fraction = 0.1;  // "wall_model": "constraints": a particle approaching a wall closer than
                                     // this * h is put on it (FluidWalls::snap_to_walls)
 };
 
 /// The remeshing's settings (/bodies/i and /bodies/i/scheme; RemeshPipeline, remesh_pipeline.hpp).
 struct FluidRemeshSettings {
-  double alpha = 1.2;            // alpha shape: delete an element with circumradius above alpha * h
-  double close_fraction = 0.3;   // remove a fluid particle closer than this * h to another particle
-  double flat_fraction = 0.01;   // drop elements with area below this * h^2
-  double insert_factor = 1.0;    // insert a particle at the centroid of elements larger than this * h^2
-  double domain_margin = 0.1;    // the domain box: walls and initial fluid, enlarged by this * larger side
+  double alpha = 1.2;           // alpha shape: delete an element with circumradius above alpha * h
+  double close_fraction = 0.3;  // remove a fluid particle closer than this * h to another particle
+  double flat_fraction = 0.01;  // drop elements with area below this * h^2
+  double insert_factor = 1.0;   // insert a particle at the centroid of elements larger than this * h^2
+  double domain_margin = 0.1;   // the domain box: walls and initial fluid, enlarged by this * larger side
   meshing::DomainDetection detection = meshing::DomainDetection::Alpha;
   double separation_alpha = 2.5;  // advected / level set: an inside element is torn off when R > this h
   double level_set_band = 0.25;   // level set: outside elements within this h of the previous boundary
@@ -41,12 +41,12 @@ struct FluidRemeshSettings {
 
 /// The monolithic PSPG scheme's settings (/bodies/i/scheme).
 struct PspgSettings {
-  double tau_U = 0;                // 0: automatic tau; > 0: Tezduyar's velocity scale U ("velocity_scale")
-  bool lumped = true;              // lumped or consistent mass
+  double tau_U = 0;                    // 0: automatic tau; > 0: Tezduyar's velocity scale U ("velocity_scale")
+  bool lumped = true;                  // lumped or consistent mass
   bool free_surface_dirichlet = true;  // free-surface pressure p = 0 (dirichlet) or natural
   double tol = 1e-4;
-  int refactor_every = 0;          // 0: one factorization per step (the matrix barely changes within a
-                                   // step); k >= 1: refactorized every k iterations (1: Newton)
+  int refactor_every = 0;  // 0: one factorization per step (the matrix barely changes within a
+                           // step); k >= 1: refactorized every k iterations (1: Newton)
   std::string solver = "klu";
 };
 

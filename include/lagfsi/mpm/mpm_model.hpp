@@ -57,7 +57,7 @@ class MpmModel final : public PhysicsModel {
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   bool can_checkpoint() const override { return true; }
-  void serialize(StateArchive& ar) override;   // mpm_checkpoint.cpp
+  void serialize(StateArchive& ar) override;  // mpm_checkpoint.cpp
 
   const Particles& particles() const;
   const Grid& grid() const;
@@ -74,7 +74,7 @@ class MpmModel final : public PhysicsModel {
   std::unique_ptr<MpmScheme> scheme_;
   std::unique_ptr<MpmWriter> writer_;
   std::unique_ptr<MpmStepSnapshot> snapshot_;  // the state at the step's start (retry)
-  bool step_open_ = false;                      // predicted and not finalized
+  bool step_open_ = false;                     // predicted and not finalized
   double t_new_ = 0, dt_ = 0;
   long substeps_ = 0;
 };

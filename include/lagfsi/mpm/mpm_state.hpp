@@ -45,7 +45,7 @@ struct Grid {
   double h = 1;        ///< cell size
   int nx = 0, ny = 0;  ///< cells per direction
 
-  std::vector<double> mass;   ///< m_I = sum_p N_Ip m_p
+  std::vector<double> mass;    ///< m_I = sum_p N_Ip m_p
   std::vector<Vec2> momentum;  ///< (m v)_I = sum_p N_Ip m_p v_p, then advanced by dt f_I
   std::vector<Vec2> force;     ///< f_I: internal, gravity, loads, damping and boundary forces
   std::vector<Vec2> velocity;  ///< v_I = (m v)_I / m_I

@@ -39,8 +39,8 @@ void velocities_from_momentum(Grid& grid);
 /// Grid to particles after the grid update (grid.force the nodes' forces, grid.velocity their new velocities):
 /// a_p = sum_I N_Ip f_I / m_I, v_p = flip (v_p + dt a_p) + (1 - flip) sum_I N_Ip v_I (1: FLIP, 0: PIC),
 /// x_p += dt sum_I N_Ip v_I; nodes without mass are skipped. Returns the work of gravity sum_p m_p g . dx_p.
-double grid_to_particles(const Grid& grid, const std::vector<Support>& support, double dt, double flip,
-                         const Vec2& g, Particles& particles);
+double grid_to_particles(const Grid& grid, const std::vector<Support>& support, double dt, double flip, const Vec2& g,
+                         Particles& particles);
 
 /// Velocity gradient at a particle, L = sum_I v_I (x) grad N_Ip, from nodal velocities v.
 inline Mat2 velocity_gradient(const std::vector<Vec2>& v, const Support& s) {

@@ -201,12 +201,15 @@ TEST(BadInput, CouplingErrorsNameTheirKey) {
          j["couplings"][0]["fluid"] = "plate";
          j["couplings"][0]["structure"] = "water";
        }},
-      {"twice", "/couplings/1/fluid", "already coupled",
-       [](json& j) { j["couplings"].push_back(j["couplings"][0]); }},
+      {"twice", "/couplings/1/fluid", "already coupled", [](json& j) { j["couplings"].push_back(j["couplings"][0]); }},
       {"no_edge", "/couplings/0/interface", "no boundary edge",
-       [](json& j) { j["couplings"][0]["interface"] = {{"type", "point"}, {"at", {0.4, 0.15}}}; }},
+       [](json& j) {
+         j["couplings"][0]["interface"] = {{"type", "point"}, {"at", {0.4, 0.15}}};
+       }},
       {"accelerator", "/couplings/0/acceleration/type", "iqn_ils",
-       [](json& j) { j["couplings"][0]["acceleration"] = {{"type", "broyden"}}; }},
+       [](json& j) {
+         j["couplings"][0]["acceleration"] = {{"type", "broyden"}};
+       }},
       {"augmented", "/couplings/0/augmented_mass", "at least 1",
        [](json& j) { j["couplings"][0]["augmented_mass"] = 0.5; }},
       {"augmented_accelerated", "/couplings/0/augmented_mass", "constant relaxation only",
@@ -300,7 +303,7 @@ TEST(BadInput, NamesThatWouldEscapeTheOutputFolder) {
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/name", "become file names");
   j = base_case();
-  j["probes"][0]["name"] = "a,b";   // a column of probes.csv
+  j["probes"][0]["name"] = "a,b";  // a column of probes.csv
   o = run_json("bad_probe_name", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/probes/0/name", "become file names");
@@ -311,8 +314,8 @@ TEST(BadInput, OutputFolderThatCannotBeWritten) {
   const fs::path dir = fresh_dir("bad_input_outdir");
   { std::ofstream(dir / "occupied") << "x"; }
   { std::ofstream(dir / "case.json") << base_case().dump(); }
-  const RunResult r =
-      run_lagfsi("run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "occupied").string() + "\" --quiet", dir);
+  const RunResult r = run_lagfsi(
+      "run \"" + (dir / "case.json").string() + "\" -o \"" + (dir / "occupied").string() + "\" --quiet", dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(std::count(r.stderr_text.begin(), r.stderr_text.end(), '\n'), 1) << r.stderr_text;
   EXPECT_NE(r.stderr_text.find("cannot write the output folder"), std::string::npos) << r.stderr_text;
@@ -330,7 +333,8 @@ TEST(BadInput, GeometryAndSizesThatWouldNotFinish) {
   // A solid wedge 600 m long and 0.02 m wide at its base (a coordinate 1000 times too large): its boundary
   // took minutes to insert before the refinement's point limit stopped it (fuzzing round 4).
   j = base_case();
-  j["bodies"][0]["geometry"] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [600, 0.02], [0, 0.02]]})");
+  j["bodies"][0]["geometry"] =
+      json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [600, 0.02], [0, 0.02]]})");
   j["bodies"][0]["mesh"] = {{"type", "unstructured"}, {"size", 0.01}};
   o = run_json("sharp_spike", j);
   EXPECT_EQ(o.code, 2);
@@ -411,7 +415,7 @@ TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a
   // region that sticks out of the walls by less than their own extent is allowed (an overflowing tank).
   json j = fluid_case();
-  j["bodies"][0]["regions"][0]["size"] = {0.4, 0.5};   // above the walls' top (0.3), by less than 0.3
+  j["bodies"][0]["regions"][0]["size"] = {0.4, 0.5};  // above the walls' top (0.3), by less than 0.3
   EXPECT_EQ(run_json("region_above_walls", j).code, 0);
   j["bodies"][0]["regions"][0]["size"] = {400.0, 0.2};
   Outcome o = run_json("region_far_beyond", j);
@@ -419,7 +423,8 @@ TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   expect_one_line(o, "/bodies/0/regions/0/size", "far beyond the walls");
   j = fluid_case();
   j["bodies"][0]["particles"] = "unstructured";
-  j["bodies"][0]["regions"][0] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [0.4, 350], [0, 0.2]]})");
+  j["bodies"][0]["regions"][0] =
+      json::parse(R"({"type": "polygon", "points": [[0, 0], [0.4, 0], [0.4, 350], [0, 0.2]]})");
   o = run_json("polygon_far_beyond", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/regions/0/points/2", "far beyond the walls");
@@ -428,7 +433,7 @@ TEST(BadInput, FluidRegionFarBeyondTheWalls) {
 TEST(BadInput, SolidMeshTooFineForItsOrder) {
   // About 2 million nodes at most: a flag stretched to 210 m meshed for minutes and took 5 GB (fuzzing).
   json j = base_case();
-  j["bodies"][0]["mesh"]["size"] = 1e-4;   // structured: 2 x 10 000 x 1 000 triangles
+  j["bodies"][0]["mesh"]["size"] = 1e-4;  // structured: 2 x 10 000 x 1 000 triangles
   Outcome o = run_json("mesh_structured_too_fine", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/mesh/size", "2 million nodes at order 1");
@@ -452,13 +457,14 @@ TEST(BadInput, NonFiniteTangentFailsInOneLine) {
   // gamma = 1e308 makes the Newmark tangent overflow: no switch to LU (which fails the same way) and no
   // warning before the error (run on purpose: beta < gamma / 2 is only conditionally stable).
   json j = base_case();
-  j["analysis"] = {{"type", "dynamic"}, {"dt", 1e-3}, {"end_time", 2e-3},
-                   {"integrator", {{"type", "newmark"}, {"beta", 0.25}, {"gamma", 1e308},
-                                   {"allow_conditionally_stable", true}}}};
+  j["analysis"] = {
+      {"type", "dynamic"},
+      {"dt", 1e-3},
+      {"end_time", 2e-3},
+      {"integrator", {{"type", "newmark"}, {"beta", 0.25}, {"gamma", 1e308}, {"allow_conditionally_stable", true}}}};
   const Outcome o = run_json("non_finite_tangent", j);
   EXPECT_NE(o.code, 0);
   expect_one_line(o, "", "non-finite");
 }
 
 }  // namespace
-

@@ -29,8 +29,8 @@ json plate_body(double x0, double y0, double w, double h) {
     "mesh": {"type": "structured", "size": 0.05, "order": 1}
   })");
   p["geometry"] = {{"type", "rectangle"}, {"origin", {x0, y0}}, {"size", {w, h}}};
-  p["boundary_conditions"] = json::array(
-      {{{"type", "fixed"}, {"select", {{"type", "segment"}, {"from", {x0, y0}}, {"to", {x0 + w, y0}}}}}});
+  p["boundary_conditions"] =
+      json::array({{{"type", "fixed"}, {"select", {{"type", "segment"}, {"from", {x0, y0}}, {"to", {x0 + w, y0}}}}}});
   return p;
 }
 
@@ -84,7 +84,8 @@ TEST(BadInputCase, BodyNamesAgainstOutputFiles) {
   expect_input_error(check("names_walls", case_of({fluid_body(), plate})),
                      "/bodies/1/name: its output 'water_walls.pvd' is also written by body 'water'");
   // The other order too.
-  expect_input_error(check("names_walls_first", case_of({plate, fluid_body()})), "/bodies/1/name: its output 'water_walls");
+  expect_input_error(check("names_walls_first", case_of({plate, fluid_body()})),
+                     "/bodies/1/name: its output 'water_walls");
   // Names of the run's own files, and folders that would take a file's place; case is ignored.
   for (const std::string name : {"log", "summary", "probes", "resolved_case", "Log", "summary.json", "log.csv"}) {
     plate["name"] = name;
@@ -108,7 +109,8 @@ TEST(BadInputCase, OverlappingBodies) {
   // A polygon region (non-convex, an L) that reaches into the plate.
   json l = fluid_body();
   l["particles"] = "unstructured";
-  l["regions"][0] = json::parse(R"({"type": "polygon", "points": [[0, 0], [0.8, 0], [0.8, 0.1], [0.3, 0.1], [0.3, 0.2], [0, 0.2]]})");
+  l["regions"][0] =
+      json::parse(R"({"type": "polygon", "points": [[0, 0], [0.8, 0], [0.8, 0.1], [0.3, 0.1], [0.3, 0.2], [0, 0.2]]})");
   expect_input_error(check("overlap_polygon", case_of({l, plate_body(0.6, 0.05, 0.05, 0.3)})),
                      "/bodies/1/geometry: overlaps body 'water'");
   EXPECT_EQ(check("overlap_polygon_notch", case_of({l, plate_body(0.45, 0.1, 0.05, 0.3)})).code, 0)
@@ -150,10 +152,12 @@ TEST(BadInputCase, OverlappingShellsAndCircleCuts) {
   json flag = plate_body(0, 0, 1, 1);
   flag["name"] = "flag";
   flag["mesh"] = {{"size", 0.01}, {"order", 1}};
-  flag["geometry"] = json::parse(R"({"type": "circle_cut", "points": [[0.1, 0.05], [0.35, 0.05], [0.35, 0.07], [0.1, 0.07]],
+  flag["geometry"] =
+      json::parse(R"({"type": "circle_cut", "points": [[0.1, 0.05], [0.35, 0.05], [0.35, 0.07], [0.1, 0.07]],
                                      "centre": [0.1, 0.06], "radius": 0.02})");
   flag["boundary_conditions"][0]["select"] = {{"type", "circle"}, {"centre", {0.1, 0.06}}, {"radius", 0.02}};
-  expect_input_error(check("overlap_circle_cut", case_of({fluid_body(), flag})), "/bodies/1/geometry: overlaps body 'water'");
+  expect_input_error(check("overlap_circle_cut", case_of({fluid_body(), flag})),
+                     "/bodies/1/geometry: overlaps body 'water'");
   flag["geometry"]["points"] = json::parse("[[0.5, 0.3], [0.9, 0.3], [0.9, 0.32], [0.5, 0.32]]");
   flag["geometry"]["centre"] = {0.5, 0.31};
   flag["geometry"]["radius"] = 0.05;
@@ -161,7 +165,8 @@ TEST(BadInputCase, OverlappingShellsAndCircleCuts) {
   json plate = plate_body(0.5, 0.3, 0.03, 0.02);
   EXPECT_EQ(check("overlap_circle_cut_disc", case_of({flag, plate})).code, 0) << "the plate is in the cut-out disc";
   json wide = plate_body(0.5, 0.3, 0.2, 0.02);
-  expect_input_error(check("overlap_circle_cut_plate", case_of({flag, wide})), "/bodies/1/geometry: overlaps body 'flag'");
+  expect_input_error(check("overlap_circle_cut_plate", case_of({flag, wide})),
+                     "/bodies/1/geometry: overlaps body 'flag'");
 }
 
 TEST(BadInputCase, MpmRegionOutsideItsGridAndLeavingIt) {
@@ -204,9 +209,10 @@ TEST(BadInputCase, IntegratorStability) {
   expect_input_error(check("alpha_rho", with({{"type", "generalized_alpha"}, {"rho_inf", 1.2}})),
                      "/analysis/integrator/rho_inf: must lie in [0, 1]");
   // Chosen on purpose: a warning on stderr and in summary.json.
-  const Finished r = run("newmark_allowed",
-                         with({{"type", "newmark"}, {"beta", 1.0 / 12}, {"gamma", 0.5}, {"allow_conditionally_stable", true}}),
-                         {"--progress", "none"});
+  const Finished r =
+      run("newmark_allowed",
+          with({{"type", "newmark"}, {"beta", 1.0 / 12}, {"gamma", 0.5}, {"allow_conditionally_stable", true}}),
+          {"--progress", "none"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("lagfsi: warning: /analysis/integrator: beta = 0.08333 < gamma / 2 = 0.25"), std::string::npos)
       << r.err;

@@ -68,9 +68,16 @@ TEST(BadInputCli, UsageErrorsOnOneLine) {
 
 TEST(BadInputCli, HelpForEveryCommand) {
   const fs::path dir = fresh_dir("cli_help");
-  const std::vector<std::vector<std::string>> asks = {
-      {"--help"}, {"-h"}, {"help"}, {"help", "run"}, {"help", "check"}, {"run", "--help"}, {"check", "--help"},
-      {"run", "-h"}, {"run", "case.json", "--threads", "x", "--help"}, {"check", "--set", "a=b", "--help"}};
+  const std::vector<std::vector<std::string>> asks = {{"--help"},
+                                                      {"-h"},
+                                                      {"help"},
+                                                      {"help", "run"},
+                                                      {"help", "check"},
+                                                      {"run", "--help"},
+                                                      {"check", "--help"},
+                                                      {"run", "-h"},
+                                                      {"run", "case.json", "--threads", "x", "--help"},
+                                                      {"check", "--set", "a=b", "--help"}};
   for (const auto& a : asks) {
     const Finished r = run_args(a, dir);
     EXPECT_EQ(r.code, 0) << a[0] << " " << r.err;
@@ -94,7 +101,7 @@ TEST(BadInputCli, EchoedKeysAreCut) {
   EXPECT_NE(r.err.find("(100000 bytes)"), std::string::npos) << r.err;
   r = run_args({"check", c, "--set", "analysis." + key + "=1"}, dir);
   EXPECT_EQ(r.code, 2);
-  EXPECT_LT(r.err.size(), 600u);   // the valid keys are listed
+  EXPECT_LT(r.err.size(), 600u);  // the valid keys are listed
   r = run_args({"check", c, "--" + key}, dir);
   expect_usage_line(r, "unknown option");
   r = run_args({"check", c, "--set", "analysis.type=" + key}, dir);

@@ -94,7 +94,8 @@ TEST(BadInputFiles, TextIsUtf8) {
   expect_one_line(run_args({"check", (dir / "case.json").string(), "--set", "name=\xC0\xAF"}, dir), 1, "not UTF-8");
   expect_one_line(run_args({"check", (dir / "case.json").string(), "--set", "name=\xED\xA0\x80"}, dir), 1, "not UTF-8");
   // Valid UTF-8 beyond ASCII is text like any other (in a description).
-  Finished r = run_args({"check", (dir / "case.json").string(), "--set", "description=d\xC3\xA9j\xC3\xA0 \xE2\x9C\x93"}, dir);
+  Finished r =
+      run_args({"check", (dir / "case.json").string(), "--set", "description=d\xC3\xA9j\xC3\xA0 \xE2\x9C\x93"}, dir);
   EXPECT_EQ(r.code, 0) << r.err;
 }
 
@@ -112,15 +113,15 @@ TEST(BadInputFiles, TableRowsAreParsedStrictly) {
     std::string rows, part;
   };
   const std::vector<Bad> bad = {
-      {"time;value\n0;0\n1;1\n", "t.csv:1: ';' is not a separator"},                    // a spreadsheet's export
-      {"0;0,5\n1;1,0\n", "t.csv:1: ';' is not a separator"},                             // ... with decimal commas
-      {"time value\n0 0,5\n1 1,0\n", "t.csv:2: expected two numbers"},                   // decimal commas, spaces
+      {"time;value\n0;0\n1;1\n", "t.csv:1: ';' is not a separator"},    // a spreadsheet's export
+      {"0;0,5\n1;1,0\n", "t.csv:1: ';' is not a separator"},            // ... with decimal commas
+      {"time value\n0 0,5\n1 1,0\n", "t.csv:2: expected two numbers"},  // decimal commas, spaces
       {"0 0,5\n", "decimal commas?"},
-      {"0,0\n0,5,1\n1,1\n", "t.csv:2: expected two numbers (time, value), found 3"},     // read as 0.5 -> 3 columns
-      {"0,0\n0.5,abc\n1,1\n", "t.csv:2: expected two numbers"},                          // a malformed row was dropped
+      {"0,0\n0,5,1\n1,1\n", "t.csv:2: expected two numbers (time, value), found 3"},  // read as 0.5 -> 3 columns
+      {"0,0\n0.5,abc\n1,1\n", "t.csv:2: expected two numbers"},                       // a malformed row was dropped
       {"0,0\n0.5,0.5x\n1,1\n", "t.csv:2:"},
       {"0,0\n0.5\n1,1\n", "t.csv:2: expected two numbers (time, value), found 1"},
-      {"time,value\nunit,unit\n0,0\n1,1\n", "t.csv:2:"},                                 // one header only
+      {"time,value\nunit,unit\n0,0\n1,1\n", "t.csv:2:"},  // one header only
       {"0,0\n1,1\ntime,value\n", "t.csv:3:"},
       {"0,0\n1,nan\n", "t.csv:2:"},
       {"0,0\n1,1e999\n", "t.csv:2:"},

@@ -55,13 +55,15 @@ TEST(BadInput, MpmErrors) {
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/probes/0/x", "outside the grid");
   j = base;
-  j["bodies"][0]["absorbing_boundaries"] = json::array(
-      {{{"select", {{"type", "segment"}, {"from", {0, 0}}, {"to", {1, 0}}}}, {"normal", {0, -1}}, {"free_field", true}}});
+  j["bodies"][0]["absorbing_boundaries"] =
+      json::array({{{"select", {{"type", "segment"}, {"from", {0, 0}}, {"to", {1, 0}}}},
+                    {"normal", {0, -1}},
+                    {"free_field", true}}});
   o = run_json("mpm_free_field_base", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/absorbing_boundaries/0/normal", "lateral");
-  j["bodies"][0]["absorbing_boundaries"][0] = {{"select", {{"type", "segment"}, {"from", {1, 0}}, {"to", {1, 1}}}},
-                                               {"normal", {1, 0}}, {"start", 5.0}};
+  j["bodies"][0]["absorbing_boundaries"][0] = {
+      {"select", {{"type", "segment"}, {"from", {1, 0}}, {"to", {1, 1}}}}, {"normal", {1, 0}}, {"start", 5.0}};
   o = run_json("mpm_start_without_free_field", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/absorbing_boundaries/0/start", "free-field");
@@ -81,8 +83,8 @@ TEST(BadInput, MpmErrors) {
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/shape_functions", "gimp");
   j = base;
-  j["bodies"][0]["material"] = {{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1000}, {"cohesion", 0.0},
-                                {"friction_angle", 30.0}, {"tension_cutoff", 10.0}};
+  j["bodies"][0]["material"] = {{"type", "mohr_coulomb"}, {"young", 1e6},           {"density", 1000},
+                                {"cohesion", 0.0},        {"friction_angle", 30.0}, {"tension_cutoff", 10.0}};
   o = run_json("mpm_tension_cutoff", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/material/tension_cutoff", "c cot(phi)");

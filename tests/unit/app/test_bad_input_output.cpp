@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "strip_case.hpp"
 #include "case_runner.hpp"
 #include "process.hpp"
+#include "strip_case.hpp"
 
 namespace {
 
@@ -56,7 +56,8 @@ TEST(BadInputOutput, FileSizeLimitIsAFullDisk) {
     const fs::path c = write_case(dir, strip_case(400, vtk));
     const Finished r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet"}, dir, 16 * 1024);
     expect_output_failure(r, dir / "out", "", "cannot write (");
-    EXPECT_TRUE(r.err.find("File too large") != std::string::npos || r.err.find("out of disk space") != std::string::npos)
+    EXPECT_TRUE(r.err.find("File too large") != std::string::npos ||
+                r.err.find("out of disk space") != std::string::npos)
         << r.err;
     EXPECT_EQ(r.err.find("vtk"), std::string::npos) << "no VTK log: " << r.err;
     if (vtk) {
@@ -114,7 +115,7 @@ TEST(BadInputOutput, LockedOutputFolder) {
   EXPECT_NE(r.err.find("in use by another lagfsi run (process 4242)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "log.csv"));
   EXPECT_FALSE(fs::exists(dir / "out" / "resolved_case.json"));
-  ::close(fd);   // the first run ends: the folder is free again
+  ::close(fd);  // the first run ends: the folder is free again
   r = run_args({"run", c.string(), "-o", (dir / "out").string(), "--quiet"}, dir);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(status_of(dir / "out"), "completed");

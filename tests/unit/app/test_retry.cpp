@@ -6,8 +6,8 @@
 // retries with dt / 2, and checks that the retried step and the step after it give exactly (bit for bit) the
 // probes of a clean run at dt / 2. A predict that did not restore the start of the step fails it.
 #include <lagfsi/case.hpp>
-#include <lagfsi/model_registry.hpp>
 #include <lagfsi/model.hpp>
+#include <lagfsi/model_registry.hpp>
 
 #include <gtest/gtest.h>
 
@@ -105,11 +105,14 @@ TEST(Retry, MpmRetriedStepEqualsACleanStep) {
     "boundary_conditions": [
       {"type": "fixed", "select": {"type": "all"}, "components": "x"},
       {"type": "fixed", "select": {"type": "segment", "from": [0, 0], "to": [0.005, 0]}, "components": "y"}]})");
-  expect_retry_equals_clean(
-      body,
-      {Json{{"name", "uy"}, {"type", "particle"}, {"body", "column"}, {"at", {0.00125, 0.09875}}, {"quantity", "displacement_y"}},
-       Json{{"name", "ke"}, {"type", "energy"}, {"body", "column"}, {"kind", "kinetic"}}},
-      2e-3);
+  expect_retry_equals_clean(body,
+                            {Json{{"name", "uy"},
+                                  {"type", "particle"},
+                                  {"body", "column"},
+                                  {"at", {0.00125, 0.09875}},
+                                  {"quantity", "displacement_y"}},
+                             Json{{"name", "ke"}, {"type", "energy"}, {"body", "column"}, {"kind", "kinetic"}}},
+                            2e-3);
 }
 
 TEST(Retry, DemRetriedStepEqualsACleanStep) {
@@ -124,15 +127,14 @@ TEST(Retry, DemRetriedStepEqualsACleanStep) {
               {"name": "piston", "points": [[0.0505, 0], [0.0505, 0.05]], "velocity": [-0.5, 0]}],
     "blast": {"charge_mass": 0.001, "position": [0.025, 0.5], "exposure_every": 3},
     "time_step": {"dt": 2e-5}})");
-  expect_retry_equals_clean(
-      body,
-      {Json{{"name", "y0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "y"}},
-       Json{{"name", "w0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "omega"}},
-       Json{{"name", "vx"}, {"type", "disc"}, {"body", "bed"}, {"id", 11}, {"quantity", "vx"}},
-       Json{{"name", "fmax"}, {"type", "max_contact_force"}, {"body", "bed"}},
-       Json{{"name", "balance"}, {"type", "energy"}, {"body", "bed"}, {"kind", "balance"}},
-       Json{{"name", "blast"}, {"type", "energy"}, {"body", "bed"}, {"kind", "blast_work"}}},
-      2e-3);
+  expect_retry_equals_clean(body,
+                            {Json{{"name", "y0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "y"}},
+                             Json{{"name", "w0"}, {"type", "disc"}, {"body", "bed"}, {"id", 0}, {"quantity", "omega"}},
+                             Json{{"name", "vx"}, {"type", "disc"}, {"body", "bed"}, {"id", 11}, {"quantity", "vx"}},
+                             Json{{"name", "fmax"}, {"type", "max_contact_force"}, {"body", "bed"}},
+                             Json{{"name", "balance"}, {"type", "energy"}, {"body", "bed"}, {"kind", "balance"}},
+                             Json{{"name", "blast"}, {"type", "energy"}, {"body", "bed"}, {"kind", "blast_work"}}},
+                            2e-3);
 }
 
 }  // namespace

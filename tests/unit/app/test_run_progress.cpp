@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "strip_case.hpp"
 #include "case_runner.hpp"
 #include "process.hpp"
+#include "strip_case.hpp"
 
 namespace {
 
@@ -55,8 +55,8 @@ TEST(RunProgress, LinesToAFile) {
   // 300 steps: one line per tenth (and one per 5 s of wall time), not one per step (1015 lines before).
   const Outcome x = run("lines", strip_case(300, 50), {"--progress", "lines"});
   ASSERT_EQ(x.r.code, 0) << x.r.err;
-  const long status = count_of(x.r.err, "[progress_strip] ") - count_of(x.r.err, "where the time went") -
-                      count_of(x.r.err, "] done:");
+  const long status =
+      count_of(x.r.err, "[progress_strip] ") - count_of(x.r.err, "where the time went") - count_of(x.r.err, "] done:");
   const double wall = x.summary["wall_time"].get<double>();
   EXPECT_GE(status, 10) << x.r.err;
   EXPECT_LE(status, 10 + 1 + static_cast<long>(wall / 5.0)) << x.r.err;
@@ -77,7 +77,7 @@ TEST(RunProgress, BarQuietAndNone) {
   const Outcome b = run("bar", strip_case(100, 50), {"--progress", "bar"});
   ASSERT_EQ(b.r.code, 0) << b.r.err;
   EXPECT_GE(count_of(b.r.err, "\r"), 1);
-  EXPECT_NE(b.r.err.find("#####] 100% step 100 "), std::string::npos) << b.r.err;   // a full bar at the end
+  EXPECT_NE(b.r.err.find("#####] 100% step 100 "), std::string::npos) << b.r.err;  // a full bar at the end
   EXPECT_LE(count_lines(b.r.err), 12) << "a table, not a line per step";
   expect_time_table(b.r.err);
   // --quiet: nothing at all; --progress none: no status and no table (the final line stays).

@@ -3,8 +3,8 @@
 #include <lagfsi/error.hpp>
 #include <lagfsi/linear_solver.hpp>
 
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <cmath>
 #include <limits>
@@ -59,9 +59,7 @@ Vec random_vector(Eigen::Index n, unsigned seed) {
   return v;
 }
 
-double relative_residual(const SparseMatrix& A, const Vec& x, const Vec& b) {
-  return (A * x - b).norm() / b.norm();
-}
+double relative_residual(const SparseMatrix& A, const Vec& x, const Vec& b) { return (A * x - b).norm() / b.norm(); }
 
 SparseMatrix from_dense(const Eigen::MatrixXd& D) {
   SparseMatrix A = D.sparseView(0.0, 0.0);  // keeps only non-zero entries
@@ -70,8 +68,7 @@ SparseMatrix from_dense(const Eigen::MatrixXd& D) {
 }
 
 // Solves with a fresh solver of `type` and returns the relative residual.
-double solve_residual(const std::string& type, const SparseMatrix& A_given, const SparseMatrix& A_full,
-                      unsigned seed) {
+double solve_residual(const std::string& type, const SparseMatrix& A_given, const SparseMatrix& A_full, unsigned seed) {
   auto solver = make_linear_solver(type);
   solver->factorize(A_given);
   const Vec b = random_vector(A_full.rows(), seed);
@@ -219,7 +216,7 @@ TEST_P(EverySolver, NonFiniteEntriesThrowAndSolverRecovers) {
 TEST_P(EverySolver, MisuseThrows) {
   auto solver = make_linear_solver(GetParam());
   Vec x;
-  EXPECT_THROW(solver->solve(Vec::Ones(4), x), SolverError);  // before factorize
+  EXPECT_THROW(solver->solve(Vec::Ones(4), x), SolverError);         // before factorize
   EXPECT_THROW(solver->factorize(SparseMatrix(4, 5)), SolverError);  // not square
   solver->factorize(laplacian(3, 0.1));
   EXPECT_THROW(solver->solve(Vec::Ones(4), x), SolverError);  // size mismatch
@@ -245,8 +242,7 @@ TEST_P(SymmetricSolver, ReadsOnlyTheLowerTriangle) {
 
 class LUSolver : public ::testing::TestWithParam<std::string> {};
 
-INSTANTIATE_TEST_SUITE_P(LinearSolver, LUSolver, ::testing::ValuesIn(kLU),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(LinearSolver, LUSolver, ::testing::ValuesIn(kLU), [](const auto& info) { return info.param; });
 
 TEST_P(LUSolver, SolvesUnsymmetricSystem) {
   const SparseMatrix A = convection_diffusion(30, 3.0);

@@ -93,7 +93,7 @@ TEST(DemContact, CoulombSpringSticksThenSlides) {
   EXPECT_NEAR(f.ft, -0.5e5 * 1e-6, 1e-12);  // -kt xi
   for (int n = 0; n < 100; ++n) f = law.evaluate(k, xi);
   EXPECT_NEAR(f.ft, -0.3 * 10.0, 1e-9);  // slide: the Coulomb limit
-  EXPECT_NEAR(xi, 3.0 / 0.5e5, 1e-15);    // the spring reset to the limit
+  EXPECT_NEAR(xi, 3.0 / 0.5e5, 1e-15);   // the spring reset to the limit
 }
 
 TEST(DemContact, HertzForceOverlapAndRestitution) {
@@ -150,8 +150,8 @@ TEST(DemContact, SabatucciBandsRuptureAndUnloading) {
   EXPECT_NEAR(f(0.95, 1, false).fn, lambda * lambda * kn * 0.95 * r, 1e-6);  // beyond 0.9: the lambda^2 branch
   EXPECT_FALSE(f(0.69, 1, false).rupture);
   EXPECT_TRUE(f(0.7, 1, false).rupture);
-  EXPECT_NEAR(f(0.3, -1, false).fn, kn * 0.3 * r, 1e-12);  // unloading: no lambda
-  EXPECT_EQ(f(0.3, -1, true).fn, 0.0);                      // marked: no unloading force
+  EXPECT_NEAR(f(0.3, -1, false).fn, kn * 0.3 * r, 1e-12);        // unloading: no lambda
+  EXPECT_EQ(f(0.3, -1, true).fn, 0.0);                           // marked: no unloading force
   EXPECT_NEAR(f(0.3, 1, true).fn, lambda * kn * 0.3 * r, 1e-9);  // compression ignores the marks
   // the continuous variant: no jump at the band limits, slopes kn, lambda kn, lambda^2 kn
   Sabatucci cont(kn, 0.0, lambda, 0.1, 0.7, 0.7, true, Tangential{});
@@ -170,7 +170,7 @@ TEST(DemContact, HaffWernerFriction) {
   t.haff_werner = 100;
   Sabatucci law(1e4, 0.0, 50, 0.1, 0.7, 0.7, false, t);
   double h = 0;
-  ContactKinematics k = kin(1e-4, 1, 1e-3, 0.01, 0.002);  // delta 0.05: fn = 1 N
+  ContactKinematics k = kin(1e-4, 1, 1e-3, 0.01, 0.002);          // delta 0.05: fn = 1 N
   EXPECT_NEAR(law.evaluate(k, h).ft, -100 * 0.01 * 1e-3, 1e-12);  // the viscous branch
   k.vt = -10;
   EXPECT_NEAR(law.evaluate(k, h).ft, 0.2 * 1.0, 1e-12);  // the Coulomb limit, against the sliding
@@ -262,8 +262,8 @@ TEST(DemBlast, ExposureMatchesRayCasting) {
   const Vec2 g(0.3, 0.5);
   Blast b(Params(Json{{"charge_mass", 1.0}, {"position", {g.x(), g.y()}}, {"area", "projected"}}, "test"));
   std::vector<double> rmin_rmax = {0.004, 0.012};
-  const auto pack = random_pack({{0.0, 0.0}, {0.6, 0.0}, {0.6, 0.2}, {0.0, 0.2}}, rmin_rmax[0], rmin_rmax[1], 0.5, 0,
-                                7, 2000);
+  const auto pack =
+      random_pack({{0.0, 0.0}, {0.6, 0.0}, {0.6, 0.2}, {0.0, 0.2}}, rmin_rmax[0], rmin_rmax[1], 0.5, 0, 7, 2000);
   const int n = static_cast<int>(pack.size());
   ASSERT_GT(n, 100);
   std::vector<double> x(3 * n, 0.0), rad(n), f(2 * n, 0.0);
@@ -330,8 +330,9 @@ TEST(DemIntegrator, ExplicitStepIntoMatchesExplicitStep) {
   Vec f;
   Vec v_seen;
   for (int n = 0; n < 2000; ++n) {
-    cd->explicit_step([&](const Vec& x, const Vec& v, double) -> Vec { return Vec(-k.cwiseProduct(x) - c.cwiseProduct(v)); },
-                      inv_mass, 1e-3, a);
+    cd->explicit_step(
+        [&](const Vec& x, const Vec& v, double) -> Vec { return Vec(-k.cwiseProduct(x) - c.cwiseProduct(v)); },
+        inv_mass, 1e-3, a);
     const Vec v_half = b.v + 0.5e-3 * b.a;
     cd->explicit_step_into(
         [&](const Vec& x, const Vec& v, double, Vec& out) {

@@ -31,8 +31,14 @@ double uniaxial(const Material& m, double exx, History& h0) {
 }  // namespace
 
 TEST(EfgMaterial, MazarsUniaxialPeakAndResidual) {
-  const auto m = law({{"type", "mazars"}, {"young", 2e4}, {"poisson", 0.2}, {"At", 0.95}, {"Bt", 1e4}, {"Ac", 1.0},
-                      {"Bc", 3e3}, {"kappa0", 1e-4}});
+  const auto m = law({{"type", "mazars"},
+                      {"young", 2e4},
+                      {"poisson", 0.2},
+                      {"At", 0.95},
+                      {"Bt", 1e4},
+                      {"Ac", 1.0},
+                      {"Bc", 3e3},
+                      {"kappa0", 1e-4}});
   History h;
   double peak = 0, e_peak = 0;
   for (int i = 1; i <= 400; ++i) {
@@ -42,16 +48,20 @@ TEST(EfgMaterial, MazarsUniaxialPeakAndResidual) {
       e_peak = e;
     }
   }
-  EXPECT_NEAR(peak, 2.0, 1e-3);          // E kappa0 (B_t kappa0 = 1: horizontal tangent at the peak)
+  EXPECT_NEAR(peak, 2.0, 1e-3);  // E kappa0 (B_t kappa0 = 1: horizontal tangent at the peak)
   EXPECT_NEAR(e_peak, 1e-4, 5e-6);
   History far;
   const double s_far = uniaxial(*m, 5e-2, far);
-  EXPECT_NEAR(s_far, 0.1, 2e-3);          // residual E kappa0 (1 - A_t)
+  EXPECT_NEAR(s_far, 0.1, 2e-3);  // residual E kappa0 (1 - A_t)
 }
 
 TEST(EfgMaterial, ExponentialDamageLaw) {
-  const auto m = law({{"type", "exponential_damage"}, {"young", 2e4}, {"poisson", 0.0}, {"alpha", 1.0},
-                      {"beta", 1500.0}, {"kappa0", 1e-4}});
+  const auto m = law({{"type", "exponential_damage"},
+                      {"young", 2e4},
+                      {"poisson", 0.0},
+                      {"alpha", 1.0},
+                      {"beta", 1500.0},
+                      {"kappa0", 1e-4}});
   History h0, h1;
   Vec3 s;
   Mat3 E;
@@ -64,8 +74,14 @@ TEST(EfgMaterial, ExponentialDamageLaw) {
 
 TEST(EfgMaterial, SmearedCrackStrengthAndFractureEnergy) {
   const double ft = 2.7, E = 25850, Gf = 0.065, h = 28;
-  const auto m = law({{"type", "smeared_crack"}, {"young", E}, {"poisson", 0.0}, {"ft", ft}, {"fc", 31.0},
-                      {"Gf", Gf}, {"band_width", h}, {"residual", 0.0}});
+  const auto m = law({{"type", "smeared_crack"},
+                      {"young", E},
+                      {"poisson", 0.0},
+                      {"ft", ft},
+                      {"fc", 31.0},
+                      {"Gf", Gf},
+                      {"band_width", h},
+                      {"residual", 0.0}});
   History hist;
   double peak = 0, work = 0, e_prev = 0, s_prev = 0;
   for (int i = 1; i <= 20000; ++i) {
@@ -81,14 +97,25 @@ TEST(EfgMaterial, SmearedCrackStrengthAndFractureEnergy) {
     s_prev = s[0];
   }
   EXPECT_NEAR(peak, ft, 5e-3);
-  EXPECT_NEAR(work, Gf / h, 0.01 * Gf / h);   // energy per unit volume of the band = G_f / h (crack band)
+  EXPECT_NEAR(work, Gf / h, 0.01 * Gf / h);  // energy per unit volume of the band = G_f / h (crack band)
 }
 
 TEST(EfgMaterial, TangentMatchesDifferencesAndEvaluationNeverChangesTheCommittedHistory) {
-  for (const Json& j : {Json{{"type", "mazars"}, {"young", 2e4}, {"poisson", 0.2}, {"At", 0.95}, {"Bt", 1e4},
-                             {"Ac", 1.0}, {"Bc", 3e3}, {"kappa0", 1e-4}},
-                        Json{{"type", "smeared_crack"}, {"young", 25850.0}, {"poisson", 0.18}, {"ft", 2.7},
-                             {"fc", 31.0}, {"Gf", 0.065}, {"band_width", 28.0}}}) {
+  for (const Json& j : {Json{{"type", "mazars"},
+                             {"young", 2e4},
+                             {"poisson", 0.2},
+                             {"At", 0.95},
+                             {"Bt", 1e4},
+                             {"Ac", 1.0},
+                             {"Bc", 3e3},
+                             {"kappa0", 1e-4}},
+                        Json{{"type", "smeared_crack"},
+                             {"young", 25850.0},
+                             {"poisson", 0.18},
+                             {"ft", 2.7},
+                             {"fc", 31.0},
+                             {"Gf", 0.065},
+                             {"band_width", 28.0}}}) {
     const auto m = law(j);
     History h0;
     h0.h = {1.5 * m->strain_scale(), 0.0, 0.0};
@@ -123,7 +150,7 @@ TEST(EfgPathFollowing, GeneralizedDisplacementFlipsAtALimitPoint) {
   EXPECT_DOUBLE_EQ(pf.predictor(d, 1.0), 0.1);
   pf.commit(0.1 * d);
   Vec d2(2);
-  d2 << 2.0, 0.0;   // softer: GSP = 1/2, smaller increment
+  d2 << 2.0, 0.0;  // softer: GSP = 1/2, smaller increment
   EXPECT_NEAR(pf.predictor(d2, 1.0), 0.1 * std::sqrt(0.5), 1e-15);
   pf.commit(d2);
   Vec d3(2);

@@ -75,8 +75,8 @@ MlsShape make(const Combo& k) {
 }  // namespace
 
 TEST(EfgWeight, DerivativeMatchesFiniteDifference) {
-  for (WeightType t : {WeightType::cubic_spline, WeightType::quartic_spline, WeightType::exponential,
-                       WeightType::quartic_alt}) {
+  for (WeightType t :
+       {WeightType::cubic_spline, WeightType::quartic_spline, WeightType::exponential, WeightType::quartic_alt}) {
     Weight w;
     w.type = t;
     for (double r : {0.1, 0.3, 0.49, 0.51, 0.7, 0.95}) {
@@ -162,7 +162,7 @@ TEST(EfgMls, BilinearWithRhoEqualHIsTheQ4Interpolation) {
   InfluenceDomain d;
   const MlsShape mls(b, d);
   const Cloud c = grid(4, 1.0, 0.0, DomainShape::rectangular);
-  const Vec2 x(0.3, 0.6);   // in the cell [0.25, 0.5] x [0.5, 0.75]
+  const Vec2 x(0.3, 0.6);  // in the cell [0.25, 0.5] x [0.5, 0.75]
   ShapeValues s;
   mls.compute(x, c.nodes, c.rho, c.all, s);
   ASSERT_EQ(s.nodes.size(), 4u);
@@ -223,7 +223,7 @@ TEST(EfgMls, CoupledCorrectionReproducesTheBasisWithTheFeFunctions) {
       EXPECT_NEAR(ry, py[t], 1e-10) << t;
     }
     if (x.y() == 0.0) {
-      for (double v : s.N) EXPECT_NEAR(v, 0.0, 1e-13);   // u = FE interpolation of the active nodes on the edge
+      for (double v : s.N) EXPECT_NEAR(v, 0.0, 1e-13);  // u = FE interpolation of the active nodes on the edge
     }
   }
 }

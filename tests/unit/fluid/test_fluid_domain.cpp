@@ -18,7 +18,8 @@ using namespace lagfsi::testing;
 std::string blob_case(double end_time) {
   return R"({
     "name": "leaving_blob",
-    "analysis": {"type": "dynamic", "dt": 2e-3, "end_time": )" + std::to_string(end_time) + R"(},
+    "analysis": {"type": "dynamic", "dt": 2e-3, "end_time": )" +
+         std::to_string(end_time) + R"(},
     "gravity": [0.0, 0.0],
     "bodies": [{
       "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
@@ -93,7 +94,8 @@ std::string drop_at_wall_case(const std::string& inverted) {
       "regions": [{"type": "rectangle", "origin": [0.1, 0.0], "size": [0.04, 0.04]}],
       "walls": [{"points": [[0.5, -0.5], [0.5, 0.5]]}],
       "initial_velocity": [10.0, 0.0],
-      "scheme": {"type": "fractional_step", "volume_correction": "none", "inverted_elements": ")" + inverted + R"("}
+      "scheme": {"type": "fractional_step", "volume_correction": "none", "inverted_elements": ")" +
+         inverted + R"("}
     }],
     "probes": [{"name": "reach", "type": "front", "body": "water", "floor": -0.5, "band": 1.0}],
     "output": {"every": 10}

@@ -112,8 +112,8 @@ TEST(PspgElement, PressureForcesBalanceAndGravityIsTheWeight) {
   PspgElementInput in = random_element(gen, true, 1.0);
   for (int k = 0; k < 3; ++k) in.v[k] = in.a[k] = Vec2::Zero();
   in.mu = 0;
-  const double A = 0.5 * ((in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() -
-                          (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x());
+  const double A =
+      0.5 * ((in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() - (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x());
   const R9 r = residual(in);
   // Sum of momentum rows = - weight (pressure forces of an element sum to zero: sum grad N_a = 0).
   Vec2 sum = Vec2::Zero();

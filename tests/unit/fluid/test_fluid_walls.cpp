@@ -55,7 +55,7 @@ TEST(FluidWalls, AFilmBelowTheFloorDoesNotLeaveThroughTheTanksCorner) {
   const Vec2 p = step(s, {0.589, -0.002});
   EXPECT_LT(p.x(), 0.584);
   EXPECT_GE(p.y(), -0.002);
-  EXPECT_NEAR(p.x(), 0.584 - 0.05 * kH, 1e-12);  // at the corner, 0.05 h on the fluid side
+  EXPECT_NEAR(p.x(), 0.584 - 0.05 * kH, 1e-12);                 // at the corner, 0.05 h on the fluid side
   EXPECT_NEAR(s.cloud.v()[2 * (s.cloud.n() - 1)], 0.0, 1e-12);  // its velocity into the wall is gone
   EXPECT_EQ(s.walls.crossings(), 1);
 }

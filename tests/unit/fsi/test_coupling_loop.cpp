@@ -92,9 +92,10 @@ TEST(CouplingLoop, HeavyFluidNeedsAcceleration) {
   ASSERT_TRUE(iqn.converged);
   EXPECT_LT((x - p3.monolithic()).norm(), 1e-6 * (p3.monolithic() - p3.xp).norm());
   EXPECT_LE(iqn.iterations, aitken.iterations);
-  std::printf("mass ratio 10: Aitken %d iterations, IQN-ILS %d; plain and w = 0.5 not converged in 100 (last "
-              "residual/reference %.2e, %.2e)\n", aitken.iterations, iqn.iterations, plain.residual / plain.reference,
-              relaxed.residual / relaxed.reference);
+  std::printf(
+      "mass ratio 10: Aitken %d iterations, IQN-ILS %d; plain and w = 0.5 not converged in 100 (last "
+      "residual/reference %.2e, %.2e)\n",
+      aitken.iterations, iqn.iterations, plain.residual / plain.reference, relaxed.residual / relaxed.reference);
 }
 
 TEST(CouplingLoop, ReportsNonConvergenceWithoutThrowing) {

@@ -23,7 +23,8 @@ InterfaceBoundary chain(int edges, bool curved) {
   for (int k = 0; k < n; ++k) {
     const double s = double(k) / (n - 1);
     b.nodes.push_back(100 + k);
-    b.reference.push_back(curved ? Vec2(0.1 * std::cos(s * M_PI / 2), 0.1 * std::sin(s * M_PI / 2)) : Vec2(0.2 * s, 0.0));
+    b.reference.push_back(curved ? Vec2(0.1 * std::cos(s * M_PI / 2), 0.1 * std::sin(s * M_PI / 2))
+                                 : Vec2(0.2 * s, 0.0));
   }
   for (int e = 0; e < edges; ++e) b.edges.push_back({100 + 3 * e, 100 + 3 * e + 1, 100 + 3 * e + 2, 100 + 3 * e + 3});
   return b;
@@ -55,7 +56,7 @@ TEST(InterfaceMap, MatchingInterfaceIsOneGhostPerNode) {
 }
 
 TEST(InterfaceMap, NonMatchingGhostsFollowTheEdgesAtTheSpacing) {
-  const auto b = chain(4, false);  // 0.2 m in 4 edges of 0.05 m
+  const auto b = chain(4, false);   // 0.2 m in 4 edges of 0.05 m
   const InterfaceMap m(b, 0.0125);  // 4 segments per edge, vertex ghosts shared
   ASSERT_EQ(m.num_ghosts(), 4 * 4 + 1);
   EXPECT_EQ(m.adjacent().size(), 16u);

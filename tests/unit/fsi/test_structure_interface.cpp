@@ -4,9 +4,9 @@
 // integrator's own update (v_{n+1}, a_{n+1} as functions of x_{n+1}) for Newmark and generalized-alpha alike;
 // generalized-alpha's tangent coefficients belong to its intermediate evaluation point and would scale them.
 #include <lagfsi/case.hpp>
-#include <lagfsi/model_registry.hpp>
 #include <lagfsi/interface.hpp>
 #include <lagfsi/model.hpp>
+#include <lagfsi/model_registry.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 #include <gtest/gtest.h>
@@ -74,8 +74,8 @@ TEST_P(StructureInterface, KinematicsAreTheIntegratorsUpdate) {
   Vec v, a;
   st->interface_kinematics(ib.nodes, x, v, a);
   // The update of one 2-dof point from rest.
-  std::unique_ptr<TimeIntegrator> ti = s.integrator["type"] == "newmark" ? make_newmark(0.25, 0.5)
-                                                                         : make_generalized_alpha(s.integrator["rho_inf"]);
+  std::unique_ptr<TimeIntegrator> ti =
+      s.integrator["type"] == "newmark" ? make_newmark(0.25, 0.5) : make_generalized_alpha(s.integrator["rho_inf"]);
   KinematicState rest{0.0, Vec::Zero(2), Vec::Zero(2), Vec::Zero(2)}, out;
   ti->begin_step(rest, dt);
   ti->end_step(Vec(d), out);
@@ -87,14 +87,15 @@ TEST_P(StructureInterface, KinematicsAreTheIntegratorsUpdate) {
   EXPECT_LT((st->interface_positions(ib.nodes) - x0).norm(), 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    BodiesAndIntegrators, StructureInterface,
-    ::testing::Values(Config{"solid", Json{{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}}},
-                      Config{"solid", Json{{"type", "generalized_alpha"}, {"rho_inf", 0.5}}},
-                      Config{"shell", Json{{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}}},
-                      Config{"shell", Json{{"type", "generalized_alpha"}, {"rho_inf", 0.5}}}),
-    [](const ::testing::TestParamInfo<Config>& i) {
-      return i.param.body + "_" + std::string(i.param.integrator["type"] == "newmark" ? "newmark" : "generalized_alpha");
-    });
+INSTANTIATE_TEST_SUITE_P(BodiesAndIntegrators, StructureInterface,
+                         ::testing::Values(Config{"solid", Json{{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}}},
+                                           Config{"solid", Json{{"type", "generalized_alpha"}, {"rho_inf", 0.5}}},
+                                           Config{"shell", Json{{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}}},
+                                           Config{"shell", Json{{"type", "generalized_alpha"}, {"rho_inf", 0.5}}}),
+                         [](const ::testing::TestParamInfo<Config>& i) {
+                           return i.param.body + "_" +
+                                  std::string(i.param.integrator["type"] == "newmark" ? "newmark"
+                                                                                      : "generalized_alpha");
+                         });
 
 }  // namespace

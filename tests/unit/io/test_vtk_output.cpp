@@ -22,6 +22,7 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUtilities.h>
 
+#include <unistd.h>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -31,7 +32,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 using namespace lagfsi;
 namespace fs = std::filesystem;
@@ -43,8 +43,8 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "lagfsi_test_vtk_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
-                       info->name();
+    std::string name =
+        "lagfsi_test_vtk_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name();
     for (char& c : name)
       if (c == '/') c = '_';  // parameterized test names contain '/'
     path_ = fs::temp_directory_path() / name;
@@ -152,13 +152,12 @@ int expected_vtk_type(int order) {
 
 class VtuOrder : public ::testing::TestWithParam<int> {};
 
-INSTANTIATE_TEST_SUITE_P(VtkOutput, VtuOrder, ::testing::Values(1, 2, 3),
-                         [](const auto& info) {
-                           // (GCC 12 warns -Wrestrict on "T" + std::to_string(...); append instead.)
-                           std::string name = "T";
-                           name += std::to_string((info.param + 1) * (info.param + 2) / 2);
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(VtkOutput, VtuOrder, ::testing::Values(1, 2, 3), [](const auto& info) {
+  // (GCC 12 warns -Wrestrict on "T" + std::to_string(...); append instead.)
+  std::string name = "T";
+  name += std::to_string((info.param + 1) * (info.param + 2) / 2);
+  return name;
+});
 
 TEST_P(VtuOrder, WritesMeshAndFieldsThatVtkReadsBack) {
   const int order = GetParam();

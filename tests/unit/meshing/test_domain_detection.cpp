@@ -50,9 +50,7 @@ PreviousDomain squares(int nx, int ny, Cell cell) {
   return PreviousDomain(std::move(tris), {});
 }
 
-double kept_area(const Cloud& c, const RemeshSettings& s) {
-  return remesh(c.p, c.kind, c.h, s).area;
-}
+double kept_area(const Cloud& c, const RemeshSettings& s) { return remesh(c.p, c.kind, c.h, s).area; }
 
 TEST(PreviousDomain, LocatesPointsAndMeasuresTheBoundaryDistance) {
   // The unit square as two triangles, its four sides as the boundary.
@@ -103,7 +101,7 @@ TEST(DomainDetection, AdvectedKeepsTheConcaveCornerOfAnLShapeThatTheAlphaShapeFi
   EXPECT_NEAR(kept_area(c, adv), 12.0, 1e-12);
   RemeshSettings ls = adv;
   ls.detection = DomainDetection::LevelSet;
-  ls.level_set_band = 0.1;   // the corner element's centroid is 1/3 from the L
+  ls.level_set_band = 0.1;  // the corner element's centroid is 1/3 from the L
   EXPECT_NEAR(kept_area(c, ls), 12.0, 1e-12);
 }
 
@@ -130,7 +128,7 @@ TEST(DomainDetection, TwoBlocksMergeOnlyWhenTheGapCloses) {
     s.previous = &prev;
     return remesh(c.p, c.kind, c.h, s);
   };
-  const auto apart = run(3.0);   // gap elements of circumradius >= 1.58: not added
+  const auto apart = run(3.0);  // gap elements of circumradius >= 1.58: not added
   EXPECT_NEAR(apart.area, 8.0, 1e-12);
   EXPECT_EQ(apart.added_outside, 0);
   const auto touching = run(0.6);  // gap 0.6: elements of circumradius ~0.58 close it
@@ -143,7 +141,7 @@ TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluid
   // the dent (its two edges on the previous boundary) passes alpha = 1.2 but is not added.
   Cloud c;
   for (int i = 0; i <= 4; ++i) c.add(i, 0);
-  for (int i = 0; i <= 4; ++i) c.add(i, i == 2 ? 0.45 : 1.0);   // the dent's element: R = 1.184
+  for (int i = 0; i <= 4; ++i) c.add(i, i == 2 ? 0.45 : 1.0);  // the dent's element: R = 1.184
   std::vector<std::array<Vec2, 3>> tris;
   for (int i = 0; i < 4; ++i) {
     const Vec2 a(i, 0), b(i + 1, 0), cc = c.p[5 + i + 1], d = c.p[5 + i];
@@ -184,7 +182,8 @@ TEST(DomainDetection, AdvectedRestoresAnOldBoundaryEdgeThatIsNoLongerDelaunay) {
   // the domain gains the part of them above a-b (area 0.425); with it, (a,d,b) is kept and (a,b,c) is an outside
   // face that the alpha test (h = 0.04) rejects: the area stays 0.4.
   Cloud c;
-  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {1, 0}, {0.5, -0.8}, {0.5, -0.2}, {0.5, 0.05}})
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{0, 0}, {1, 0}, {0.5, -0.8}, {0.5, -0.2}, {0.5, 0.05}})
     c.add(x, y);
   for (double& h : c.h) h = 0.04;
   const Vec2 a(0, 0), b(1, 0), e(0.5, -0.8);
@@ -234,7 +233,7 @@ TEST(DomainDetection, KeepsAPreviousInteriorEdgeWithinTheFlipHysteresis) {
   EXPECT_EQ(kept.kept_edges, 1);
   EXPECT_TRUE(has_edge(kept.triangles, 0, 2));
   EXPECT_FALSE(has_edge(kept.triangles, 1, 3));
-  const double quad = 0.5 * (0.97 * 1.0 - 0.03 * 1.0) + 0.5 * 1.0;   // (0,1,2) + (0,2,3)
+  const double quad = 0.5 * (0.97 * 1.0 - 0.03 * 1.0) + 0.5 * 1.0;  // (0,1,2) + (0,2,3)
   EXPECT_NEAR(kept.area, quad, 1e-12);
   for (const auto& r : {run(2.0, true), run(10.0, false), run(0.0, true)}) {
     EXPECT_EQ(r.kept_edges, 0);

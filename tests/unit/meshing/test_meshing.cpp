@@ -87,9 +87,7 @@ std::set<std::pair<Index, Index>> unique_edges(const TriMesh& m) {
   return edges;
 }
 
-std::vector<Vec2> rect(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+std::vector<Vec2> rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
 
 // Basic validity: every element counter-clockwise with positive area, every node used, node indices
 // in range, no two nodes at the same position.
@@ -262,10 +260,11 @@ TEST(MeshPolygon, DegenerateInputsThrow) {
   const auto sq = rect(0, 0, 1, 1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}}, {}}, 0.1), std::invalid_argument);              // < 3 points
-  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}, {2, 0}}, {}}, 0.1), std::invalid_argument);       // collinear
+  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}}, {}}, 0.1), std::invalid_argument);                  // < 3 points
+  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}, {2, 0}}, {}}, 0.1), std::invalid_argument);          // collinear
   EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 1}, {1, 0}, {0, 1}}, {}}, 0.1), std::invalid_argument);  // bow-tie
-  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}, {1, 1}, {1, 1}, {0, 1}}, {}}, 0.1), std::invalid_argument);  // repeated point
+  EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}, {1, 1}, {1, 1}, {0, 1}}, {}}, 0.1),
+               std::invalid_argument);                                                             // repeated point
   EXPECT_THROW(mesh_polygon({{{0, 0}, {2, 0}, {1, 0}, {1, 1}}, {}}, 0.1), std::invalid_argument);  // backtracking
   EXPECT_THROW(mesh_polygon({{{0, 0}, {1, 0}, {1, nan}, {0, 1}}, {}}, 0.1), std::invalid_argument);
   EXPECT_THROW(mesh_polygon({sq, {}}, 0.0), std::invalid_argument);
@@ -365,7 +364,8 @@ TEST(MeshRectangleStructured, BadArgumentsThrow) {
   EXPECT_THROW(mesh_rectangle_structured(0, 0, 1, 1, 1, -2), std::invalid_argument);
   EXPECT_THROW(mesh_rectangle_structured(1, 0, 1, 1, 1, 1), std::invalid_argument);
   EXPECT_THROW(mesh_rectangle_structured(0, 1, 1, 0, 1, 1), std::invalid_argument);
-  EXPECT_THROW(mesh_rectangle_structured(0, 0, std::numeric_limits<double>::quiet_NaN(), 1, 1, 1), std::invalid_argument);
+  EXPECT_THROW(mesh_rectangle_structured(0, 0, std::numeric_limits<double>::quiet_NaN(), 1, 1, 1),
+               std::invalid_argument);
   EXPECT_THROW(mesh_rectangle_structured(0, 0, 1, 1, 2, 2, "diagonal"), std::invalid_argument);
 }
 
@@ -375,10 +375,9 @@ TEST(MeshRectangleStructured, BadArgumentsThrow) {
 std::vector<std::array<double, 3>> parent_coordinates(int order) {
   const double t = 1.0 / 3.0;
   if (order == 2) return {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
-  return {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},
-          {2 * t, t, 0}, {t, 2 * t, 0},   // edge 0-1 from vertex 0
-          {0, 2 * t, t}, {0, t, 2 * t},   // edge 1-2 from vertex 1
-          {t, 0, 2 * t}, {2 * t, 0, t},   // edge 2-0 from vertex 2
+  return {{1, 0, 0},     {0, 1, 0},     {0, 0, 1}, {2 * t, t, 0}, {t, 2 * t, 0},  // edge 0-1 from vertex 0
+          {0, 2 * t, t}, {0, t, 2 * t},                                           // edge 1-2 from vertex 1
+          {t, 0, 2 * t}, {2 * t, 0, t},                                           // edge 2-0 from vertex 2
           {t, t, t}};
 }
 
@@ -504,7 +503,7 @@ TEST(ArcPoints, EndPointsSpacingAndDirection) {
     if (i + 1 < p.size()) {
       EXPECT_LE((p[i + 1] - p[i]).norm(), h);
       EXPECT_NEAR((p[i + 1] - p[i]).norm(), (p[1] - p[0]).norm(), 1e-14);  // uniform
-      EXPECT_GT(cross(p[i] - c, p[i + 1] - c), 0.0);                         // counter-clockwise
+      EXPECT_GT(cross(p[i] - c, p[i + 1] - c), 0.0);                       // counter-clockwise
     }
   }
   const auto q = lagfsi::meshing::arc_points(c, r, kPi, 0.0, 0.1);  // clockwise

@@ -145,7 +145,7 @@ TEST(Remesh, SeparateBlocksAreNotConnectedAndIsolatedParticleIsFree) {
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < m; ++i) c.add(i, j);
   const Index first_b = static_cast<Index>(c.p.size());
-  const double gap = 4.0;   // bridging elements have R >= gap / 2 = 2 h > 1.2 h
+  const double gap = 4.0;  // bridging elements have R >= gap / 2 = 2 h > 1.2 h
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < m; ++i) c.add((m - 1) + gap + i, j + 0.5);
   const Index lone = c.add(100.0, 100.0);
@@ -170,7 +170,7 @@ TEST(Remesh, SeparateBlocksAreNotConnectedAndIsolatedParticleIsFree) {
 // ------------------------------------------------------------------------------------------------ (3)
 TEST(Remesh, HollowRingKeepsTheHoleEmptyAndItsInnerParticlesAreFreeSurface) {
   const double h = 0.05;
-  const int rings = 6;   // radii 3h .. 8h
+  const int rings = 6;  // radii 3h .. 8h
   Cloud c;
   std::vector<int> ring_of;
   std::vector<int> count(rings);
@@ -227,17 +227,18 @@ TEST(Remesh, WallOnlyElementsAreRemovedAndWallsAreNeverFreeSurface) {
       continue;
     }
     const int ix = static_cast<int>(i) % nx, jy = static_cast<int>(i) / nx;
-    const bool surface = ix == 0 || ix == nx - 1 || jy == ny - 1;   // not the bottom row: it lies on walls
+    const bool surface = ix == 0 || ix == nx - 1 || jy == ny - 1;  // not the bottom row: it lies on walls
     EXPECT_EQ(r.free_surface[i], surface ? 1 : 0) << ix << ' ' << jy;
   }
   EXPECT_EQ(r.free_surface, free_surface_by_edge_count(c, r.triangles));
   // Every fluid particle and the wall particles under the block are used.
   for (std::size_t i = 0; i < c.p.size(); ++i) {
-    if (c.kind[i] == ParticleKind::Fluid || (c.kind[i] == ParticleKind::Wall && c.p[i].x() >= 0 && c.p[i].x() <= nx - 1)) {
+    if (c.kind[i] == ParticleKind::Fluid ||
+        (c.kind[i] == ParticleKind::Wall && c.p[i].x() >= 0 && c.p[i].x() <= nx - 1)) {
       EXPECT_EQ(r.connected[i], 1) << i;
     }
     if (c.kind[i] == ParticleKind::Ghost) {
-      EXPECT_EQ(r.connected[i], 0) << i;   // ghosts only touch walls here
+      EXPECT_EQ(r.connected[i], 0) << i;  // ghosts only touch walls here
     }
   }
 }
@@ -273,9 +274,12 @@ BruteForce brute_force(const Cloud& c, double alpha) {
         if (!empty) continue;
         b.delaunay.insert(canonical(t));
         const double he = (c.h[i] + c.h[j] + c.h[k]) / 3.0;
-        if (!(a > 0) || std::sqrt(r2) > alpha * he) ++b.removed_alpha;
-        else if (all_boundary(c, t)) ++b.removed_boundary;
-        else b.kept.insert(canonical(t));
+        if (!(a > 0) || std::sqrt(r2) > alpha * he)
+          ++b.removed_alpha;
+        else if (all_boundary(c, t))
+          ++b.removed_boundary;
+        else
+          b.kept.insert(canonical(t));
       }
   return b;
 }
@@ -436,7 +440,7 @@ TEST(Remesh, CloseFluidParticlesMatchesBruteForce) {
   EXPECT_EQ(expected, std::set<Index>(planted.begin(), planted.end()));
   EXPECT_EQ(std::set<Index>(got.begin(), got.end()), expected);
   EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
-  EXPECT_EQ(got.size(), expected.size());   // each particle at most once
+  EXPECT_EQ(got.size(), expected.size());  // each particle at most once
   for (Index i : got) EXPECT_EQ(c.kind[i], ParticleKind::Fluid);
   EXPECT_TRUE(close_fluid_particles(c.p, c.kind, c.h, r.triangles, 0.0).empty());
 
@@ -475,7 +479,7 @@ TEST(Remesh, OversizedElementsMatchesBruteForce) {
   const std::vector<Vec2> p{Vec2(0, 0), Vec2(2, 0), Vec2(0, 2)};
   EXPECT_EQ(oversized_elements(p, {1, 1, 1}, {{0, 1, 2}}, 1.9), std::vector<Index>{0});
   EXPECT_TRUE(oversized_elements(p, {1, 1, 1}, {{0, 1, 2}}, 2.1).empty());
-  EXPECT_EQ(oversized_elements(p, {0.5, 1, 1.5}, {{0, 2, 1}}, 1.9), std::vector<Index>{0});   // h_e = 1, CW
+  EXPECT_EQ(oversized_elements(p, {0.5, 1, 1.5}, {{0, 2, 1}}, 1.9), std::vector<Index>{0});  // h_e = 1, CW
 
   // A perturbed grid with random holes, large alpha so that big elements are kept.
   std::mt19937_64 rng(99);

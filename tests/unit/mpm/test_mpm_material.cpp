@@ -104,14 +104,16 @@ void expect_edge_return(const Stress& trial, bool upper_edge, double psi) {
   const double dg = mc.return_mapping(s);
   const auto t = principal(trial), r = principal(s);
   const double scale = std::abs(t[2]);
-  if (upper_edge) EXPECT_NEAR(r[0], r[1], 1e-12 * scale);  // s1 = s2
-  else EXPECT_NEAR(r[1], r[2], 1e-12 * scale);             // s2 = s3
+  if (upper_edge)
+    EXPECT_NEAR(r[0], r[1], 1e-12 * scale);  // s1 = s2
+  else
+    EXPECT_NEAR(r[1], r[2], 1e-12 * scale);  // s2 = s3
   EXPECT_NEAR(f_plane(r[0], r[2]), 0.0, 1e-10 * scale);
   EXPECT_NEAR(upper_edge ? f_plane(r[1], r[2]) : f_plane(r[0], r[1]), 0.0, 1e-10 * scale);
   // The flow directions of the two active planes, in the sorted principal frame.
   const double sp = std::sin(psi * M_PI / 180);
-  Eigen::Vector3d n1(1 + sp, 0, -(1 - sp)), n2 = upper_edge ? Eigen::Vector3d(0, 1 + sp, -(1 - sp))
-                                                            : Eigen::Vector3d(1 + sp, -(1 - sp), 0);
+  Eigen::Vector3d n1(1 + sp, 0, -(1 - sp)),
+      n2 = upper_edge ? Eigen::Vector3d(0, 1 + sp, -(1 - sp)) : Eigen::Vector3d(1 + sp, -(1 - sp), 0);
   Eigen::Matrix<double, 3, 2> A;
   A << D(n1), D(n2);
   const Eigen::Vector3d delta(t[0] - r[0], t[1] - r[1], t[2] - r[2]);
@@ -217,8 +219,8 @@ TEST(MpmMohrCoulomb, DrainedPlaneStrainBiaxialTestFailsAtTheClosedFormStress) {
     s = out;
     peak = std::max(peak, -s[1]);
   }
-  EXPECT_NEAR(-s[1], sa, 1e-6 * sa);   // at failure at the end of the path
-  EXPECT_NEAR(peak, sa, 1e-6 * sa);    // and never above it
+  EXPECT_NEAR(-s[1], sa, 1e-6 * sa);  // at failure at the end of the path
+  EXPECT_NEAR(peak, sa, 1e-6 * sa);   // and never above it
   EXPECT_NEAR(s[0], -sc, 1e-6 * sc);
   const auto r = principal(s);
   EXPECT_NEAR(f_plane(r[0], r[2]), 0.0, 1e-6 * sa);
@@ -243,26 +245,37 @@ TEST(MpmLinearElastic, JaumannTrialAndNoReturn) {
 }
 
 TEST(MpmMaterialFactory, ReadsBothLawsAndRejectsBadOnes) {
-  auto mat = make_mpm_material(Params(Json{{"type", "linear_elastic"}, {"young", 1e6}, {"density", 1800.0}}, "t.json", "/m"));
+  auto mat =
+      make_mpm_material(Params(Json{{"type", "linear_elastic"}, {"young", 1e6}, {"density", 1800.0}}, "t.json", "/m"));
   EXPECT_EQ(mat->type(), "linear_elastic");
   EXPECT_FALSE(mat->plastic());
   EXPECT_EQ(mat->poisson(), 0.0);
-  auto mc = make_mpm_material(Params(Json{{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1800.0}, {"cohesion", 1e3},
-                                          {"friction_angle", 30.0}, {"tension_cutoff", 500.0}},
+  auto mc = make_mpm_material(Params(Json{{"type", "mohr_coulomb"},
+                                          {"young", 1e6},
+                                          {"density", 1800.0},
+                                          {"cohesion", 1e3},
+                                          {"friction_angle", 30.0},
+                                          {"tension_cutoff", 500.0}},
                                      "t.json", "/m"));
   EXPECT_EQ(mc->type(), "mohr_coulomb");
   EXPECT_TRUE(mc->plastic());
   EXPECT_EQ(dynamic_cast<const MohrCoulomb&>(*mc).tension_cutoff(), 500.0);
-  EXPECT_THROW(make_mpm_material(Params(Json{{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1800.0}, {"cohesion", 1e3},
-                                             {"friction_angle", 30.0}, {"tension_cutoff", 5000.0}},
+  EXPECT_THROW(make_mpm_material(Params(Json{{"type", "mohr_coulomb"},
+                                             {"young", 1e6},
+                                             {"density", 1800.0},
+                                             {"cohesion", 1e3},
+                                             {"friction_angle", 30.0},
+                                             {"tension_cutoff", 5000.0}},
                                         "t.json", "/m")),
                InputError);  // above c cot(phi) = 1732 Pa
-  EXPECT_THROW(make_mpm_material(Params(Json{{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1800.0}, {"friction_angle", 95.0}},
-                                        "t.json", "/m")),
+  EXPECT_THROW(make_mpm_material(
+                   Params(Json{{"type", "mohr_coulomb"}, {"young", 1e6}, {"density", 1800.0}, {"friction_angle", 95.0}},
+                          "t.json", "/m")),
                InputError);
-  EXPECT_THROW(make_mpm_material(Params(Json{{"type", "linear_elastic"}, {"young", 1e6}, {"density", 1800.0}, {"poisson", 0.5}},
-                                        "t.json", "/m")),
-               InputError);
+  EXPECT_THROW(
+      make_mpm_material(Params(Json{{"type", "linear_elastic"}, {"young", 1e6}, {"density", 1800.0}, {"poisson", 0.5}},
+                               "t.json", "/m")),
+      InputError);
 }
 
 // ---------------------------------------------------------------- shape functions and transfers
@@ -346,8 +359,10 @@ TEST(MpmTransfer, ParticlesToGridConservesMassAndMomentum) {
     // A uniform velocity is the velocity of every node that carries mass.
     velocities_from_momentum(g);
     for (size_t I = 0; I < g.num_nodes(); ++I) {
-      if (g.mass[I] > 0) EXPECT_NEAR((g.velocity[I] - v0).norm(), 0.0, 1e-13) << I;
-      else EXPECT_EQ(g.velocity[I], Vec2::Zero());
+      if (g.mass[I] > 0)
+        EXPECT_NEAR((g.velocity[I] - v0).norm(), 0.0, 1e-13) << I;
+      else
+        EXPECT_EQ(g.velocity[I], Vec2::Zero());
     }
   }
 }

@@ -68,7 +68,10 @@ std::vector<std::array<double, 2>> random_points(int n, unsigned seed) {
   std::vector<std::array<double, 2>> pts;
   while (static_cast<int>(pts.size()) < n) {
     double a = u(gen), b = u(gen);
-    if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+    if (a + b > 1.0) {
+      a = 1.0 - a;
+      b = 1.0 - b;
+    }
     pts.push_back({a, b});
   }
   // Also some points outside the triangle: polynomial identities hold everywhere.
@@ -205,8 +208,8 @@ TEST(TriangleShape, KroneckerAtNodes) {
       ASSERT_EQ(N.size(), num_nodes(order));
       ASSERT_EQ(dN.rows(), num_nodes(order));
       for (int i = 0; i < N.size(); ++i)
-        EXPECT_NEAR(N(i), i == static_cast<int>(j) ? 1.0 : 0.0, 1e-14) << "order " << order << " N" << i
-                                                                         << " at node " << j;
+        EXPECT_NEAR(N(i), i == static_cast<int>(j) ? 1.0 : 0.0, 1e-14)
+            << "order " << order << " N" << i << " at node " << j;
     }
   }
 }

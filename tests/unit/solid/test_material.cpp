@@ -23,8 +23,8 @@ const char* const kLaws[] = {"svk", "neo_hookean"};
 const PlaneHypothesis kHyps[] = {PlaneHypothesis::PlaneStrain, PlaneHypothesis::PlaneStress};
 
 std::string label(const std::string& law, PlaneHypothesis h, const Params& p) {
-  return law + (h == PlaneHypothesis::PlaneStrain ? " plane strain" : " plane stress") + " E=" +
-         std::to_string(p.E) + " nu=" + std::to_string(p.nu);
+  return law + (h == PlaneHypothesis::PlaneStrain ? " plane strain" : " plane stress") + " E=" + std::to_string(p.E) +
+         " nu=" + std::to_string(p.nu);
 }
 
 // Linear-elastic Voigt matrix (engineering shear), from E and nu only.
@@ -152,8 +152,7 @@ TEST(Material, StressIsEnergyDerivative) {
             ep(a) += h;
             em(a) -= h;
             const double fd = (at_strain(*m, ep).psi - at_strain(*m, em).psi) / (2 * h);
-            EXPECT_NEAR(voigt(r.S)(a), fd, 1e-7 * scale) << label(law, hyp, p) << " component " << a
-                                                         << "\nF =\n" << F;
+            EXPECT_NEAR(voigt(r.S)(a), fd, 1e-7 * scale) << label(law, hyp, p) << " component " << a << "\nF =\n" << F;
           }
         }
       }
@@ -202,8 +201,8 @@ TEST(Material, TangentIsStressDerivativeAndSymmetric) {
             em(b) -= h;
             const Eigen::Vector3d fd = (voigt(at_strain(*m, ep).S) - voigt(at_strain(*m, em).S)) / (2 * h);
             for (int a = 0; a < 3; ++a)
-              EXPECT_NEAR(r.D(a, b), fd(a), 1e-7 * scale) << label(law, hyp, p) << " D(" << a << "," << b
-                                                          << ")\nF =\n" << F;
+              EXPECT_NEAR(r.D(a, b), fd(a), 1e-7 * scale) << label(law, hyp, p) << " D(" << a << "," << b << ")\nF =\n"
+                                                          << F;
           }
         }
       }
@@ -286,7 +285,7 @@ TEST(Material, SvkAndNeoHookeanAgreeToFirstOrder) {
         };
         const double d1 = diff(1e-3), d2 = diff(5e-4);
         const double S1 = svk->evaluate(Mat2::Identity() + 1e-3 * G).S.norm();
-        EXPECT_LT(d1, 1e-2 * S1) << label("both", hyp, p);   // much smaller than the stress itself
+        EXPECT_LT(d1, 1e-2 * S1) << label("both", hyp, p);        // much smaller than the stress itself
         EXPECT_NEAR(d1 / d2, 4.0, 0.2) << label("both", hyp, p);  // quadratic in the strain
       }
     }

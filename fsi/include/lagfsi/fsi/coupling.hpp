@@ -30,9 +30,9 @@ struct CouplingSettings {
 };
 
 struct CouplingReport {
-  int iterations = 0;       ///< coupling passes (fluid + solid solves) done
-  double residual = 0;      ///< |r| of the last pass
-  double reference = 0;     ///< the motion the residual was compared with
+  int iterations = 0;    ///< coupling passes (fluid + solid solves) done
+  double residual = 0;   ///< |r| of the last pass
+  double reference = 0;  ///< the motion the residual was compared with
   bool converged = false;
 };
 

@@ -16,8 +16,8 @@
 ///    integrator gives them) -> ghost forces -> structure loaded by them -> its interface positions, until
 ///    |x~ - x| <= tolerance * |x~ - x_n|, accelerated as chosen ("constant", "aitken", "iqn_ils",
 ///    "iqn_imvj"), from the first guess x_n + (dt/dt_prev)(x_n - x_{n-1}) ("predictor": "extrapolation") or the
-///    structure's positions under the last step's interface forces ("forces"). Each pass re-solves both bodies from the step's start
-///    (the fluid keeps the step's mesh and factorizations). A loop that fails after its first pass is run
+///    structure's positions under the last step's interface forces ("forces"). Each pass re-solves both bodies from the
+///    step's start (the fluid keeps the step's mesh and factorizations). A loop that fails after its first pass is run
 ///    once more with the accelerator's memory cleared; a second failure goes to the driver (dt/2);
 ///  - optional augmented mass of the structure (interface.hpp), a consistent under-relaxation (with constant
 ///    relaxation only: with the other accelerators a pass would depend on the structure's previous iterate).

@@ -56,7 +56,7 @@ class PreviousDomain {
     Vec2 lo = Vec2::Zero();
     double cell = 1;
     int nx = 0, ny = 0;
-    std::vector<int> start;   // CSR: bucket b holds items[start[b] .. start[b + 1])
+    std::vector<int> start;  // CSR: bucket b holds items[start[b] .. start[b + 1])
     std::vector<int> items;
     int cx(double x) const;
     int cy(double y) const;
@@ -65,8 +65,8 @@ class PreviousDomain {
   static Grid bucket(const std::vector<std::array<Vec2, 2>>& boxes, const Vec2& lo, const Vec2& hi, double cell);
 
   std::vector<std::uint8_t> meshed_;
-  std::vector<std::pair<Index, Index>> boundary_edges_;   // (min, max), sorted
-  std::vector<std::pair<Index, Index>> edges_;            // (min, max), sorted, unique
+  std::vector<std::pair<Index, Index>> boundary_edges_;  // (min, max), sorted
+  std::vector<std::pair<Index, Index>> edges_;           // (min, max), sorted, unique
   std::vector<std::array<Vec2, 3>> triangles_;
   std::vector<std::array<Vec2, 2>> boundary_;
   Grid tri_grid_, edge_grid_;

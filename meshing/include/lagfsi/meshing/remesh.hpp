@@ -37,13 +37,13 @@ enum class ParticleKind : std::uint8_t { Fluid = 0, Wall = 1, Ghost = 2 };
 enum class DomainDetection : std::uint8_t { Alpha = 0, Advected = 1, LevelSet = 2 };
 
 struct RemeshSettings {
-  double alpha = 1.2;   ///< delete an element if R > alpha * h_e
+  double alpha = 1.2;  ///< delete an element if R > alpha * h_e
   DomainDetection detection = DomainDetection::Alpha;
-  const PreviousDomain* previous = nullptr;   ///< required (non-empty) unless detection is Alpha
-  double separation_alpha = 2.5;              ///< Advected / LevelSet: inside elements kept while R <= this h_e
-  double level_set_band = 0.25;               ///< LevelSet: outside elements within this h_e of the boundary
-  double wetting_distance = 0.5;              ///< Advected / LevelSet: a dry wall particle joins the domain
-                                              ///< when a fluid particle comes within this h_e of it
+  const PreviousDomain* previous = nullptr;  ///< required (non-empty) unless detection is Alpha
+  double separation_alpha = 2.5;             ///< Advected / LevelSet: inside elements kept while R <= this h_e
+  double level_set_band = 0.25;              ///< LevelSet: outside elements within this h_e of the boundary
+  double wetting_distance = 0.5;             ///< Advected / LevelSet: a dry wall particle joins the domain
+                                             ///< when a fluid particle comes within this h_e of it
   /// Advected / LevelSet with the previous mesh's edges (PreviousDomain::set_edges): an interior edge of the
   /// previous mesh that is no longer Delaunay is flipped back while the two angles facing it sum to at most
   /// pi + keep_edges_angle (radians). The Delaunay criterion is discontinuous: a nearly cocircular quadrilateral

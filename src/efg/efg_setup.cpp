@@ -186,7 +186,7 @@ void EfgModel::read_discretization(Params b) {
 
 void EfgModel::read_boundary_conditions(Params b) {
   Params es = b.at("essential");
-  es.validate({{"method", "coupling"}, {"penalty", 1e4}});
+  es.validate({{"method", "coupling"}, {"penalty", 1e4}, {"fe_nodes", Json::array()}});
   essential_ = es.choice("method", {"coupling", "penalty", "lagrange"});
   penalty_ = es.positive("penalty") * material_->young();
   const Index nn = mesh_.num_nodes();
@@ -219,6 +219,12 @@ void EfgModel::read_boundary_conditions(Params b) {
       fixed_dofs_.push_back(d);
       fixed_ref_.push_back(value[d]);
     }
+  // Active FE nodes that hold nothing (a node selection each; {"type": "all"}: the FE mesh everywhere).
+  Params fe = es.at("fe_nodes");
+  if (!fe.json().is_array()) es.fail("fe_nodes", "expected an array of node selections");
+  if (fe.size() > 0 && essential_ != "coupling") es.fail("fe_nodes", "active FE nodes need method = \"coupling\"");
+  for (size_t i = 0; i < fe.size(); ++i)
+    for (Index n : select_nodes(fe.at(i), mesh_.nodes)) active_[n] = 1;
   if (essential_ == "coupling") {
     for (Index c = 0; c < mesh_.num_cells(); ++c)
       for (int a = 0; a < mesh_.nodes_per_cell(); ++a)

@@ -26,6 +26,7 @@ struct PatchSetup {
   bool quadratic = false;
   std::string cells = "q4";    // "q9": Q9 cells and coupling elements (s.n cells, 2 s.n + 1 nodes a side)
   bool boundary_held = false;  // the exact displacements on the whole boundary (coupling along every edge)
+  bool fe_everywhere = false;  // essential.fe_nodes = [all]: every node an active FE node
 };
 
 /// Max |v - u_exact(x_node)| over the nodes / max |u_exact|.
@@ -53,7 +54,8 @@ double patch_error(const PatchSetup& s) {
                {"domain", {{"type", "rectangle"}, {"size", {1.0, 1.0}}, {"divisions", {s.n, s.n}}, {"cells", s.cells}}},
                {"material", {{"type", "linear_elastic"}, {"young", 1000.0}, {"poisson", 0.25}}},
                {"efg", {{"basis", s.basis}, {"alpha", s.alpha}, {"gauss", s.gauss}, {"integration", s.integration}}},
-               {"essential", {{"method", s.essential}}},
+               {"essential", s.fe_everywhere ? Json{{"method", s.essential}, {"fe_nodes", {{{"type", "all"}}}}}
+                                             : Json{{"method", s.essential}}},
                {"exact", {{"type", "polynomial"}, {"ux", ux}, {"uy", uy}}},
                {"boundary_conditions", bcs},
                {"loads", loads}};
@@ -83,9 +85,10 @@ double patch_error(const PatchSetup& s) {
     err = std::max(err, (Vec2(u[2 * i], u[2 * i + 1]) - e).cwiseAbs().maxCoeff());
     scale = std::max(scale, e.cwiseAbs().maxCoeff());
   }
-  std::printf("patch %-11s %-9s %s alpha %.1f gauss %d %-10s %s%s: max nodal error / max u = %.3e\n", s.basis.c_str(),
+  std::printf("patch %-11s %-9s %s alpha %.1f gauss %d %-10s %s%s%s: max nodal error / max u = %.3e\n", s.basis.c_str(),
               s.quadratic ? "quadratic" : "linear", s.cells.c_str(), s.alpha, s.gauss, s.integration.c_str(),
-              s.essential.c_str(), s.boundary_held ? " (boundary held)" : "", err / scale);
+              s.essential.c_str(), s.boundary_held ? " (boundary held)" : "", s.fe_everywhere ? " (every node FE)" : "",
+              err / scale);
   return err / scale;
 }
 
@@ -162,4 +165,25 @@ TEST(EfgPatch, QuadraticFieldThroughQ9CouplingElementsToRoundOff) {
   s.quadratic = true;
   s.boundary_held = true;
   EXPECT_GT(patch_error(s), 1e-6);  // Q4 coupling: the quadratic field is not reproduced
+}
+
+TEST(EfgPatch, EveryNodeActiveIsTheFiniteElement) {
+  // essential.fe_nodes = [all]: where the FE functions reproduce the basis the corrected MLS functions vanish, so the
+  // body is the FE model (the thesis's "FEM Q4" and "FEM Q9" references, §5.1 and §5.3): the patch tests pass to
+  // round-off with the FE Gauss rules (2 x 2 for Q4, 3 x 3 for Q9) and plain Gauss, which the EFG functions of the
+  // same rho do not (the test can fail).
+  PatchSetup s;
+  s.alpha = 2.0;
+  s.gauss = 2;
+  s.integration = "gauss";
+  s.fe_everywhere = true;
+  EXPECT_LT(patch_error(s), 1e-10);  // Q4, the linear field
+  s.basis = "biquadratic";
+  s.cells = "q9";
+  s.n = 2;
+  s.gauss = 3;
+  s.quadratic = true;
+  EXPECT_LT(patch_error(s), 1e-10);  // Q9, the quadratic field (with its body force)
+  s.fe_everywhere = false;
+  EXPECT_GT(patch_error(s), 1e-6);  // the EFG functions, rho = 2h: quadrature error
 }

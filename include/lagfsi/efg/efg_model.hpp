@@ -9,7 +9,10 @@
 ///  - "coupling" (default, the thesis's method): the nodes of the supports are active FE nodes; every cell touching
 ///    one is a Q4 coupling element sharing its Gauss points; the MLS functions are corrected (Huerta &
 ///    Fernandez-Mendez 2000) so that FE + EFG reproduce the basis, and the conditions act directly on the dofs of the
-///    active nodes (there v = u);
+///    active nodes (there v = u). "fe_nodes" (node selections) makes more nodes active without holding them: a cell
+///    all of whose nodes are active, where the FE functions reproduce the basis (Q4 cells and the bilinear basis, Q9
+///    cells and the biquadratic one), has corrected MLS functions zero to round-off, so it is the finite element:
+///    [{"type": "all"}] turns the body into the FE model (Q4 or Q9) with the body's Gauss rule;
 ///  - "penalty": u^h(x_k) = u_k at the selected nodes by a penalty beta E (point collocation);
 ///  - "lagrange": the same constraints by Lagrange multipliers (collocation; an indefinite system: umfpack/klu).
 /// Loading: a reference load P (tractions on cell edges) and prescribed displacements, both times the load factor

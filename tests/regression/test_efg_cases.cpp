@@ -103,6 +103,65 @@ TEST(EfgCases, LPanelPathFollowingMethodsAgreeAndLoadControlFailsAtTheLimit) {
   EXPECT_NEAR(lc.second / cdg.first, 1.0, 0.02);
 }
 
+TEST(EfgCases, LPanelDisplacementControlUAndVFormsObeyTheLinearIdentity) {
+  // Thesis §5.4, Tables 5.1-5.2 (digest 003_efg.md §3.1.6): displacement control of the vertical dof of the
+  // interior particle B = (450, 400), in the U form (u_B imposed, u = f(v)) and the V form (the parameter v_B
+  // imposed). In the linear regime the response is proportional to lambda, so lambda(V) / lambda(U) = u_B / v_B at
+  // every step, to round-off; the parameter of a particle differs from its displacement (v_B != u_B), so the
+  // identity fails if the U form acted on the parameters (or the V form on the displacements).
+  auto run = [](const std::string& form) {
+    const RunResult r =
+        run_case_file("cases/efg_L_panel/case.json", "efg_lp_cdd_" + form,
+                      {"bodies.0.domain.divisions=[10,10]", "bodies.0.efg.gauss=3", "bodies.0.efg.alpha=3",
+                       "analysis.load_steps=4", "bodies.0.control.type=displacement", "bodies.0.control.at=[450,400]",
+                       "bodies.0.control.form=" + form, "bodies.0.control.increment=0.0012", "output.vtk=false"});
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return read_csv(r.out_dir / "probes.csv");
+  };
+  const Csv u = run("U"), v = run("V");
+  ASSERT_EQ(u["lambda"].size(), 5u);
+  ASSERT_EQ(v["lambda"].size(), 5u);
+  for (size_t j = 1; j < 5; ++j) {
+    EXPECT_NEAR(u["node_B_uy"][j], 0.0012 * j, 1e-12);  // the controlled quantity of each form
+    EXPECT_NEAR(v["node_B_vy"][j], 0.0012 * j, 1e-12);
+    const double ratio = v["lambda"][j] / u["lambda"][j], uv = v["node_B_uy"][j] / v["node_B_vy"][j];
+    std::printf("step %zu: lambda U %.12f V %.12f, lambda(V)/lambda(U) %.12f, u_B/v_B %.12f\n", j, u["lambda"][j],
+                v["lambda"][j], ratio, uv);
+    EXPECT_NEAR(ratio, uv, 1e-9);
+    EXPECT_GT(std::abs(uv - 1), 1e-5);  // B is a particle: the forms differ
+  }
+}
+
+TEST(EfgCases, LPanelEveryNodeFeIsTheQ4Element) {
+  // The FEM Q4 reference of the thesis two ways on the coarse panel: EFG with rho = h and the bilinear basis (the Q4
+  // functions on a regular grid), and every node an active FE node (essential.fe_nodes = [all], rho = 2h: the
+  // corrected MLS functions vanish). Both with 2 x 2 Gauss; the same curve up to round-off.
+  auto run = [](const std::string& tag, const std::vector<std::string>& extra) {
+    std::vector<std::string> sets = {"bodies.0.domain.divisions=[10,10]", "bodies.0.efg.gauss=2",
+                                     "analysis.load_steps=30", "bodies.0.control.increment=0.05", "output.vtk=false"};
+    sets.insert(sets.end(), extra.begin(), extra.end());
+    const RunResult r = run_case_file("cases/efg_L_panel/case.json", tag, sets);
+    EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+    return read_csv(r.out_dir / "probes.csv");
+  };
+  const Csv h = run("efg_lp_q4_rho_h", {"bodies.0.efg.alpha=1"});
+  const Csv fe = run("efg_lp_q4_fe", {"bodies.0.essential.fe_nodes=[{\"type\":\"all\"}]"});
+  const Csv efg = run("efg_lp_q4_rho_2h", {});
+  ASSERT_EQ(h["load"].size(), fe["load"].size());
+  double d = 0, d_efg = 0;
+  for (size_t j = 0; j < h["load"].size(); ++j) {
+    d = std::max(d, std::abs(fe["load"][j] - h["load"][j]) + std::abs(fe["node_A_uy"][j] - h["node_A_uy"][j]) * 1e4);
+    if (j < efg["load"].size()) d_efg = std::max(d_efg, std::abs(efg["load"][j] - h["load"][j]));
+  }
+  const double peak = *std::max_element(h["load"].begin(), h["load"].end());
+  std::printf(
+      "Q4 (rho = h) peak %.3f N; every node FE: largest difference %.3e (load N + 1e4 u_A mm); EFG rho = 2h: "
+      "%.1f N\n",
+      peak, d, d_efg);
+  EXPECT_LT(d, 1e-6 * peak);
+  EXPECT_GT(d_efg, 1e-3 * peak);  // EFG with rho = 2h is not the Q4 element
+}
+
 TEST(EfgCases, BadInputIsOneLineWithThePath) {
   const RunResult r =
       run_case_file("cases/efg_timoshenko_cantilever/case.json", "efg_bad", {"bodies.0.efg.basis=cubic"});

@@ -182,9 +182,10 @@ void check_checkpointable(const std::vector<PhysicsModel*>& models, const Params
                           const fs::path& case_file) {
   for (const PhysicsModel* m : models)
     if (!m->can_checkpoint()) {
-      const std::string why = "body '" + m->name() + "' (" + m->type() +
-                              ") cannot be checkpointed in this version (solids, shells, fluids, MPM bodies and their "
-                              "couplings can)";
+      const std::string why =
+          "body '" + m->name() + "' (" + m->type() +
+          ") cannot be checkpointed in this version (solids, shells, fluids, MPM and DEM bodies and "
+          "their couplings can)";
       if (restart) throw InputError(case_file.string(), "", "--restart: " + why);
       output.fail("checkpoint", why);
     }

@@ -62,7 +62,7 @@ void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, cons
 void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models,
                           const std::vector<Probe*>& probes);
 
-/// Bodies and couplings that cannot be checkpointed (DEM, EFG) with checkpoints asked for: InputError at
+/// Bodies and couplings that cannot be checkpointed (EFG) with checkpoints asked for: InputError at
 /// /output/checkpoint, or naming the case file for --restart (`restart`).
 void check_checkpointable(const std::vector<PhysicsModel*>& models, const Params& output, bool restart,
                           const std::filesystem::path& case_file);

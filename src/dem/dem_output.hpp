@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace lagfsi::dem {
@@ -31,6 +32,8 @@ class DemWriter {
   /// The .vtp series, and with csv <name>_discs.csv (id, x, y, r, vx, vy, omega, mark of every disc, the last
   /// output; written to a temporary, then renamed).
   void write(double t, const DemBody& b);
+  /// Checkpoints: the series written so far (dem_checkpoint.cpp).
+  void serialize(StateArchive& ar, const std::string& name);
   // with b.crater.enabled also crater.csv (the last output: the crater at the end of the run)
 
  private:

@@ -14,6 +14,7 @@
 //  - {"type": "front", "skip": k}: the largest x + r, ignoring the k farthest discs (strays rolling away);
 //    {"type": "height", "x": x, "band": b}: the largest y + r of the discs
 //    whose centre lies within b of x (default b = 2 r_max).
+// Checkpoints: a ke_near probe keeps its discs and its peak (serialize); the others keep nothing.
 #include "dem_body.hpp"
 
 #include <lagfsi/dem/dem_model.hpp>
@@ -37,6 +38,11 @@ class DemProbe final : public Probe {
     return {name_};
   }
   std::vector<double> sample() const override;
+  /// ke_near: the chosen discs (by id) and the peak so far.
+  void serialize(StateArchive& ar) override {
+    ar.section("dem probe " + name_);
+    ar.io(chosen_, peak_, peak_time_);
+  }
 
   Index id = -1;
   Vec2 at = Vec2::Zero();

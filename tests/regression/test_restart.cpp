@@ -2,7 +2,8 @@
 // (--stop-after-step, or Ctrl-C) and continued with `lagfsi run CASE --restart OUTDIR` ends with the probes.csv of
 // the run that was not stopped, to the last digit (one thread), for a solid, a remeshed PFEM fluid (with wall
 // particles, and with the walls as constraints), an FSI case
-// with a quasi-Newton coupling that keeps its Jacobian between steps, and an MPM body with plastic history;
+// with a quasi-Newton coupling that keeps its Jacobian between steps, an MPM body with plastic history, and DEM
+// bodies (a blast on a bed with tangential springs; a moving wall after a settling stage);
 // log.csv's rows (but for the wall times) and the ParaView series are the same too. A restart of another case,
 // or without a checkpoint, is refused in one line and leaves the earlier run's files as they are.
 #include <gtest/gtest.h>
@@ -122,6 +123,79 @@ TEST(Restart, MpmContinuesBitForBit) {
                              {"analysis.end_time=0.1", "bodies.0.grid.cell=0.005", "output.every=4"}, 5, 11, {"bars"});
 }
 
+TEST(Restart, DemRestartBlastBedWithFrictionContinuesBitForBit) {
+  // cases/dem_blast_crater on a 0.3 m x 0.1 m bed of 4 mm discs in a box, with a linear law whose Coulomb
+  // tangential springs keep a history, rolling resistance, the 1 kg charge 0.5 m above the bed with the shadowing
+  // recomputed every 3 sub-steps (so the exposure of the last update carries over), energy probes (the
+  // dissipated and blast-work sums, the balance), the KE peaks near the axis, the contacts and the largest force:
+  // 200 steps of 10 sub-steps (2 ms; the shock reaches the bed at 0.38 ms), lists rebuilt and discs reordered on
+  // the way; stopped after 61 (within the blast's positive phase, after the KE peak 1 cm deep, and after 611 blast
+  // calls: the restart's first sub-step uses the exposure of the update before the stop), checkpoints every 20.
+  const json contact = {{"law", "linear"},         {"kn", 2.75e6},    {"damping_ratio", 0.05},
+                        {"friction", 0.3},         {"kt_ratio", 0.5}, {"tangential_damping_ratio", 0.05},
+                        {"rolling_friction", 0.05}};
+  const json discs = json::array({{{"type", "hex_lattice"},
+                                   {"region", {{"type", "rectangle"}, {"origin", {0.0, 0.0}}, {"size", {0.3, 0.1}}}},
+                                   {"radius", 0.002}}});
+  const json walls = json::array({{{"name", "box"}, {"points", {{0.0, 0.2}, {0.0, 0.0}, {0.3, 0.0}, {0.3, 0.2}}}}});
+  json probes = json::array();
+  for (double d : {0.01, 0.03})
+    probes.push_back({{"name", "ke_" + std::to_string(int(1000 * d))},
+                      {"type", "ke_near"},
+                      {"body", "bed"},
+                      {"at", {0.15, 0.0996 - d}},
+                      {"count", 6}});
+  for (const char* k : {"kinetic", "elastic", "dissipated", "blast_work", "balance"})
+    probes.push_back({{"name", std::string("e_") + k}, {"type", "energy"}, {"body", "bed"}, {"kind", k}});
+  probes.push_back({{"name", "contacts"}, {"type", "contacts"}, {"body", "bed"}});
+  probes.push_back({{"name", "fmax"}, {"type", "max_contact_force"}, {"body", "bed"}});
+  probes.push_back({{"name", "omega"}, {"type", "disc"}, {"body", "bed"}, {"id", 1900}, {"quantity", "omega"}});
+  expect_restart_is_seamless(
+      "dem_blast", "cases/dem_blast_crater/case.json",
+      {"analysis.end_time=0.002", "bodies.0.time_step.dt=1e-6", "bodies.0.contact=" + contact.dump(),
+       "bodies.0.discs=" + discs.dump(), "bodies.0.walls=" + walls.dump(), "bodies.0.blast.position=[0.15,0.5996]",
+       "bodies.0.blast.exposure_every=3", "probes=" + probes.dump(), "output.every=40"},
+      20, 61, {"bed", "bed_walls"});
+}
+
+TEST(Restart, DemRestartMovingWallContinuesBitForBit) {
+  // A random pack of discs (r 1-1.5 mm) settled under gravity behind a gate (the settling stage runs again at the
+  // restart and removes the gate), then pushed along the floor by a piston that starts after a ramp, with
+  // Coulomb friction and rolling resistance: 100 steps, stopped after 47, checkpoints every 10.
+  const fs::path dir = fresh_dir("restart_dem_wall_case");
+  write_text(dir / "case.json", R"({
+    "name": "dem_piston",
+    "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 0.1},
+    "gravity": [0.0, -9.81],
+    "bodies": [{
+      "name": "pack", "type": "dem", "material": {"density": 2650},
+      "contact": {"law": "linear", "kn": 2e5, "damping": "restitution", "restitution": 0.5, "friction": 0.5,
+                  "tangential_damping_ratio": 0.2, "rolling_friction": 0.1},
+      "discs": [{"type": "random", "region": {"type": "rectangle", "origin": [0.004, 0.0], "size": [0.046, 0.05]},
+                 "radius": [0.001, 0.0015], "fraction": 0.5, "seed": 3}],
+      "walls": [{"name": "box", "points": [[0.0, 0.1], [0.0, 0.0], [0.12, 0.0], [0.12, 0.1]]},
+                {"name": "gate", "points": [[0.05, 0.0], [0.05, 0.1]]},
+                {"name": "piston", "points": [[0.002, 0.0012], [0.002, 0.08]], "velocity": [0.25, 0.0],
+                 "function": {"type": "ramp", "t0": 0.0, "t1": 0.02}}],
+      "settle": {"time": 0.03, "remove_walls": ["gate"]},
+      "neighbour": {"skin": 0.001}
+    }],
+    "probes": [
+      {"name": "runout", "type": "front", "body": "pack", "skip": 2},
+      {"name": "height", "type": "height", "body": "pack", "x": 0.01},
+      {"name": "x7", "type": "disc", "body": "pack", "id": 7, "quantity": "x"},
+      {"name": "theta7", "type": "disc", "body": "pack", "id": 7, "quantity": "theta"},
+      {"name": "kinetic", "type": "energy", "body": "pack", "kind": "kinetic"},
+      {"name": "dissipated", "type": "energy", "body": "pack", "kind": "dissipated"},
+      {"name": "balance", "type": "energy", "body": "pack", "kind": "balance"},
+      {"name": "contacts", "type": "contacts", "body": "pack"},
+      {"name": "fmax", "type": "max_contact_force", "body": "pack"}
+    ],
+    "output": {"every": 20}
+  })");
+  expect_restart_is_seamless("dem_wall", (dir / "case.json").string(), {}, 10, 47, {"pack", "pack_walls"});
+}
+
 /// The shared strip (tests/support/strip_case.hpp) with quadratic elements and checkpoints, `steps` steps of 1 ms.
 json strip_case(long steps) {
   return lagfsi::testing::strip_case("restart_strip", steps, 2,
@@ -217,17 +291,16 @@ TEST(Restart, RefusedInOneLine) {
 }
 
 TEST(Restart, BodiesWithoutCheckpointsAreRefusedAtInput) {
-  // A DEM body cannot be checkpointed yet: output.checkpoint is an input error at its JSON path.
-  const fs::path dir = fresh_dir("restart_dem");
-  json j = json::parse(file_text(case_path("cases/dem_hertz_impact/case.json")), nullptr, true, true);
+  // An EFG body cannot be checkpointed yet: output.checkpoint is an input error at its JSON path.
+  const fs::path dir = fresh_dir("restart_efg");
+  json j = json::parse(file_text(case_path("cases/efg_tension_plate/case.json")), nullptr, true, true);
   j["output"]["checkpoint"] = {{"every_steps", 10}};
   write_text(dir / "case.json", j.dump(2));
   Finished r = run_args({"check", (dir / "case.json").string()}, dir);
   EXPECT_EQ(r.code, 2) << r.err;
-  // (A DEM body prints its critical step while it is built: one error line among them.)
   EXPECT_EQ(r.err.find("lagfsi: error"), r.err.rfind("lagfsi: error")) << r.err;
   EXPECT_NE(r.err.find("/output/checkpoint: body '"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("(dem) cannot be checkpointed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(efg) cannot be checkpointed"), std::string::npos) << r.err;
   // A bad checkpoint object names its key.
   j["output"]["checkpoint"] = {{"every_step", 10}};
   write_text(dir / "case.json", j.dump(2));

@@ -22,6 +22,7 @@
 /// pseudo-angle (no trigonometry for the discs in the shadow: the tangent directions from a square root), skips
 /// the blocked set's update for a disc wholly in the shadow, and computes the angles only for the loaded arcs.
 #include <lagfsi/params.hpp>
+#include <lagfsi/state_archive.hpp>
 
 #include <map>
 #include <vector>
@@ -56,6 +57,8 @@ class Blast {
     calls_ = 0;
     order_valid_ = false;
   }
+  /// Checkpoints: the exposure of the last update, the calls since it and the distance order (dem_checkpoint.cpp).
+  void serialize(StateArchive& ar);
 
  private:
   void update_exposure(const double* x, int stride, const double* r, int n);

@@ -16,6 +16,7 @@
 ///  - ParaView output, crater profile                                 dem_output.cpp
 ///  - probes                                                          dem_probes.cpp
 ///  - the PhysicsModel lifecycle                                      dem_model.cpp
+///  - checkpoints (output.checkpoint, lagfsi run --restart)           dem_checkpoint.cpp
 ///
 /// Time: the shared explicit central difference (time_integrator.hpp, explicit_step_into: velocity Verlet,
 /// the damping and the tangential history take the half-step velocity), dofs (x, y, theta) per disc with
@@ -57,6 +58,13 @@ class DemModel final : public PhysicsModel {
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   Json summary() const override;
+  bool can_checkpoint() const override { return true; }
+  /// The whole state after finalize_step (dem_checkpoint.cpp): the discs in their current order with their
+  /// properties, marks, dofs and forces; the pair and wall lists as built (pairs, incidences, tangential
+  /// histories, reference positions of the skin test), so that the next rebuild and every force sum come when
+  /// and as they would have; the walls' offsets; the blast's exposure; the energy sums; the counters and timings;
+  /// the output series.
+  void serialize(StateArchive& ar) override;
 
   const DemBody& body() const { return *body_; }
   DemBody& body() { return *body_; }

@@ -235,6 +235,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
       fail(where, "separation_alpha must be finite and >= alpha");
     if (!(std::isfinite(settings.level_set_band) && settings.level_set_band >= 0))
       fail(where, "level_set_band must be finite and >= 0");
+    if (!(std::isfinite(settings.contact_gap) && settings.contact_gap >= 0))
+      fail(where, "contact_gap must be finite and >= 0");
     if (!(std::isfinite(settings.keep_edges_angle) && settings.keep_edges_angle >= 0 &&
           settings.keep_edges_angle < std::numbers::pi / 2))
       fail(where, "keep_edges_angle must be in [0, pi/2)");
@@ -344,8 +346,12 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
           }
           reaches = reaches && nearest <= settings.wetting_distance * he;
         }
+        // Two fluid surfaces meeting: the gap the element closes is its smallest height, 2A / l_max
+        // (contact_gap). A surface reaching a wall or ghost particle is wetting_distance's concern.
+        const bool gap_ok = walls > 0 || !(settings.contact_gap > 0) ||
+                            cr <= settings.contact_gap * he * std::sqrt(std::max({lab2, lac2, lbc2}));
         const bool accept =
-            walls <= 1 && on_boundary < 2 && reaches &&
+            gap_ok && walls <= 1 && on_boundary < 2 && reaches &&
             (settings.detection == DomainDetection::LevelSet ? previous->boundary_distance(centroid, band) < band
                                                              : lll <= 2.0 * cr * alpha * he);
         if (!accept) {

@@ -41,7 +41,7 @@ void RemeshPipeline::serialize(StateArchive& ar) {
 
 void VolumeCorrection::serialize(StateArchive& ar) {
   ar.section("volume");
-  ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_);
+  ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_, change_in_steps_);
 }
 
 void FluidEnergy::serialize(StateArchive& ar) {

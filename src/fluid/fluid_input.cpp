@@ -12,6 +12,11 @@
 namespace lagfsi::fluid {
 
 FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
+  // contact_gap's default depends on the detection (validated below): 0.3 for "advected", where it keeps the
+  // splash's landings from adding area (cases/studies/conservation), 0 (off) otherwise.
+  const Json* det =
+      b.json().is_object() && b.json().contains("domain_detection") ? &b.json().at("domain_detection") : nullptr;
+  const bool advected = det != nullptr && det->is_string() && det->get<std::string>() == "advected";
   b.validate({{"name", nullptr},
               {"type", "fluid"},
               {"density", nullptr},
@@ -21,6 +26,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"domain_detection", "alpha"},
               {"separation_alpha", 2.5},
               {"level_set_band", 0.25},
+              {"contact_gap", advected ? 0.3 : 0.0},
               {"keep_edges_angle", 0.0},
               {"wall_model", "particles"},
               {"wall_snap_fraction", 0.1},
@@ -52,6 +58,8 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (rs.separation_alpha < rs.alpha)
     b.fail("separation_alpha", "must be at least alpha (" + std::to_string(rs.alpha) + ")");
   rs.level_set_band = b.non_negative("level_set_band");
+  rs.contact_gap = b.non_negative("contact_gap");
+  if (rs.contact_gap > 2.0) b.fail("contact_gap", "must be at most 2 (a fraction of the spacing; 0: off)");
   const double keep_deg = b.non_negative("keep_edges_angle");
   if (keep_deg >= 90.0) b.fail("keep_edges_angle", "must be below 90 degrees");
   rs.keep_edges_angle = keep_deg * std::numbers::pi / 180.0;

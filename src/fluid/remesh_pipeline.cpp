@@ -106,6 +106,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     settings.previous = previous;
     settings.separation_alpha = s_.separation_alpha;
     settings.level_set_band = s_.level_set_band;
+    settings.contact_gap = s_.contact_gap;
     settings.keep_edges_angle = s_.keep_edges_angle;
   }
   try {

@@ -104,7 +104,9 @@ Json VolumeCorrection::summary() const {
   return {{"initial", area_initial_},
           {"final", area_end_},
           {"left_domain", area_left_},
-          {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0}};
+          {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0},
+          {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_},
+          {"change_in_steps", change_in_steps_}};
 }
 
 }  // namespace lagfsi::fluid

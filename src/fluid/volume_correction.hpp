@@ -37,8 +37,12 @@ class VolumeCorrection {
   void restore_area();
   /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step.
   void set_remeshed(double area);
-  /// The mesh's area at the end of the step.
-  void set_end(double area) { area_end_ = area; }
+  /// The mesh's area at the end of the step; what the step changed since the remeshing (the solve's discrete
+  /// incompressibility, the wall put-backs) is added up.
+  void set_end(double area) {
+    change_in_steps_ += area - area_remesh_;
+    area_end_ = area;
+  }
 
   /// The uniform source of the continuity equation (0 unless "source").
   double c_vol() const { return c_vol_; }
@@ -46,7 +50,9 @@ class VolumeCorrection {
   double area_end() const { return area_end_; }
   /// Potential energy put into the fluid by the "surface" correction's moves, -sum m_i g . dx_i.
   double correction_energy() const { return correction_energy_; }
-  /// summary.json's "fluid_area": initial, final, left the domain, drift without the latter.
+  /// summary.json's "fluid_area": initial, final, left the domain, drift without the latter, and the change
+  /// split into what the steps made (change_in_steps) and the rest (change_by_remeshing: remeshing, the
+  /// correction, the fluid dropped outside the domain box).
   Json summary() const;
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
@@ -60,6 +66,7 @@ class VolumeCorrection {
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
   double correction_energy_ = 0;
+  double change_in_steps_ = 0;  // the sum over the steps of their area change after remeshing
 };
 
 }  // namespace lagfsi::fluid

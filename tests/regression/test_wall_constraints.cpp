@@ -79,9 +79,11 @@ TEST(WallConstraints, ABlobLandsAndStaysInTheTank) {
     const Csv c = probes_of(r);
     double drift = 0;
     for (double a : c["area"]) drift = std::max(drift, std::abs(a / c["area"][0] - 1));
-    // A sanity bound only: the impact of a 5 x 5 particle blob is not resolved (measured 35.4 % and 18.4 %; with
-    // wall particles, monolithic scheme, 85 % of the blob's area is lost by 0.5 s).
-    EXPECT_LT(drift, 0.4) << scheme;
+    // A sanity bound only: the impact of a 5 x 5 particle blob is not resolved (measured 49.0 % and 31.6 %; with
+    // wall particles, monolithic scheme, 85 % of the blob's area is lost by 0.5 s). With "contact_gap": 0 (the
+    // advected detection's default before issue #16's contact gap) 35.4 % and 18.4 %: pieces of the film that
+    // separate rejoin it with a gap element of up to 1.5 h, which gave back some of what the steps lose.
+    EXPECT_LT(drift, 0.55) << scheme;
     std::printf("%s: %ld put on a wall, %ld put back from beyond one, largest area drift %.2f %%\n", scheme.c_str(),
                 b["wall_snaps"].get<long>(), b["wall_crossings"].get<long>(), 100 * drift);
   }

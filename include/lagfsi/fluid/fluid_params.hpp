@@ -34,6 +34,8 @@ struct FluidRemeshSettings {
   meshing::DomainDetection detection = meshing::DomainDetection::Alpha;
   double separation_alpha = 2.5;  // advected / level set: an inside element is torn off when R > this h
   double level_set_band = 0.25;   // level set: outside elements within this h of the previous boundary
+  double contact_gap = 0.0;       // advected / level set: surfaces join when their gap is at most this h
+                                  // (meshing::RemeshSettings::contact_gap; 0: off)
   double split_factor = 1.6;      // advected / level set: split free-surface edges longer than this h
   double keep_edges_angle = 0.0;  // advected / level set: hysteresis of the Delaunay flips, radians
                                   // (meshing::RemeshSettings::keep_edges_angle; input in degrees)

@@ -410,6 +410,22 @@ TEST(BadInput, FluidWallModelConstraints) {
   expect_one_line(o, "/bodies/0/wall_model", "constraints");
 }
 
+TEST(BadInput, FluidContactGap) {
+  // "contact_gap" is a fraction of the spacing: non-negative, at most 2.
+  json j = fluid_case();
+  j["bodies"][0]["domain_detection"] = "advected";
+  j["bodies"][0]["contact_gap"] = 0.3;
+  EXPECT_EQ(run_json("contact_gap", j).code, 0);
+  j["bodies"][0]["contact_gap"] = -0.1;
+  Outcome o = run_json("contact_gap_negative", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/contact_gap", "must not be negative");
+  j["bodies"][0]["contact_gap"] = 5.0;
+  o = run_json("contact_gap_large", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/contact_gap", "at most 2");
+}
+
 TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a

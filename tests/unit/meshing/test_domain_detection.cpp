@@ -1,8 +1,8 @@
 // Unit tests of the conservative PFEM domain detections (meshing/previous_domain.hpp, remesh.hpp
 // DomainDetection) on hand-made clouds whose expected domains are known in closed form: an L-shaped lattice
 // (its notch is a concave corner the alpha shape fills with a large alpha), two blocks a gap apart (merged
-// only when the gap closes), a dent of one surface (never filled), and a dry wall particle (wetted only by
-// fluid that reaches it).
+// only when the gap closes, or once it is below contact_gap), a dent of one surface (never filled), and a dry wall
+// particle (wetted only by fluid that reaches it).
 #include <lagfsi/meshing/previous_domain.hpp>
 #include <lagfsi/meshing/remesh.hpp>
 
@@ -105,35 +105,50 @@ TEST(DomainDetection, AdvectedKeepsTheConcaveCornerOfAnLShapeThatTheAlphaShapeFi
   EXPECT_NEAR(kept_area(c, ls), 12.0, 1e-12);
 }
 
+/// Two 2x2 lattice blocks, the second shifted by `gap` in x, remeshed with the advected detection whose
+/// previous domain is the two blocks (contact_gap as given).
+lagfsi::meshing::RemeshResult two_blocks(double gap, double contact_gap = 0.0) {
+  Cloud c;
+  std::vector<std::array<Vec2, 3>> tris;
+  for (int b = 0; b < 2; ++b) {
+    const double x0 = b * (2.0 + gap);
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 2; ++i) c.add(x0 + i, j);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const Vec2 a(x0 + i, j), bb(x0 + i + 1, j), cc(x0 + i + 1, j + 1), d(x0 + i, j + 1);
+        tris.push_back({a, bb, cc});
+        tris.push_back({a, cc, d});
+      }
+  }
+  const PreviousDomain prev(std::move(tris), {});
+  RemeshSettings s;
+  s.alpha = 1.2;
+  s.detection = DomainDetection::Advected;
+  s.previous = &prev;
+  s.contact_gap = contact_gap;
+  return remesh(c.p, c.kind, c.h, s);
+}
+
 TEST(DomainDetection, TwoBlocksMergeOnlyWhenTheGapCloses) {
-  // Two 2x2 lattice blocks, the second shifted by `gap` in x; the previous domain is the two blocks.
-  const auto run = [](double gap) {
-    Cloud c;
-    std::vector<std::array<Vec2, 3>> tris;
-    for (int b = 0; b < 2; ++b) {
-      const double x0 = b * (2.0 + gap);
-      for (int j = 0; j <= 2; ++j)
-        for (int i = 0; i <= 2; ++i) c.add(x0 + i, j);
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-          const Vec2 a(x0 + i, j), bb(x0 + i + 1, j), cc(x0 + i + 1, j + 1), d(x0 + i, j + 1);
-          tris.push_back({a, bb, cc});
-          tris.push_back({a, cc, d});
-        }
-    }
-    const PreviousDomain prev(std::move(tris), {});
-    RemeshSettings s;
-    s.alpha = 1.2;
-    s.detection = DomainDetection::Advected;
-    s.previous = &prev;
-    return remesh(c.p, c.kind, c.h, s);
-  };
-  const auto apart = run(3.0);  // gap elements of circumradius >= 1.58: not added
+  const auto apart = two_blocks(3.0);  // gap elements of circumradius >= 1.58: not added
   EXPECT_NEAR(apart.area, 8.0, 1e-12);
   EXPECT_EQ(apart.added_outside, 0);
-  const auto touching = run(0.6);  // gap 0.6: elements of circumradius ~0.58 close it
+  const auto touching = two_blocks(0.6);  // gap 0.6: elements of circumradius ~0.58 close it
   EXPECT_NEAR(touching.area, 8.0 + 2 * 0.6, 1e-12);
   EXPECT_GT(touching.added_outside, 0);
+}
+
+TEST(DomainDetection, ContactGapJoinsSurfacesOnlyOnceTheirGapHasNearlyClosed) {
+  // The gap elements between the blocks' facing columns have the smallest height gap / sqrt(1 + gap^2): 0.51
+  // at gap 0.6 (the alpha test takes them, adding 1.2 of area no particle brought), 0.24 at gap 0.25.
+  const auto wide = two_blocks(0.6, 0.3);
+  EXPECT_NEAR(wide.area, 8.0, 1e-12) << "a gap of 0.6 h is not closed with contact_gap = 0.3";
+  EXPECT_EQ(wide.added_outside, 0);
+  const auto narrow = two_blocks(0.25, 0.3);
+  EXPECT_NEAR(narrow.area, 8.0 + 2 * 0.25, 1e-12) << "a gap of 0.25 h is";
+  EXPECT_EQ(narrow.added_outside, 4);
+  EXPECT_NEAR(two_blocks(0.6, 0.6).area, 8.0 + 2 * 0.6, 1e-12) << "and 0.6 h with contact_gap = 0.6";
 }
 
 TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluidThatReachesIt) {
@@ -167,7 +182,10 @@ TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluid
   s.wetting_distance = 0.5;
   EXPECT_NEAR(kept_area(c, s), area, 1e-12) << "0.8 h away: stays dry";
   s.wetting_distance = 1.0;
-  EXPECT_GT(kept_area(c, s), area + 0.1) << "within h: wetted";
+  const double wetted = kept_area(c, s);
+  EXPECT_GT(wetted, area + 0.1) << "within h: wetted";
+  s.contact_gap = 0.3;
+  EXPECT_NEAR(kept_area(c, s), wetted, 1e-12) << "contact_gap is for two fluid surfaces, not for a wall";
 }
 
 }  // namespace

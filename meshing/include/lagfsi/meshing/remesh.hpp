@@ -44,6 +44,13 @@ struct RemeshSettings {
   double level_set_band = 0.25;              ///< LevelSet: outside elements within this h_e of the boundary
   double wetting_distance = 0.5;             ///< Advected / LevelSet: a dry wall particle joins the domain
                                              ///< when a fluid particle comes within this h_e of it
+  /// Advected / LevelSet: an element of fluid particles only outside the previous domain (two surfaces
+  /// meeting) is added only once its smallest height 2A / l_max is at most contact_gap h_e: the gap between
+  /// the surfaces has nearly closed (a surface reaching a wall or ghost particle: wetting_distance). An element that
+  /// closes a gap of height d adds d times its base of fluid that no particle brought; the alpha test alone accepts
+  /// gaps up to about 1.5 h_e (a falling drop joins the pool a spacing before it touches it), which in a splash adds
+  /// area at every landing. 0: off (the alpha test or the level-set band alone).
+  double contact_gap = 0.0;
   /// Advected / LevelSet with the previous mesh's edges (PreviousDomain::set_edges): an interior edge of the
   /// previous mesh that is no longer Delaunay is flipped back while the two angles facing it sum to at most
   /// pi + keep_edges_angle (radians). The Delaunay criterion is discontinuous: a nearly cocircular quadrilateral

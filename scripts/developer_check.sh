@@ -4,10 +4,11 @@
 # sanitizers (a sanitizer report fails the test: halt_on_error). CI keeps the Release build (scripts/test.sh).
 # First of all, the tree must be formatted as .clang-format says (clang-format --dry-run -Werror; a few seconds).
 # Usage: scripts/developer_check.sh [ctest arguments, e.g. -R Retry]; LAGFSI_JOBS sets the build's parallelism.
-# Measured (main at 6122d3c + the DEM retry, 2 cores shared with other jobs, load ~5): the build 63 min from a
-# partly warm ccache, with no warning; the tests 24 min wall: 368 tests (275 unit, 93 verification), all passed, no
-# sanitizer report. Slowest under the sanitizers: MpmFreeField.LayerMovesAsTheOneDimensionalSiteResponse 322 s and
-# FsiCoupling.TheConvergedStepDoesNotDependOnTheAccelerator 316 s (5 s and 11 s in Release; timeout 600 s).
+# Measured on main at 7cf9755 (2026-11-27): the build from scratch 63 min on the 2 cores shared with a test suite, a
+# study and a long DEM run (no ccache), with no warning; the tests 4.3 min wall: 379 tests (282 unit, 97
+# verification), all passed, no sanitizer report. Slowest under the sanitizers: FsiCoupling.TheConvergedStepDoesNot-
+# DependOnTheAccelerator 92 s and MpmFreeField.LayerMovesAsTheOneDimensionalSiteResponse 62 s (timeout 600 s).
+# (Earlier, main at 6122d3c: 368 tests, 24 min at a load of 5-7.)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${LAGFSI_JOBS:-$(nproc)}

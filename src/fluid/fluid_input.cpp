@@ -14,9 +14,8 @@ namespace lagfsi::fluid {
 FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   // contact_gap's default depends on the detection (validated below): 0.3 for "advected", where it keeps the
   // splash's landings from adding area (cases/studies/conservation), 0 (off) otherwise.
-  const Json* det =
-      b.json().is_object() && b.json().contains("domain_detection") ? &b.json().at("domain_detection") : nullptr;
-  const bool advected = det != nullptr && det->is_string() && det->get<std::string>() == "advected";
+  const bool advected =
+      b.json().is_object() && b.json().contains("domain_detection") && b.json().at("domain_detection") == "advected";
   b.validate({{"name", nullptr},
               {"type", "fluid"},
               {"density", nullptr},

@@ -6,6 +6,17 @@
 ///   r^m_a = M_ab a_b + A mu (grad v + grad v^T) grad N_a - A p_mean grad N_a - (rho A / 3) g
 ///   r^c_a = (A/3)(div v + c_vol) + tau A grad N_a . (a_mean - g) + (tau/rho) A grad N_a . grad p
 ///           + (A/3)(p_a - p_a,old) / (K dt)
+///           + sum over the element's free-surface edges E at a: beta_E (p_a - 2 mu n.eps(v).n)
+///
+/// The last term is the free surface's Robin condition ("free_surface_pressure": "robin"): the continuity is
+/// kept at the free-surface particles and their pressure is pulled weakly to the normal viscous stress (the
+/// traction-free condition) with beta_E = f (tau/rho)(2/h_n)(L/2), h_n = 2A/L the element's height over the
+/// edge of length L and outward normal n (lumped on the edge's two particles). With f = 1 it is the boundary
+/// term of the FIC mass balance of Onate, Franci & Carbonell (2014, Int. J. Numer. Meth. Fluids 74: 699-731),
+/// which the Kratos PFEM fluid keeps for its reduced mass losses (here without its acceleration term): the
+/// pressure extrapolated to zero half an element outside the surface. f -> 0 is the natural condition (the
+/// continuity exact at the surface, but a drop's or film's pressure is then set by its area alone); f -> inf
+/// is p = 0 (Dirichlet: no continuity at the surface particles, where a splash loses its area).
 ///
 /// with M lumped (rho A/3) or consistent (rho A/12 (1 + delta_ab)), A and grad N on the given geometry (the
 /// current iterate: updated Lagrangian, F = I), and tau = [(2/dt)^2 + (2|v_mean|/h_e)^2 + (4 nu/h_e^2)^2]^(-1/2)
@@ -29,7 +40,9 @@ struct PspgElementInput {
   double c_vol = 0;  ///< global volume-correction source
   Vec2 g = Vec2::Zero();
   bool lumped = true;
-  double c_m = 0, c_c = 0;  ///< d a / d x and d v / d x of the time integrator
+  double c_m = 0, c_c = 0;   ///< d a / d x and d v / d x of the time integrator
+  unsigned robin_edges = 0;  ///< bit k: the edge from particle k to k+1 is free surface (Robin term)
+  double robin_factor = 0;   ///< f of the Robin term (0: none)
 };
 
 /// Residual r (9) and frozen-geometry tangent K (9 x 9) of one element; inertia2 and gravity2 get the

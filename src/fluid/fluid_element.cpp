@@ -85,6 +85,23 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
       K(3 * a + 2, 3 * b + 2) += tau / in.rho * A * dd;
     }
   }
+  // The free surface's Robin condition (fluid_element.hpp): beta (p_a - 2 mu n.L.n) on each free edge's ends.
+  for (int k = 0; k < 3; ++k) {
+    if (!(in.robin_edges & (1u << k)) || in.robin_factor <= 0) continue;
+    const int k1 = (k + 1) % 3;
+    const Vec2 e = in.x[k1] - in.x[k];
+    const double len2 = e.squaredNorm();
+    const Vec2 n = Vec2(e.y(), -e.x()) / std::sqrt(len2);  // outward for a counter-clockwise element
+    const double beta = in.robin_factor * tau / in.rho * len2 /
+                        A2;  // f (tau/rho)(2/h_n)(L/2), h_n = 2A/L          // (tau/rho)(2/h_n)(L/2), h_n = 2A/L
+    const double snn = 2.0 * in.mu * n.dot(L * n);  // normal viscous stress
+    for (const int a : {k, k1}) {
+      r[3 * a + 2] += beta * (in.p[a] - snn);
+      K(3 * a + 2, 3 * a + 2) += beta;
+      for (int b = 0; b < 3; ++b)
+        K.block<1, 2>(3 * a + 2, 3 * b) += (-beta * 2.0 * in.mu * in.c_c * n.dot(dN[b]) * n).transpose();
+    }
+  }
   return true;
 }
 

@@ -95,6 +95,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     keys.update(Json{{"tau", Json{{"type", "automatic"}}},
                      {"mass", "lumped"},
                      {"free_surface_pressure", "dirichlet"},
+                     {"robin_factor", 0.04},
                      {"tolerance", 1e-4},
                      {"refactorize_every", 0},
                      {"linear_solver", "klu"}});
@@ -115,7 +116,10 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
       ps.tau_U = tau.positive("U");
     }
     ps.lumped = s.choice("mass", {"lumped", "consistent"}) == "lumped";
-    ps.free_surface_dirichlet = s.choice("free_surface_pressure", {"dirichlet", "natural"}) == "dirichlet";
+    const std::string fsp = s.choice("free_surface_pressure", {"dirichlet", "natural", "robin"});
+    ps.free_surface_dirichlet = fsp == "dirichlet";
+    ps.free_surface_robin = fsp == "robin";
+    ps.robin_factor = s.positive("robin_factor");
     ps.tol = s.positive("tolerance");
     ps.refactor_every = s.integer("refactorize_every", 0);
     ps.solver = s.choice("linear_solver", {"umfpack", "klu", "eigen_lu"});

@@ -30,7 +30,7 @@ void FluidModel::set_dirichlet() {
   // is above or beside the free surface (a meniscus element between a surface particle and the wall);
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
   // suction that pulls the surface particles up the wall (spurious currents in a tank at rest).
-  if (p_free_dirichlet && c_.remesh) {
+  if ((p_free_dirichlet || scheme_->free_surface_robin()) && c_.remesh) {
     const std::vector<char> wet = mesh_.beside_interior_fluid(kind);
     for (Index i = 0; i < np; ++i)
       if (kind[i] != ParticleKind::Fluid && !wet[i]) fixed[3 * i + 2] = 1;

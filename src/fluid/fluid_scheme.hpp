@@ -55,6 +55,8 @@ class FluidScheme {
   virtual ~FluidScheme() = default;
   /// The free-surface pressure is prescribed (p = 0: FluidModel::set_dirichlet).
   virtual bool free_surface_dirichlet() const { return true; }
+  /// The free-surface pressure is unknown with the Robin condition of the element (fluid_element.hpp).
+  virtual bool free_surface_robin() const { return false; }
   /// A new step on a new mesh (predict, after remeshing, the Dirichlet flags set): patterns, matrices and
   /// the time integrator's start.
   virtual void begin_step() = 0;
@@ -89,6 +91,8 @@ class FluidScheme {
   FluidParts f_;
   double tau_U_ = 0;  // the PSPG kernel's tau (0: automatic) and mass
   bool lumped_ = true;
+  std::vector<unsigned char> robin_edges_;  // per element: its free-surface edges (bit k: edge k, k+1), or empty
+  double robin_factor_ = 0;                 // f of the free surface's Robin term (fluid_element.hpp)
 };
 
 /// The schemes (pspg_scheme.cpp, fractional_step.cpp). The integrator is the analysis' (Newmark or

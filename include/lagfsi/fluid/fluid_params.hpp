@@ -45,7 +45,10 @@ struct FluidRemeshSettings {
 struct PspgSettings {
   double tau_U = 0;                    // 0: automatic tau; > 0: Tezduyar's velocity scale U ("velocity_scale")
   bool lumped = true;                  // lumped or consistent mass
-  bool free_surface_dirichlet = true;  // free-surface pressure p = 0 (dirichlet) or natural
+  bool free_surface_dirichlet = true;  // free-surface pressure p = 0 (dirichlet) or natural / robin
+  bool free_surface_robin = false;     // "robin": continuity kept there, p pulled weakly to the traction-free
+                                       // value (fluid_element.hpp)
+  double robin_factor = 0.04;          // its weight f over the FIC one ("robin_factor"; a tuned value)
   double tol = 1e-4;
   int refactor_every = 0;  // 0: one factorization per step (the matrix barely changes within a
                            // step); k >= 1: refactorized every k iterations (1: Newton)

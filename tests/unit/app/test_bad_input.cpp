@@ -426,6 +426,19 @@ TEST(BadInput, FluidContactGap) {
   expect_one_line(o, "/bodies/0/contact_gap", "at most 2");
 }
 
+TEST(BadInput, FluidRobinFactor) {
+  // The free surface's Robin weight (fluid_element.hpp) is positive; 0 would be the natural condition, which has
+  // its own name.
+  json j = fluid_case();
+  j["bodies"][0]["scheme"] = {{"type", "monolithic_pspg"}, {"free_surface_pressure", "robin"}};
+  j["bodies"][0]["scheme"]["robin_factor"] = 0.1;
+  EXPECT_EQ(run_json("robin_factor", j).code, 0);
+  j["bodies"][0]["scheme"]["robin_factor"] = 0.0;
+  const Outcome o = run_json("robin_factor_zero", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/scheme/robin_factor", "must be positive");
+}
+
 TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a

@@ -6,6 +6,8 @@
 
 #include <lagfsi/fluid_element.hpp>
 
+#include <cmath>
+#include <numbers>
 #include <random>
 
 namespace {
@@ -74,34 +76,79 @@ K9 fd_tangent(const PspgElementInput& in, bool geometry) {
 
 class PspgTangent : public ::testing::TestWithParam<std::tuple<bool, double>> {};
 
+/// The element's tangent against central finite differences at frozen geometry, entry by entry.
+void expect_tangent_matches(const PspgElementInput& in, double tau_U) {
+  R9 r;
+  K9 K;
+  double i2 = 0, g2 = 0;
+  ASSERT_TRUE(lagfsi::pspg_element(in, r, K, i2, g2));
+  const K9 Kfd = fd_tangent(in, false);
+  // Each entry relative to the largest entry of its block (momentum or continuity row x position or
+  // pressure column): the blocks differ by up to ten orders of magnitude (c_m m ~ 1e5 against A/3 |grad N|
+  // ~ 1e-3 in a momentum row), so one scale per row would hide errors in the small blocks.
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) {
+      double scale = 0;
+      for (int jj = j % 3 == 2 ? 2 : 0; jj < 9; jj += (j % 3 == 2 ? 3 : 1))
+        if ((jj % 3 == 2) == (j % 3 == 2))
+          for (int ii = i % 3 == 2 ? 2 : 0; ii < 9; ii += (i % 3 == 2 ? 3 : 1))
+            if ((ii % 3 == 2) == (i % 3 == 2)) scale = std::max(scale, std::abs(K(ii, jj)));
+      // With tau from the velocity scale U, tau does not depend on v and the match is exact (to FD
+      // round-off); with the automatic tau, d tau / d v is left out of the tangent: its share is
+      // (2|v|/h)^2 / (2/dt)^2 ~ 4 % here, so a looser bound.
+      const double tol = tau_U > 0 ? 1e-6 : 0.05;
+      EXPECT_NEAR(K(i, j), Kfd(i, j), tol * scale) << "entry (" << i << ", " << j << ")";
+    }
+  }
+}
+
 TEST_P(PspgTangent, MatchesFiniteDifferencesAtFrozenGeometry) {
   const auto [lumped, tau_U] = GetParam();
   std::mt19937 gen(42);
+  for (int trial = 0; trial < 5; ++trial) expect_tangent_matches(random_element(gen, lumped, tau_U), tau_U);
+}
+
+TEST(PspgElement, RobinTermTangentMatchesFiniteDifferences) {
+  // The free surface's Robin term (two free edges, viscous: its normal-stress part depends on the positions).
+  std::mt19937 gen(11);
   for (int trial = 0; trial < 5; ++trial) {
-    const PspgElementInput in = random_element(gen, lumped, tau_U);
-    R9 r;
-    K9 K;
-    double i2 = 0, g2 = 0;
-    ASSERT_TRUE(lagfsi::pspg_element(in, r, K, i2, g2));
-    const K9 Kfd = fd_tangent(in, false);
-    // Each entry relative to the largest entry of its block (momentum or continuity row x position or
-    // pressure column): the blocks differ by up to ten orders of magnitude (c_m m ~ 1e5 against A/3 |grad N|
-    // ~ 1e-3 in a momentum row), so one scale per row would hide errors in the small blocks.
-    for (int i = 0; i < 9; ++i) {
-      for (int j = 0; j < 9; ++j) {
-        double scale = 0;
-        for (int jj = j % 3 == 2 ? 2 : 0; jj < 9; jj += (j % 3 == 2 ? 3 : 1))
-          if ((jj % 3 == 2) == (j % 3 == 2))
-            for (int ii = i % 3 == 2 ? 2 : 0; ii < 9; ii += (i % 3 == 2 ? 3 : 1))
-              if ((ii % 3 == 2) == (i % 3 == 2)) scale = std::max(scale, std::abs(K(ii, jj)));
-        // With tau from the velocity scale U, tau does not depend on v and the match is exact (to FD
-        // round-off); with the automatic tau, d tau / d v is left out of the tangent: its share is
-        // (2|v|/h)^2 / (2/dt)^2 ~ 4 % here, so a looser bound.
-        const double tol = tau_U > 0 ? 1e-6 : 0.05;
-        EXPECT_NEAR(K(i, j), Kfd(i, j), tol * scale) << "entry (" << i << ", " << j << ")";
-      }
-    }
+    PspgElementInput in = random_element(gen, true, 1.0);
+    in.robin_edges = trial % 2 ? 0b011u : 0b100u;
+    in.robin_factor = 0.7;
+    expect_tangent_matches(in, 1.0);
   }
+}
+
+TEST(PspgElement, RobinTermVanishesAtRestWithTheSurfaceAtZeroPressure) {
+  // A surface element of still water (edge 0-1 on the surface, outward normal up): the hydrostatic state with
+  // p = 0 on the surface is still a solution with the Robin term; a surface pressure p0 adds beta p0 to the
+  // continuity row of that particle only, with beta = f (tau/rho) L^2 / (2A).
+  const double h = 0.01;
+  PspgElementInput in;
+  in.x[0] = Vec2(h, 0);
+  in.x[1] = Vec2(0, 0);
+  in.x[2] = Vec2(0.3 * h, -h);
+  in.g = Vec2(0, -9.81);
+  in.dt = 1e-3;
+  for (int k = 0; k < 3; ++k) {
+    in.v[k] = in.a[k] = Vec2::Zero();
+    in.p[k] = in.p_old[k] = in.rho * 9.81 * (0.0 - in.x[k].y());
+  }
+  in.robin_edges = 0b001u;
+  in.robin_factor = 1.0;
+  const R9 r = residual(in);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(r[3 * a + 2], 0.0, 1e-15) << a;
+  PspgElementInput q = in;
+  q.p[0] = q.p_old[0] = 100.0;
+  PspgElementInput q0 = q;
+  q0.robin_edges = 0;
+  const R9 d = residual(q) - residual(q0);
+  const double nu = in.mu / in.rho, A = 0.5 * h * h, he = 2.0 * std::sqrt(A / std::numbers::pi);
+  const double tau = 1.0 / std::sqrt(std::pow(2.0 / in.dt, 2) + std::pow(4.0 * nu / (he * he), 2));
+  EXPECT_NEAR(d[2], tau / in.rho * h * h / (2 * A) * 100.0, 1e-12);
+  EXPECT_NEAR(d[5], 0.0, 1e-15);
+  EXPECT_NEAR(d[8], 0.0, 1e-15);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(d.segment<2>(3 * a).norm(), 0.0, 1e-15) << "momentum row " << a;
 }
 
 INSTANTIATE_TEST_SUITE_P(Fluid, PspgTangent,

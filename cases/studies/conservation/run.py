@@ -5,9 +5,9 @@ Domain detections: "alpha" (the classic alpha shape, with its default "surface" 
 on the Delaunay flips ("keep_edges_angle": a tuned value, see the README), all with wall particles, and "advected"
 with the walls as constraints on the particles on them ("wall_model": "constraints"); the advected rows join two
 surfaces once their gap is below "contact_gap" h (0.3 by default), and the last row shows the constraints without
-it ("contact_gap": 0, the default before). Flows, each at the case's
-own resolution,
-monolithic scheme:
+it ("contact_gap": 0, the default before), and "advected_constraints_robin" the constraints with the free surface's
+Robin pressure condition ("free_surface_pressure": "robin"; the sloshing cases' own is "natural", the dam break's
+"dirichlet"). Flows, each at the case's own resolution, monolithic scheme:
   - sloshing_free/case_remesh.json (the first mode of a 1 m tank, h = 0.03, 10 periods): largest area drift, the
     wave's energy (kinetic + potential above the flat surface of the same area, plus viscous dissipation) at the end
     against the start, and the largest kinetic energy against the wave's energy (it is 1 for an exact solution);
@@ -32,7 +32,10 @@ DETECTIONS = [("alpha", {}), ("advected", {}), ("level_set", {}),
               ("advected_keep30", {"bodies.0.domain_detection": "advected", "bodies.0.keep_edges_angle": 30}),
               ("advected_constraints", {"bodies.0.domain_detection": "advected", "bodies.0.wall_model": "constraints"}),
               ("advected_constraints_gap0", {"bodies.0.domain_detection": "advected", "bodies.0.wall_model": "constraints",
-                                             "bodies.0.contact_gap": 0})]
+                                             "bodies.0.contact_gap": 0}),
+              ("advected_constraints_robin", {"bodies.0.domain_detection": "advected",
+                                              "bodies.0.wall_model": "constraints",
+                                              "bodies.0.scheme.free_surface_pressure": "robin"})]
 T1 = 1.18182  # the free sloshing's linear period (cases/sloshing_free)
 if S.quick:   # two detections, short runs: the smoke test checks that the tables are written
     DETECTIONS = [DETECTIONS[0], DETECTIONS[-1]]

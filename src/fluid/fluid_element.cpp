@@ -91,10 +91,9 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
     const int k1 = (k + 1) % 3;
     const Vec2 e = in.x[k1] - in.x[k];
     const double len2 = e.squaredNorm();
-    const Vec2 n = Vec2(e.y(), -e.x()) / std::sqrt(len2);  // outward for a counter-clockwise element
-    const double beta = in.robin_factor * tau / in.rho * len2 /
-                        A2;  // f (tau/rho)(2/h_n)(L/2), h_n = 2A/L          // (tau/rho)(2/h_n)(L/2), h_n = 2A/L
-    const double snn = 2.0 * in.mu * n.dot(L * n);  // normal viscous stress
+    const Vec2 n = Vec2(e.y(), -e.x()) / std::sqrt(len2);            // outward for a counter-clockwise element
+    const double beta = in.robin_factor * tau / in.rho * len2 / A2;  // f (tau/rho)(2/h_n)(L/2), h_n = 2A/L
+    const double snn = 2.0 * in.mu * n.dot(L * n);                   // normal viscous stress
     for (const int a : {k, k1}) {
       r[3 * a + 2] += beta * (in.p[a] - snn);
       K(3 * a + 2, 3 * a + 2) += beta;

@@ -1,7 +1,8 @@
 // Still water stays still under remeshing (issue #16, item 5): a tank at rest, remeshed every step for 20 s;
 // the largest particle speed stays below 1e-4 sqrt(g H). Run with each domain detection: the alpha shape
 // with its surface volume correction (the default) and the advected previous domain without correction, with
-// wall particles and with the walls as constraints on the particles on them ("wall_model": "constraints").
+// wall particles and with the walls as constraints on the particles on them ("wall_model": "constraints"), and
+// the latter with the Robin free-surface pressure ("free_surface_pressure": "robin").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +15,8 @@ namespace {
 
 using namespace lagfsi::testing;
 
-std::string still_tank(const std::string& detection, const std::string& correction, const std::string& walls) {
+std::string still_tank(const std::string& detection, const std::string& correction, const std::string& walls,
+                       const std::string& free_surface_pressure) {
   return R"({
     "name": "still_water",
     "analysis": {"type": "dynamic", "dt": 0.01, "end_time": 20.0},
@@ -27,7 +29,7 @@ std::string still_tank(const std::string& detection, const std::string& correcti
       "walls": [{"name": "tank", "points": [[0, 0.3], [0, 0], [0.4, 0], [0.4, 0.3]]}],
       "initial_pressure": {"type": "hydrostatic", "level": 0.2},
       "scheme": {"volume_correction": ")" +
-         correction + R"("}
+         correction + R"(", "free_surface_pressure": ")" + free_surface_pressure + R"("}
     }],
     "probes": [{"name": "max_speed", "type": "max_speed", "body": "water"},
                {"name": "area", "type": "fluid_area", "body": "water"}],
@@ -35,9 +37,10 @@ std::string still_tank(const std::string& detection, const std::string& correcti
   })";
 }
 
-void expect_still(const std::string& detection, const std::string& correction, const std::string& walls = "particles") {
-  const RunResult r =
-      run_case_text(fresh_dir("still_water_" + detection + "_" + walls), still_tank(detection, correction, walls));
+void expect_still(const std::string& detection, const std::string& correction, const std::string& walls = "particles",
+                  const std::string& free_surface_pressure = "dirichlet") {
+  const RunResult r = run_case_text(fresh_dir("still_water_" + detection + "_" + walls + "_" + free_surface_pressure),
+                                    still_tank(detection, correction, walls, free_surface_pressure));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv p = read_csv(r.out_dir / "probes.csv");
   const double limit = 1e-4 * std::sqrt(9.81 * 0.2);
@@ -51,5 +54,7 @@ void expect_still(const std::string& detection, const std::string& correction, c
 TEST(StillWater, AlphaShapeWithSurfaceCorrectionStaysStill) { expect_still("alpha", "surface"); }
 TEST(StillWater, AdvectedDomainStaysStill) { expect_still("advected", "none"); }
 TEST(StillWater, WallConstraintsStayStill) { expect_still("advected", "none", "constraints"); }
+// The Robin free-surface pressure (fluid_element.hpp): the surface particles keep their continuity equation.
+TEST(StillWater, RobinFreeSurfaceStaysStill) { expect_still("advected", "none", "constraints", "robin"); }
 
 }  // namespace

@@ -1,6 +1,9 @@
 // The step's mesh of the fluid particles (fluid_mesh.hpp): connectivity, area and neighbourhood queries.
 #include "fluid_mesh.hpp"
 
+#include <algorithm>
+#include <array>
+
 namespace lagfsi::fluid {
 
 void FluidMesh::flatten() {
@@ -26,6 +29,27 @@ std::vector<char> FluidMesh::in_element_with(Index np, const std::function<bool(
 std::vector<char> FluidMesh::beside_interior_fluid(const std::vector<ParticleKind>& kind) const {
   return in_element_with(static_cast<Index>(kind.size()),
                          [&](Index i) { return kind[i] == ParticleKind::Fluid && !free[i]; });
+}
+
+std::vector<unsigned char> FluidMesh::free_surface_edges(const std::vector<ParticleKind>& kind) const {
+  const Index ne = num_elements();
+  std::vector<std::array<Index, 3>> edges;  // (smaller particle, larger particle, 3 e + k)
+  edges.reserve(3 * static_cast<size_t>(ne));
+  for (Index e = 0; e < ne; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const Index i = tri[e][k], j = tri[e][(k + 1) % 3];
+      edges.push_back({std::min(i, j), std::max(i, j), 3 * e + k});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<unsigned char> mask(ne, 0);
+  const auto surface = [&](Index i) { return free[i] && kind[i] == ParticleKind::Fluid; };
+  const auto same = [&](size_t q, size_t r) { return edges[q][0] == edges[r][0] && edges[q][1] == edges[r][1]; };
+  for (size_t q = 0; q < edges.size(); ++q) {
+    const bool shared = (q > 0 && same(q - 1, q)) || (q + 1 < edges.size() && same(q + 1, q));
+    if (shared || !surface(edges[q][0]) || !surface(edges[q][1])) continue;
+    mask[edges[q][2] / 3] |= static_cast<unsigned char>(1u << (edges[q][2] % 3));
+  }
+  return mask;
 }
 
 }  // namespace lagfsi::fluid

@@ -31,6 +31,9 @@ struct FluidMesh {
   std::vector<char> in_element_with(Index np, const std::function<bool(Index)>& pred) const;
   /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.
   std::vector<char> beside_interior_fluid(const std::vector<ParticleKind>& kind) const;
+  /// Per element, its edges on the free surface (bit k: from its particle k to k + 1): in no other element,
+  /// between two free-surface fluid particles (the Robin free-surface pressure, fluid_element.hpp).
+  std::vector<unsigned char> free_surface_edges(const std::vector<ParticleKind>& kind) const;
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
 };

@@ -18,7 +18,6 @@
 #include <lagfsi/system_assembly.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -58,29 +57,6 @@ PspgElementInput FluidScheme::element_input(Index e, const Vec& x, const Vec& v,
 
 namespace {
 
-/// Per element, the edges (bit k: from its particle k to k+1) on the free surface: in no other element, with
-/// two free-surface fluid particles.
-std::vector<unsigned char> free_surface_edges(const FluidMesh& mesh, const std::vector<ParticleKind>& kind) {
-  const Index ne = mesh.num_elements();
-  std::vector<std::array<Index, 3>> edges;  // (smaller particle, larger particle, 3 e + k)
-  edges.reserve(3 * static_cast<size_t>(ne));
-  for (Index e = 0; e < ne; ++e)
-    for (int k = 0; k < 3; ++k) {
-      const Index i = mesh.tri[e][k], j = mesh.tri[e][(k + 1) % 3];
-      edges.push_back({std::min(i, j), std::max(i, j), 3 * e + k});
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<unsigned char> mask(ne, 0);
-  auto surface = [&](Index i) { return mesh.free[i] && kind[i] == ParticleKind::Fluid; };
-  for (size_t q = 0; q < edges.size(); ++q) {
-    const bool shared = (q > 0 && edges[q - 1][0] == edges[q][0] && edges[q - 1][1] == edges[q][1]) ||
-                        (q + 1 < edges.size() && edges[q + 1][0] == edges[q][0] && edges[q + 1][1] == edges[q][1]);
-    if (shared || !surface(edges[q][0]) || !surface(edges[q][1])) continue;
-    mask[edges[q][2] / 3] |= static_cast<unsigned char>(1u << (edges[q][2] % 3));
-  }
-  return mask;
-}
-
 class PspgScheme final : public FluidScheme {
  public:
   PspgScheme(const FluidParts& f, const PspgSettings& s, std::unique_ptr<TimeIntegrator> integrator)
@@ -92,7 +68,7 @@ class PspgScheme final : public FluidScheme {
   bool free_surface_dirichlet() const override { return s_.free_surface_dirichlet; }
   bool free_surface_robin() const override { return s_.free_surface_robin; }
   void begin_step() override {
-    if (s_.free_surface_robin) robin_edges_ = free_surface_edges(f_.mesh, f_.cloud.kind());
+    if (s_.free_surface_robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
     pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
     J_ = pattern_.pattern();
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);

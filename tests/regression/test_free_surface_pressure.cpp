@@ -4,7 +4,7 @@
 // dam break's area by 1 s in every domain detection). The Robin condition ("robin", fluid_element.hpp) keeps the
 // continuity there and pulls the pressure weakly to the traction-free value.
 //  - A coarse dam break (L/10, 0.8 s, advected domain, no-slip walls as constraints, no volume correction):
-//    measured largest area drift 5.82 % with "dirichlet" (2.01 % lost in the steps) and 0.85 % with "robin"
+//    measured largest area drift 5.81 % with "dirichlet" (2.01 % lost in the steps) and 0.85 % with "robin"
 //    (0.17 %).
 //  - Still water stays still with "robin": StillWater.RobinFreeSurfaceStaysStill (the hydrostatic state with
 //    p = 0 on the surface is a solution of the element: PspgElement.RobinTermVanishesAtRestWithTheSurfaceAtZero-

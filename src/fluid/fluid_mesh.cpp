@@ -31,7 +31,7 @@ std::vector<char> FluidMesh::beside_interior_fluid(const std::vector<ParticleKin
                          [&](Index i) { return kind[i] == ParticleKind::Fluid && !free[i]; });
 }
 
-std::vector<unsigned char> FluidMesh::free_surface_edges(const std::vector<ParticleKind>& kind) const {
+std::vector<std::pair<Index, int>> FluidMesh::boundary_edges() const {
   const Index ne = num_elements();
   std::vector<std::array<Index, 3>> edges;  // (smaller particle, larger particle, 3 e + k)
   edges.reserve(3 * static_cast<size_t>(ne));
@@ -41,14 +41,21 @@ std::vector<unsigned char> FluidMesh::free_surface_edges(const std::vector<Parti
       edges.push_back({std::min(i, j), std::max(i, j), 3 * e + k});
     }
   std::sort(edges.begin(), edges.end());
-  std::vector<unsigned char> mask(ne, 0);
-  const auto surface = [&](Index i) { return free[i] && kind[i] == ParticleKind::Fluid; };
-  const auto same = [&](size_t q, size_t r) { return edges[q][0] == edges[r][0] && edges[q][1] == edges[r][1]; };
-  for (size_t q = 0; q < edges.size(); ++q) {
-    const bool shared = (q > 0 && same(q - 1, q)) || (q + 1 < edges.size() && same(q + 1, q));
-    if (shared || !surface(edges[q][0]) || !surface(edges[q][1])) continue;
-    mask[edges[q][2] / 3] |= static_cast<unsigned char>(1u << (edges[q][2] % 3));
+  std::vector<std::pair<Index, int>> boundary;
+  for (size_t q = 0; q < edges.size();) {
+    size_t r = q + 1;
+    while (r < edges.size() && edges[r][0] == edges[q][0] && edges[r][1] == edges[q][1]) ++r;
+    if (r == q + 1) boundary.emplace_back(edges[q][2] / 3, static_cast<int>(edges[q][2] % 3));
+    q = r;
   }
+  return boundary;
+}
+
+std::vector<unsigned char> FluidMesh::free_surface_edges(const std::vector<ParticleKind>& kind) const {
+  std::vector<unsigned char> mask(tri.size(), 0);
+  const auto surface = [&](Index i) { return free[i] && kind[i] == ParticleKind::Fluid; };
+  for (const auto& [e, k] : boundary_edges())
+    if (surface(tri[e][k]) && surface(tri[e][(k + 1) % 3])) mask[e] |= static_cast<unsigned char>(1u << k);
   return mask;
 }
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace lagfsi::fluid {
@@ -31,6 +32,9 @@ struct FluidMesh {
   std::vector<char> in_element_with(Index np, const std::function<bool(Index)>& pred) const;
   /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.
   std::vector<char> beside_interior_fluid(const std::vector<ParticleKind>& kind) const;
+  /// The edges in one element only, as (element, k: the edge from its particle k to k + 1), in the order of
+  /// their particle pairs (smaller index first): the boundary of the mesh, counter-clockwise in its element.
+  std::vector<std::pair<Index, int>> boundary_edges() const;
   /// Per element, its edges on the free surface (bit k: from its particle k to k + 1): in no other element,
   /// between two free-surface fluid particles (the Robin free-surface pressure, fluid_element.hpp).
   std::vector<unsigned char> free_surface_edges(const std::vector<ParticleKind>& kind) const;

@@ -43,25 +43,12 @@ RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
   b.next.assign(np, -1);
   b.prev.assign(np, -1);
   b.pinched.assign(np, 0);
-  std::vector<std::array<Index, 3>> edges;  // (min, max, directed from)
-  edges.reserve(3 * mesh_.tri.size());
-  for (const auto& t : mesh_.tri)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = t[k], c = t[(k + 1) % 3];
-      edges.push_back({std::min(a, c), std::max(a, c), a});
-    }
-  std::sort(edges.begin(), edges.end());
-  for (size_t k = 0; k < edges.size();) {
-    size_t m = k + 1;
-    while (m < edges.size() && edges[m][0] == edges[k][0] && edges[m][1] == edges[k][1]) ++m;
-    if (m == k + 1) {
-      const Index from = edges[k][2], to = from == edges[k][0] ? edges[k][1] : edges[k][0];
-      if (b.next[from] >= 0) b.pinched[from] = 1;
-      if (b.prev[to] >= 0) b.pinched[to] = 1;
-      b.next[from] = to;
-      b.prev[to] = from;
-    }
-    k = m;
+  for (const auto& [e, k] : mesh_.boundary_edges()) {
+    const Index from = mesh_.tri[e][k], to = mesh_.tri[e][(k + 1) % 3];
+    if (b.next[from] >= 0) b.pinched[from] = 1;
+    if (b.prev[to] >= 0) b.pinched[to] = 1;
+    b.next[from] = to;
+    b.prev[to] = from;
   }
   return b;
 }

@@ -167,20 +167,14 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
 
 void RemeshPipeline::mark_free_surface(const std::vector<char>& on_wall) {
   const Index np = cloud_.n();
-  std::vector<std::pair<Index, Index>> edges;
-  edges.reserve(3 * mesh_.tri.size());
   mesh_.connected.assign(np, 0);
   for (const auto& t : mesh_.tri)
-    for (int k = 0; k < 3; ++k) {
-      mesh_.connected[t[k]] = 1;
-      edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
-    }
-  std::sort(edges.begin(), edges.end());
+    for (Index i : t) mesh_.connected[i] = 1;
   mesh_.free.assign(np, 0);
-  for (size_t k = 0; k < edges.size(); ++k) {
-    const bool shared = (k + 1 < edges.size() && edges[k + 1] == edges[k]) || (k > 0 && edges[k - 1] == edges[k]);
-    if (shared || (on_wall[edges[k].first] && on_wall[edges[k].second])) continue;
-    for (Index i : {edges[k].first, edges[k].second})
+  for (const auto& [e, k] : mesh_.boundary_edges()) {
+    const Index a = mesh_.tri[e][k], b = mesh_.tri[e][(k + 1) % 3];
+    if (on_wall[a] && on_wall[b]) continue;
+    for (Index i : {a, b})
       if (cloud_.kind(i) == ParticleKind::Fluid) mesh_.free[i] = 1;
   }
 }

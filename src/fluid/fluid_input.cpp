@@ -117,8 +117,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     }
     ps.lumped = s.choice("mass", {"lumped", "consistent"}) == "lumped";
     const std::string fsp = s.choice("free_surface_pressure", {"dirichlet", "natural", "robin"});
-    ps.free_surface_dirichlet = fsp == "dirichlet";
-    ps.free_surface_robin = fsp == "robin";
+    ps.free_surface = fsp == "dirichlet" ? FreeSurfacePressure::dirichlet
+                      : fsp == "natural" ? FreeSurfacePressure::natural
+                                         : FreeSurfacePressure::robin;
     ps.robin_factor = s.positive("robin_factor");
     ps.tol = s.positive("tolerance");
     ps.refactor_every = s.integer("refactorize_every", 0);

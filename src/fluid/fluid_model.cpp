@@ -18,11 +18,11 @@ void FluidModel::set_dirichlet() {
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
   std::vector<char>& fixed = step_.fixed;
-  const bool p_free_dirichlet = scheme_->free_surface_dirichlet();
+  const FreeSurfacePressure fsp = scheme_->free_surface_pressure();
   fixed.assign(3 * np, 0);
   for (Index i = 0; i < np; ++i) {
     if (kind[i] != ParticleKind::Fluid) fixed[3 * i] = fixed[3 * i + 1] = 1;
-    const bool free_surface = mesh_.free[i] && p_free_dirichlet;
+    const bool free_surface = mesh_.free[i] && fsp == FreeSurfacePressure::dirichlet;
     if (!mesh_.connected[i] || free_surface) fixed[3 * i + 2] = 1;
   }
   for (const auto& k : walls_.constraints()) fixed[3 * k.i + k.c] = 1;
@@ -30,7 +30,7 @@ void FluidModel::set_dirichlet() {
   // is above or beside the free surface (a meniscus element between a surface particle and the wall);
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
   // suction that pulls the surface particles up the wall (spurious currents in a tank at rest).
-  if ((p_free_dirichlet || scheme_->free_surface_robin()) && c_.remesh) {
+  if (fsp != FreeSurfacePressure::natural && c_.remesh) {
     const std::vector<char> wet = mesh_.beside_interior_fluid(kind);
     for (Index i = 0; i < np; ++i)
       if (kind[i] != ParticleKind::Fluid && !wet[i]) fixed[3 * i + 2] = 1;

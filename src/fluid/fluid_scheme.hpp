@@ -53,10 +53,9 @@ struct FluidParts {
 class FluidScheme {
  public:
   virtual ~FluidScheme() = default;
-  /// The free-surface pressure is prescribed (p = 0: FluidModel::set_dirichlet).
-  virtual bool free_surface_dirichlet() const { return true; }
-  /// The free-surface pressure is unknown with the Robin condition of the element (fluid_element.hpp).
-  virtual bool free_surface_robin() const { return false; }
+  /// The free-surface pressure: prescribed (p = 0: FluidModel::set_dirichlet; the fractional step's only one),
+  /// or unknown, traction-free weakly (natural) or with the Robin condition of the element (fluid_element.hpp).
+  virtual FreeSurfacePressure free_surface_pressure() const { return FreeSurfacePressure::dirichlet; }
   /// A new step on a new mesh (predict, after remeshing, the Dirichlet flags set): patterns, matrices and
   /// the time integrator's start.
   virtual void begin_step() = 0;

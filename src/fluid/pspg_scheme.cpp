@@ -65,10 +65,9 @@ class PspgScheme final : public FluidScheme {
     lumped_ = s.lumped;
     robin_factor_ = s.robin_factor;
   }
-  bool free_surface_dirichlet() const override { return s_.free_surface_dirichlet; }
-  bool free_surface_robin() const override { return s_.free_surface_robin; }
+  FreeSurfacePressure free_surface_pressure() const override { return s_.free_surface; }
   void begin_step() override {
-    if (s_.free_surface_robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
+    if (s_.free_surface == FreeSurfacePressure::robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
     pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
     J_ = pattern_.pattern();
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);

@@ -41,14 +41,16 @@ struct FluidRemeshSettings {
                                   // (meshing::RemeshSettings::keep_edges_angle; input in degrees)
 };
 
+/// The free-surface pressure: p = 0 prescribed, traction-free in the weak form, or the Robin condition
+/// (fluid_element.hpp).
+enum class FreeSurfacePressure { dirichlet, natural, robin };
+
 /// The monolithic PSPG scheme's settings (/bodies/i/scheme).
 struct PspgSettings {
-  double tau_U = 0;                    // 0: automatic tau; > 0: Tezduyar's velocity scale U ("velocity_scale")
-  bool lumped = true;                  // lumped or consistent mass
-  bool free_surface_dirichlet = true;  // free-surface pressure p = 0 (dirichlet) or natural / robin
-  bool free_surface_robin = false;     // "robin": continuity kept there, p pulled weakly to the traction-free
-                                       // value (fluid_element.hpp)
-  double robin_factor = 0.04;          // its weight f over the FIC one ("robin_factor"; a tuned value)
+  double tau_U = 0;    // 0: automatic tau; > 0: Tezduyar's velocity scale U ("velocity_scale")
+  bool lumped = true;  // lumped or consistent mass
+  FreeSurfacePressure free_surface = FreeSurfacePressure::dirichlet;  // "free_surface_pressure"
+  double robin_factor = 0.04;  // the Robin condition's weight f over the FIC one ("robin_factor"; a tuned value)
   double tol = 1e-4;
   int refactor_every = 0;  // 0: one factorization per step (the matrix barely changes within a
                            // step); k >= 1: refactorized every k iterations (1: Newton)

@@ -8,11 +8,12 @@ namespace lagfsi::fluid {
 
 void ParticleCloud::serialize(StateArchive& ar) {
   ar.section("particles");
-  ar.io(kind_, hvec_, state_.t, state_.x, state_.v, state_.a, X0_, p_);
+  ar.io(kind_, hvec_, state_.t, state_.x, state_.v, state_.a, X0_, p_, owed_);
   const size_t n = kind_.size();
   if (ar.loading() && (hvec_.size() != n || static_cast<size_t>(state_.x.size()) != 2 * n ||
                        static_cast<size_t>(state_.v.size()) != 2 * n || static_cast<size_t>(state_.a.size()) != 2 * n ||
-                       static_cast<size_t>(X0_.size()) != 2 * n || static_cast<size_t>(p_.size()) != n))
+                       static_cast<size_t>(X0_.size()) != 2 * n || static_cast<size_t>(p_.size()) != n ||
+                       static_cast<size_t>(owed_.size()) != n))
     throw CheckpointError("the particles' arrays differ in size");
 }
 
@@ -42,6 +43,7 @@ void RemeshPipeline::serialize(StateArchive& ar) {
 void VolumeCorrection::serialize(StateArchive& ar) {
   ar.section("volume");
   ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_, change_in_steps_);
+  ar.io(nodal_start_, unowed_, in_flight_, water_drift_max_);
 }
 
 void FluidEnergy::serialize(StateArchive& ar) {

@@ -80,13 +80,15 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   const std::string scheme =
       s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   const bool pspg = scheme == "monolithic_pspg";
+  // The "particle" correction returns each particle's area over a few steps; the global "source" over 0.1 s.
+  const bool particle_volumes = s.has("volume_correction") && s.json()["volume_correction"] == "particle";
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.
   Json keys = {{"type", scheme},
                // The alpha shape changes the area at every remesh and needs the surface correction; the
                // advected and level-set detections keep it where the topology does not change.
                {"volume_correction", rs.detection == meshing::DomainDetection::Alpha ? "surface" : "none"},
                {"split_edge_factor", 1.6},
-               {"volume_relaxation_time", 0.1},
+               {"volume_relaxation_time", particle_volumes ? 0.02 : 0.1},
                {"remove_close_fraction", 0.3},
                {"insert_area_factor", 1.0},
                {"bulk_modulus", 2.2e9},
@@ -130,10 +132,15 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     fs.solver = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
     fs.retry_inverted = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
   }
-  const std::string vc = s.choice("volume_correction", {"surface", "source", "none"});
-  volume_.configure(vc == "surface"  ? VolumeCorrection::Type::surface
-                    : vc == "source" ? VolumeCorrection::Type::source
-                                     : VolumeCorrection::Type::none,
+  const std::string vc = s.choice("volume_correction", {"surface", "source", "particle", "none"});
+  // "particle" follows each particle through the remesh: merges and splits on the advected mesh, not the
+  // alpha shape's removals and insertions between its re-triangulations.
+  if (vc == "particle" && rs.detection == meshing::DomainDetection::Alpha)
+    s.fail("volume_correction", "\"particle\" needs \"domain_detection\": \"advected\" or \"level_set\"");
+  volume_.configure(vc == "surface"    ? VolumeCorrection::Type::surface
+                    : vc == "source"   ? VolumeCorrection::Type::source
+                    : vc == "particle" ? VolumeCorrection::Type::particle
+                                       : VolumeCorrection::Type::none,
                     s.positive("volume_relaxation_time"));
   rs.close_fraction = s.non_negative("remove_close_fraction");
   c_.bulk = s.non_negative("bulk_modulus");

@@ -18,6 +18,15 @@ double FluidMesh::area(const Vec& x) const {
   return a;
 }
 
+std::vector<double> FluidMesh::nodal_areas(const Vec& x, Index np) const {
+  std::vector<double> a(static_cast<size_t>(np), 0.0);
+  for (Index e = 0; e < num_elements(); ++e) {
+    const double third = element_area(x, e) / 3.0;
+    for (Index i : tri[e]) a[static_cast<size_t>(i)] += third;
+  }
+  return a;
+}
+
 std::vector<char> FluidMesh::in_element_with(Index np, const std::function<bool(Index)>& pred) const {
   std::vector<char> flag(static_cast<size_t>(np), 0);
   for (const auto& t : tri)

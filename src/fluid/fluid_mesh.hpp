@@ -28,6 +28,9 @@ struct FluidMesh {
   }
   /// The mesh's area at positions x (the elements' signed areas summed in order).
   double area(const Vec& x) const;
+  /// The particles' shares of the mesh's area at positions x (np of them): sum_e A_e / 3 over their elements
+  /// (signed areas; zero for a particle in no element).
+  std::vector<double> nodal_areas(const Vec& x, Index np) const;
   /// Flags (np of them) of the particles of the elements that have a particle i with pred(i).
   std::vector<char> in_element_with(Index np, const std::function<bool(Index)>& pred) const;
   /// Particles of an element with an interior (non-free-surface) fluid particle: the wet side of the mesh.

@@ -239,6 +239,11 @@ void FluidModel::write_output(double t) {
     id.values.push_back(i);
   }
   d.point_fields = {vel, pres, fs, kd, id};
+  if (volume_.type() == VolumeCorrection::Type::particle) {  // the area each particle is owed, over h^2
+    Field ow{"owed_area", 1, {}};
+    for (Index i = 0; i < np; ++i) ow.values.push_back(cloud_.owed()[i] / (cloud_.h(i) * cloud_.h(i)));
+    d.point_fields.push_back(ow);
+  }
   series_->write(t, d);
   if (c_.remesh && !walls_.empty()) {
     if (!wall_series_) wall_series_ = std::make_unique<PvdSeries>(ctx_.out_dir, c_.name + "_walls");
@@ -266,7 +271,7 @@ void FluidModel::write_output(double t) {
 }
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
-  const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area",
+  const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area", "water_area",
                                           "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
                                           "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe

@@ -76,6 +76,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// Potential energy put into the fluid by the "surface" volume correction's moves, -sum m_i g . dx_i.
   double correction_energy() const { return volume_.correction_energy(); }
   double area_end() const { return volume_.area_end(); }
+  double water_area() const { return volume_.water_area(); }
   /// Work done on the fluid by moving walls and by the structure's ghost particles (FluidEnergy::boundary_work).
   double boundary_work() const { return energy_.boundary_work(); }
   /// The energy balance: KE + PE + viscous dissipation - boundary work. Constant for an exact discretization;

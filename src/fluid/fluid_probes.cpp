@@ -99,6 +99,7 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
 std::vector<double> FluidProbe::sample() const {
   const Index n = m_.n();
   if (type_ == "fluid_area") return {m_.area_end()};
+  if (type_ == "water_area") return {m_.water_area()};
   if (type_ == "kinetic_energy") return {m_.kinetic_energy()};
   if (type_ == "potential_energy") return {m_.potential_energy()};
   if (type_ == "gravity_work") return {m_.gravity_work()};

@@ -14,6 +14,7 @@ void ParticleCloud::assign(const std::vector<Vec2>& x, std::vector<ParticleKind>
   state_.a = Vec::Zero(2 * np);
   hvec_.assign(np, h);
   p_ = Vec::Zero(np);
+  owed_ = Vec::Zero(np);
 }
 
 std::vector<Vec2> ParticleCloud::positions() const {
@@ -32,6 +33,7 @@ ParticleCloud::Particle ParticleCloud::particle(Index i) const {
   q.a = state_.a.segment<2>(2 * i);
   q.X0 = X0_.segment<2>(2 * i);
   q.p = p_[i];
+  q.owed = owed_[i];
   return q;
 }
 
@@ -47,6 +49,7 @@ bool ParticleCloud::compact(const std::vector<char>& drop) {
     state_.a.segment<2>(2 * kept) = state_.a.segment<2>(2 * i);
     X0_.segment<2>(2 * kept) = X0_.segment<2>(2 * i);
     p_[kept] = p_[i];
+    owed_[kept] = owed_[i];
     ++kept;
   }
   if (kept == np) return false;
@@ -57,6 +60,7 @@ bool ParticleCloud::compact(const std::vector<char>& drop) {
   state_.a.conservativeResize(2 * kept);
   X0_.conservativeResize(2 * kept);
   p_.conservativeResize(kept);
+  owed_.conservativeResize(kept);
   return true;
 }
 
@@ -68,6 +72,7 @@ void ParticleCloud::append(const std::vector<Particle>& added) {
   state_.a.conservativeResize(2 * nn);
   X0_.conservativeResize(2 * nn);
   p_.conservativeResize(nn);
+  owed_.conservativeResize(nn);
   Index k = np;
   for (const Particle& q : added) {
     state_.x.segment<2>(2 * k) = q.x;
@@ -75,6 +80,7 @@ void ParticleCloud::append(const std::vector<Particle>& added) {
     state_.v.segment<2>(2 * k) = q.v;
     state_.a.segment<2>(2 * k) = q.a;
     p_[k] = q.p;
+    owed_[k] = q.owed;
     kind_.push_back(q.kind);
     hvec_.push_back(q.h);
     ++k;
@@ -85,7 +91,7 @@ void ParticleCloud::rebuild(const std::vector<Index>& order, const std::vector<P
   const Index nn = static_cast<Index>(order.size());
   std::vector<ParticleKind> kind(nn);
   std::vector<double> hv(nn);
-  Vec x(2 * nn), v(2 * nn), a(2 * nn), X0(2 * nn), p(nn);
+  Vec x(2 * nn), v(2 * nn), a(2 * nn), X0(2 * nn), p(nn), owed(nn);
   for (Index k = 0; k < nn; ++k) {
     const Particle q = order[k] >= 0 ? particle(order[k]) : extra[static_cast<size_t>(-1 - order[k])];
     kind[k] = q.kind;
@@ -95,6 +101,7 @@ void ParticleCloud::rebuild(const std::vector<Index>& order, const std::vector<P
     a.segment<2>(2 * k) = q.a;
     X0.segment<2>(2 * k) = q.X0;
     p[k] = q.p;
+    owed[k] = q.owed;
   }
   kind_ = std::move(kind);
   hvec_ = std::move(hv);
@@ -103,6 +110,7 @@ void ParticleCloud::rebuild(const std::vector<Index>& order, const std::vector<P
   state_.a = std::move(a);
   X0_ = std::move(X0);
   p_ = std::move(p);
+  owed_ = std::move(owed);
 }
 
 }  // namespace lagfsi::fluid

@@ -122,6 +122,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     cloud_.v().segment<2>(2 * i) = si * cloud_.v().segment<2>(2 * i) + sj * cloud_.v().segment<2>(2 * j);
     cloud_.a().segment<2>(2 * i) = si * cloud_.a().segment<2>(2 * i) + sj * cloud_.a().segment<2>(2 * j);
     cloud_.p()[i] = si * cloud_.p()[i] + sj * cloud_.p()[j];
+    cloud_.owed()[i] += cloud_.owed()[j];
     drop[j] = touched[i] = touched[j] = 1;
     alias[j] = i;
     ++merged_;
@@ -262,6 +263,9 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   drop.resize(static_cast<size_t>(cloud_.n()), 0);
   const bool dropped = drop_particles(drop);
   const auto to_new = [&](Index i) { return dropped ? renumber_[i] : i; };
+  survivor_.assign(static_cast<size_t>(np), -1);
+  for (Index i = 0; i < np; ++i)
+    if (!(drop[i] && alias[i] == i)) survivor_[i] = to_new(alias[i]);
   meshed.assign(static_cast<size_t>(cloud_.n()), 0);
   for (Index i = 0; i < static_cast<Index>(used.size()); ++i) {
     const Index k = to_new(i);

@@ -165,6 +165,10 @@ IterationReport PspgScheme::iterate() {
   }
   if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
 
+  // "volume_correction": "particle": each particle's share of the area grows at the rate owed to it.
+  if (f_.volume.type() == VolumeCorrection::Type::particle)
+    for (Index i = 0; i < np; ++i)
+      if (has_mass[i]) R[3 * i + 2] -= f_.volume.owed_rate(i);
   // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.
   const double m0 = f_.c.rho * h * h;
   const int* op = J_.outerIndexPtr();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace lagfsi::fluid {
 
@@ -63,11 +64,24 @@ void RemeshPipeline::initial_mesh() {
 void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const FluidEnergy& energy,
                                  const std::vector<char>& on_wall_in) {
   std::vector<char> on_wall = on_wall_in;
-  if (drop_outside_domain(t_new, volume) && !on_wall.empty()) {  // the flags follow the renumbering
-    std::vector<char> kept(static_cast<size_t>(cloud_.n()), 0);
-    for (size_t i = 0; i < on_wall.size() && i < renumber_.size(); ++i)
-      if (renumber_[i] >= 0) kept[static_cast<size_t>(renumber_[i])] = on_wall[i];
-    on_wall.swap(kept);
+  // "volume_correction": "particle": the particles' shares of the last mesh, and where each particle is
+  // after the remesh (VolumeCorrection::owe_remesh_change).
+  const bool owe = volume.type() == VolumeCorrection::Type::particle;
+  std::vector<double> before;
+  std::vector<Index> present;
+  if (owe) {
+    before = mesh_.nodal_areas(cloud_.x(), cloud_.n());
+    present.resize(before.size());
+    std::iota(present.begin(), present.end(), Index{0});
+  }
+  if (drop_outside_domain(t_new, volume)) {  // the flags follow the renumbering
+    if (!on_wall.empty()) {
+      std::vector<char> kept(static_cast<size_t>(cloud_.n()), 0);
+      for (size_t i = 0; i < on_wall.size() && i < renumber_.size(); ++i)
+        if (renumber_[i] >= 0) kept[static_cast<size_t>(renumber_[i])] = on_wall[i];
+      on_wall.swap(kept);
+    }
+    for (Index& k : present) k = renumber_[k];
   }
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
@@ -82,10 +96,13 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     std::vector<std::uint8_t> meshed;
     std::vector<std::pair<Index, Index>> edges, all_edges;
     manage_particles(meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr, on_wall);
+    for (Index& k : present)
+      if (k >= 0) k = survivor_[k];
     previous.set_topology(std::move(meshed), std::move(edges));
     previous.set_edges(std::move(all_edges));
     remesh_now(&previous);
   }
+  if (owe) volume.owe_remesh_change(before, present);
   const double area1 = mesh_.area(cloud_.x());
   remesh_dA_ = area1 - area0;
   remesh_dKE_ = energy.kinetic() - ke0;
@@ -259,6 +276,10 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
   for (Index e = 0; e < mesh_.num_elements(); ++e)
     for (Index i : mesh_.tri[e])
       if (drop[i]) volume.add_left(mesh_.element_area(cloud_.x(), e) / 3.0);
+  // With "volume_correction": "particle", the area each owed (a drop in flight: all of its own) leaves too.
+  if (volume.type() == VolumeCorrection::Type::particle)
+    for (Index i = 0; i < cloud_.n(); ++i)
+      if (drop[i]) volume.add_left(cloud_.owed()[i]);
   volume.rebase();
   return drop_particles(drop);
 }

@@ -1,8 +1,10 @@
-// Volume corrections of the PFEM fluid (volume_correction.hpp): "surface" (restore_area) and "source" (c_vol).
+// Volume corrections of the PFEM fluid (volume_correction.hpp): "surface" (restore_area), "source" (c_vol)
+// and "particle" (owe_remesh_change, set_end, owed_rate).
 #include "volume_correction.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace lagfsi::fluid {
 
@@ -98,15 +100,85 @@ void VolumeCorrection::set_remeshed(double area) {
   // then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
   // elements): the default is the "surface" correction (restore_area) instead.
   c_vol_ = type_ == Type::source && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
+  if (type_ == Type::particle) nodal_start_ = mesh_.nodal_areas(cloud_.x(), cloud_.n());
+}
+
+void VolumeCorrection::set_end(double area) {
+  change_in_steps_ += area - area_remesh_;
+  area_end_ = area;
+  if (type_ != Type::particle || nodal_start_.size() != static_cast<size_t>(cloud_.n())) return;
+  // Volume correction "particle": the particles carry the fluid's mass (rho times their share of the
+  // area at the start), as in SPH and MPS, where an incompressible step keeps each particle's density (the
+  // density-invariance source of Asai, Aly, Sonoda & Sakai 2012, J. Appl. Math. 139583, relaxed over T).
+  // The step changed each particle's share on the same mesh, without re-triangulation: the change is
+  // owed back to it, and its continuity row asks for it, sum_e (A_e / 3) div v = owed_i / T.
+  const std::vector<double> end = mesh_.nodal_areas(cloud_.x(), cloud_.n());
+  Vec& owed = cloud_.owed();
+  for (size_t i = 0; i < end.size(); ++i) owed[static_cast<Index>(i)] -= end[i] - nodal_start_[i];
+  in_flight_ = 0;
+  for (Index i = 0; i < cloud_.n(); ++i)
+    if (i >= static_cast<Index>(mesh_.connected.size()) || !mesh_.connected[i]) in_flight_ += owed[i];
+  if (area_initial_ > 0)
+    water_drift_max_ = std::max(water_drift_max_, std::abs((water_area() + area_left_) / area_initial_ - 1.0));
+}
+
+void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, const std::vector<Index>& present) {
+  if (type_ != Type::particle) return;
+  const Index np = cloud_.n();
+  // Each present particle's share on the new mesh against the shares it had (a merged particle: both).
+  std::vector<double> change = mesh_.nodal_areas(cloud_.x(), np);
+  for (size_t i = 0; i < before.size() && i < present.size(); ++i)
+    if (present[i] >= 0) change[static_cast<size_t>(present[i])] -= before[i];
+  // Groups of changed particles connected by the new mesh (union-find with path halving).
+  std::vector<Index> root(static_cast<size_t>(np));
+  std::iota(root.begin(), root.end(), Index{0});
+  const auto find = [&](Index i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  const double h = c_.h;
+  std::vector<char> changed(static_cast<size_t>(np), 0);
+  for (Index i = 0; i < np; ++i) changed[i] = std::abs(change[i]) > 1e-12 * h * h;
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], b = t[(k + 1) % 3];
+      if (changed[a] && changed[b]) root[find(a)] = find(b);
+    }
+  // A particle in no element of the new mesh (a drop that left the mesh, a particle removed at a wall
+  // counted in its neighbours' gain) forms its own group.
+  std::vector<double> net(static_cast<size_t>(np), 0.0), weight(static_cast<size_t>(np), 0.0);
+  const std::vector<ParticleKind>& kind = cloud_.kind();
+  for (Index i = 0; i < np; ++i) {
+    if (!changed[i]) continue;
+    net[find(i)] += change[i];
+    if (kind[i] == ParticleKind::Fluid) weight[find(i)] += std::abs(change[i]);
+  }
+  Vec& owed = cloud_.owed();
+  for (Index i = 0; i < np; ++i) {
+    if (!changed[i]) continue;
+    const Index r = find(i);
+    if (!(weight[r] > 0)) {
+      if (r == i) unowed_ -= net[r];  // initial = final + owed + left + not_owed
+      continue;
+    }
+    if (kind[i] == ParticleKind::Fluid) owed[i] -= net[r] * std::abs(change[i]) / weight[r];
+  }
 }
 
 Json VolumeCorrection::summary() const {
-  return {{"initial", area_initial_},
-          {"final", area_end_},
-          {"left_domain", area_left_},
-          {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0},
-          {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_},
-          {"change_in_steps", change_in_steps_}};
+  Json s = {{"initial", area_initial_},
+            {"final", area_end_},
+            {"left_domain", area_left_},
+            {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0},
+            {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_},
+            {"change_in_steps", change_in_steps_}};
+  if (type_ == Type::particle) {
+    s["owed_by_particles"] = cloud_.owed().sum();  // not yet returned (initial = final + owed + left + not_owed)
+    s["in_flight"] = in_flight_;
+    s["not_owed"] = unowed_;
+    s["water_drift_max"] = water_drift_max_;
+  }
+  return s;
 }
 
 }  // namespace lagfsi::fluid

@@ -1,8 +1,10 @@
 #pragma once
 /// @file volume_correction.hpp (private to src/fluid)
 /// The fluid's area bookkeeping (initial, reference, after remeshing, at the end of the step, left through
-/// the domain box) and the two volume corrections: "surface" (restore_area: a geometric move of the free
-/// surface after remeshing) and "source" (c_vol: a uniform source in the continuity equation).
+/// the domain box) and the volume corrections: "surface" (restore_area: a geometric move of the free surface
+/// after remeshing), "source" (c_vol: a uniform source in the continuity equation) and "particle" (each
+/// particle keeps its own share of the area: what a step or a remesh took from it is returned where it was
+/// taken, by a local source in its continuity row, owed_rate).
 #include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
@@ -13,7 +15,7 @@ namespace lagfsi::fluid {
 
 class VolumeCorrection {
  public:
-  enum class Type { surface, source, none };
+  enum class Type { surface, source, particle, none };
   VolumeCorrection(const FluidConstants& c, ParticleCloud& cloud, const FluidMesh& mesh)
       : c_(c), cloud_(cloud), mesh_(mesh) {}
   /// The case's "volume_correction" and "volume_relaxation_time" (s).
@@ -35,19 +37,35 @@ class VolumeCorrection {
   /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
   /// that the area after remeshing equals the reference area again.
   void restore_area();
-  /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step.
+  /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step; with
+  /// "particle", the particles' shares of the area at the step's start.
   void set_remeshed(double area);
   /// The mesh's area at the end of the step; what the step changed since the remeshing (the solve's discrete
-  /// incompressibility, the wall put-backs) is added up.
-  void set_end(double area) {
-    change_in_steps_ += area - area_remesh_;
-    area_end_ = area;
-  }
+  /// incompressibility, the wall put-backs) is added up; with "particle", what it changed at each particle
+  /// is owed to it.
+  void set_end(double area);
+
+  /// "particle": what a remesh changed at each particle is owed to the particles where it changed. `before`:
+  /// the particles' shares of the last step's mesh at their present positions, before the remesh, numbered
+  /// as then; `present[i]`: the index now of that particle i (the survivor of its merge), -1 if it went.
+  /// The change of a particle's share alone is not owed: re-triangulating the same points moves area between
+  /// neighbours (an edge flip changes four shares by up to h^2 / 6 but not their sum). What is owed is the
+  /// change summed over each group of changed particles connected by the new mesh (zero for flips; the
+  /// area of a gap closed, of a film merged, of a sliver torn off), shared among its fluid particles in
+  /// proportion to their own changes.
+  void owe_remesh_change(const std::vector<double>& before, const std::vector<Index>& present);
+  /// "particle": the local source of particle i's continuity row, the rate at which its share of the area
+  /// must grow, owed_i / T (T = "volume_relaxation_time"); 0 otherwise.
+  double owed_rate(Index i) const { return type_ == Type::particle ? cloud_.owed()[i] / relax_time_ : 0.0; }
 
   /// The uniform source of the continuity equation (0 unless "source").
   double c_vol() const { return c_vol_; }
   double area_remeshed() const { return area_remesh_; }
   double area_end() const { return area_end_; }
+  /// The water at the end of the step: the mesh's area and, with "particle", the area owed to the particles
+  /// in no element (a drop in flight carries the share it had when it left the mesh). Without "particle", the
+  /// mesh's area.
+  double water_area() const { return area_end_ + in_flight_; }
   /// Potential energy put into the fluid by the "surface" correction's moves, -sum m_i g . dx_i.
   double correction_energy() const { return correction_energy_; }
   /// summary.json's "fluid_area": initial, final, left the domain, drift without the latter, and the change
@@ -66,7 +84,11 @@ class VolumeCorrection {
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
   double correction_energy_ = 0;
-  double change_in_steps_ = 0;  // the sum over the steps of their area change after remeshing
+  double change_in_steps_ = 0;       // the sum over the steps of their area change after remeshing
+  std::vector<double> nodal_start_;  // "particle": the particles' shares of the area at the step's start
+  double unowed_ = 0;                // "particle": remesh changes with no fluid particle to owe them to
+  double in_flight_ = 0;             // "particle": the area owed to particles in no element (water_area)
+  double water_drift_max_ = 0;       // "particle": the largest |water + left - initial| / initial of the steps
 };
 
 }  // namespace lagfsi::fluid

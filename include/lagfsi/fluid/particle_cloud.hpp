@@ -1,7 +1,7 @@
 #pragma once
 /// @file fluid/particle_cloud.hpp
 /// The fluid's particles: the per-particle parallel arrays (kind, spacing, x, v, a, initial position,
-/// pressure), kept aligned by the only operations that add, remove or reorder particles (compact, append,
+/// pressure, volume owed), kept aligned by the only operations that add, remove or reorder particles (compact, append,
 /// rebuild). Implemented in src/fluid/particle_cloud.cpp.
 #include <lagfsi/fluid/fluid_params.hpp>
 
@@ -20,6 +20,7 @@ class ParticleCloud {
     double h = 0;
     Vec2 x = Vec2::Zero(), v = Vec2::Zero(), a = Vec2::Zero(), X0 = Vec2::Zero();
     double p = 0;
+    double owed = 0;
   };
 
   /// The initial cloud: particles at `x` of kinds `kind`, spacing h, at rest, zero pressure, X0 = x.
@@ -54,6 +55,11 @@ class ParticleCloud {
   /// Pressures (one per particle, positive in compression).
   Vec& p() { return p_; }
   const Vec& p() const { return p_; }
+  /// The area each particle is owed ("volume_correction": "particle", volume_correction.hpp): what the steps
+  /// and the remeshing took from (positive) or gave to (negative) the particle's share of the mesh, not yet
+  /// returned by the continuity equation. Zero at the start; a merged particle owes the pair's sum.
+  Vec& owed() { return owed_; }
+  const Vec& owed() const { return owed_; }
 
   Vec2 pos(Index i) const { return state_.x.segment<2>(2 * i); }
   Vec2 vel(Index i) const { return state_.v.segment<2>(2 * i); }
@@ -78,6 +84,7 @@ class ParticleCloud {
   KinematicState state_;  // x, v, a of all particles
   Vec X0_;
   Vec p_;
+  Vec owed_;
 };
 
 }  // namespace lagfsi::fluid

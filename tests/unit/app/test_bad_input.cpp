@@ -439,6 +439,20 @@ TEST(BadInput, FluidRobinFactor) {
   expect_one_line(o, "/bodies/0/scheme/robin_factor", "must be positive");
 }
 
+TEST(BadInput, FluidParticleVolumesNeedTheAdvectedDomain) {
+  // "volume_correction": "particle" follows each particle through merges and splits on the advected mesh; the
+  // alpha shape's removals and insertions between its re-triangulations are not followed. The fractional step
+  // takes it too (a source in its pressure equation).
+  json j = fluid_case();
+  j["bodies"][0]["domain_detection"] = "advected";
+  j["bodies"][0]["scheme"]["volume_correction"] = "particle";
+  EXPECT_EQ(run_json("particle_volumes", j).code, 0);
+  j["bodies"][0].erase("domain_detection");
+  const Outcome o = run_json("particle_volumes_alpha", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/scheme/volume_correction", "needs \"domain_detection\"");
+}
+
 TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a

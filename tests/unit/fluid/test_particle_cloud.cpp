@@ -1,7 +1,7 @@
 // Unit tests of the PFEM fluid's particle arrays (include/lagfsi/fluid/particle_cloud.hpp): compact, append
 // and rebuild keep every per-particle array aligned. Each particle i of a
 // test cloud carries values derived from a tag (x = (t, 2t), v = (3t, 4t), a = (5t, 6t), X0 = (7t, 8t),
-// p = 9t, h = 10t), so a misaligned array shows as a value of another particle's tag.
+// p = 9t, h = 10t, owed area 11t), so a misaligned array shows as a value of another particle's tag.
 #include <lagfsi/fluid/particle_cloud.hpp>
 
 #include <gtest/gtest.h>
@@ -24,6 +24,7 @@ ParticleCloud::Particle tagged(double t, ParticleKind kind = ParticleKind::Fluid
   q.a = Vec2(5 * t, 6 * t);
   q.X0 = Vec2(7 * t, 8 * t);
   q.p = 9 * t;
+  q.owed = 11 * t;
   return q;
 }
 
@@ -43,6 +44,7 @@ void expect_particle(const ParticleCloud& c, Index i, double t, ParticleKind kin
   ASSERT_EQ(c.a().size(), 2 * c.n());
   ASSERT_EQ(c.X0().size(), 2 * c.n());
   ASSERT_EQ(c.p().size(), c.n());
+  ASSERT_EQ(c.owed().size(), c.n());
   ASSERT_EQ(static_cast<Index>(c.h().size()), c.n());
   const ParticleCloud::Particle q = c.particle(i), e = tagged(t, kind);
   EXPECT_EQ(q.kind, e.kind) << "particle " << i;
@@ -52,6 +54,7 @@ void expect_particle(const ParticleCloud& c, Index i, double t, ParticleKind kin
   EXPECT_EQ(q.a, e.a) << "particle " << i;
   EXPECT_EQ(q.X0, e.X0) << "particle " << i;
   EXPECT_EQ(q.p, e.p) << "particle " << i;
+  EXPECT_EQ(q.owed, e.owed) << "particle " << i;
 }
 
 TEST(ParticleCloud, AssignStartsAtRestWithX0AtThePositions) {
@@ -62,7 +65,7 @@ TEST(ParticleCloud, AssignStartsAtRestWithX0AtThePositions) {
   EXPECT_TRUE(c.is_fluid(1));
   EXPECT_EQ(c.pos(1), Vec2(3, 4));
   EXPECT_EQ(c.X0(), c.x());
-  EXPECT_EQ(c.v().norm() + c.a().norm() + c.p().norm(), 0.0);
+  EXPECT_EQ(c.v().norm() + c.a().norm() + c.p().norm() + c.owed().norm(), 0.0);
   EXPECT_EQ(c.h(0), 0.5);
   EXPECT_EQ(c.positions()[0], Vec2(1, 2));
 }

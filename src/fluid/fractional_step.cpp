@@ -280,8 +280,6 @@ IterationReport FractionalStep::iterate() {
   if (assemble)
     constrain(
         poisson_, [&](Index i) { return fixed[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
-  if (f_.volume.type() == VolumeCorrection::Type::particle)  // each particle's share grows at its owed rate
-    for (Index i = 0; i < np; ++i) rhs[i] += f_.volume.owed_rate(i);
   for (Index i = 0; i < np; ++i)
     if (fixed[3 * i + 2]) rhs[i] = 0.0;
   f_.times.assembly += seconds_since(t0);

@@ -165,6 +165,26 @@ void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, cons
   }
 }
 
+void VolumeCorrection::hand_owed_inward(const std::vector<char>& fixed) {
+  if (type_ != Type::particle) return;
+  const Index np = cloud_.n();
+  const auto row = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2]; };
+  std::vector<int> takers(static_cast<size_t>(np), 0);  // per prescribed particle: (element, particle) pairs
+  for (const auto& t : mesh_.tri)
+    for (Index i : t)
+      if (!row(i))
+        for (Index j : t) takers[i] += row(j) ? 1 : 0;
+  Vec& owed = cloud_.owed();
+  const Vec given = owed;
+  for (const auto& t : mesh_.tri)
+    for (Index i : t)
+      if (!row(i) && takers[i] > 0 && given[i] != 0.0)
+        for (Index j : t)
+          if (row(j)) owed[j] += given[i] / takers[i];
+  for (Index i = 0; i < np; ++i)
+    if (!row(i) && takers[i] > 0) owed[i] = 0.0;
+}
+
 Json VolumeCorrection::summary() const {
   Json s = {{"initial", area_initial_},
             {"final", area_end_},

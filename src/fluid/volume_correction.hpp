@@ -54,6 +54,10 @@ class VolumeCorrection {
   /// area of a gap closed, of a film merged, of a sliver torn off), shared among its fluid particles in
   /// proportion to their own changes.
   void owe_remesh_change(const std::vector<double>& before, const std::vector<Index>& present);
+  /// "particle": a particle whose pressure is prescribed (`fixed`, 3 per particle: p = 0 on the free surface
+  /// with "dirichlet", the fractional step's) has no continuity row to return its area: it hands what it is
+  /// owed to the particles with one that share an element with it (equal shares per element), once a step.
+  void hand_owed_inward(const std::vector<char>& fixed);
   /// "particle": the local source of particle i's continuity row, the rate at which its share of the area
   /// must grow, owed_i / T (T = "volume_relaxation_time"); 0 otherwise.
   double owed_rate(Index i) const { return type_ == Type::particle ? cloud_.owed()[i] / relax_time_ : 0.0; }

@@ -96,5 +96,22 @@ TEST(ParticleVolumes, AStepOwesEachParticleWhatItsShareLost) {
   EXPECT_NEAR(s.volume.water_area(), s.mesh.area(s.cloud.x()), 1e-18);  // nothing in flight
 }
 
+TEST(ParticleVolumes, AParticleAtPrescribedPressureHandsItsAreaInward) {
+  // Particle 0 (p = 0 on the free surface: no continuity row) is owed 6e-7 and is in two elements, with 1, 2
+  // and 2, 3: 1 and 3 get a quarter each, 2 (in both) half; particle 4, fixed too but in no element, keeps its own.
+  Scene s({{0, 0}, {kH, 0}, {kH, kH}, {0, kH}, {5 * kH, 5 * kH}});
+  s.mesh.tri = {{0, 1, 2}, {0, 2, 3}};
+  s.cloud.owed() << 6e-7, 1e-7, 0, 0, 2e-7;
+  std::vector<char> fixed(15, 0);
+  fixed[3 * 0 + 2] = fixed[3 * 4 + 2] = 1;
+  s.volume.hand_owed_inward(fixed);
+  const Vec& owed = s.cloud.owed();
+  EXPECT_EQ(owed[0], 0.0);
+  EXPECT_NEAR(owed[1], 1e-7 + 1.5e-7, 1e-20);
+  EXPECT_NEAR(owed[2], 3e-7, 1e-20);
+  EXPECT_NEAR(owed[3], 1.5e-7, 1e-20);
+  EXPECT_EQ(owed[4], 2e-7);
+}
+
 }  // namespace
 }  // namespace lagfsi::fluid

@@ -68,6 +68,11 @@ with open(os.path.join(out, "summary.json")) as f:
     area = json.load(f)["bodies"][0]["fluid_area"]
 record("area_change_in_steps", area["change_in_steps"] / area["initial"])
 record("area_change_by_remeshing", area["change_by_remeshing"] / area["initial"])
+if "water_drift_max" in area:  # "volume_correction": "particle": the mesh's area plus the drops in flight
+    record("water_drift_max", area["water_drift_max"])
+    record("area_in_flight_end", area["in_flight"] / area["initial"])
+    print("particle volumes: largest water drift %.3f %%; %.2f %% of the area in flight at the end"
+          % (100 * area["water_drift_max"], 100 * area["in_flight"] / area["initial"]))
 print("energy above the rest state at 0.25 s / start %.3f; area change in the steps %+.2f %%, by remeshing %+.2f %%"
       % (e_rest[i25] / e_rest[0], 100 * area["change_in_steps"] / area["initial"],
          100 * area["change_by_remeshing"] / area["initial"]))

@@ -80,6 +80,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   std::vector<char> drop(np, 0), touched(np, 0);
   std::vector<Index> alias(np);  // a merged particle's survivor (itself otherwise)
   for (Index i = 0; i < np; ++i) alias[i] = i;
+  std::vector<Index> heir(np, -1);  // a particle removed at a wall: the wall particle that stands for it
   // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
   const auto walled = [&](Index i) { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); };
   const auto merge = [&](Index i, Index j) {
@@ -163,6 +164,8 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
           merge(partner, f);
         } else {
           drop[f] = touched[f] = 1;
+          heir[f] = f == a ? c : a;  // its share of the area and what it was owed go to the wall particle
+          cloud_.owed()[heir[f]] += cloud_.owed()[f];
         }
         ++wall_removed_;
       }
@@ -265,7 +268,10 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   const auto to_new = [&](Index i) { return dropped ? renumber_[i] : i; };
   survivor_.assign(static_cast<size_t>(np), -1);
   for (Index i = 0; i < np; ++i)
-    if (!(drop[i] && alias[i] == i)) survivor_[i] = to_new(alias[i]);
+    if (!(drop[i] && alias[i] == i))
+      survivor_[i] = to_new(alias[i]);
+    else if (heir[i] >= 0)
+      survivor_[i] = to_new(heir[i]);
   meshed.assign(static_cast<size_t>(cloud_.n()), 0);
   for (Index i = 0; i < static_cast<Index>(used.size()); ++i) {
     const Index k = to_new(i);

@@ -118,7 +118,8 @@ class RemeshPipeline {
   Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
   std::vector<Index> renumber_;                        // the last drop_particles: old index -> new index, -1 if dropped
-  std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it or its merge's survivor
+  std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's
+                                 // survivor or of the wall particle that stands for it (-1: none)
   // Remeshing's effect per step (log.csv) and over the run (summary.json).
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;

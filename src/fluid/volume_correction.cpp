@@ -144,24 +144,30 @@ void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, cons
       const Index a = t[k], b = t[(k + 1) % 3];
       if (changed[a] && changed[b]) root[find(a)] = find(b);
     }
-  // A particle in no element of the new mesh (a drop that left the mesh, a particle removed at a wall
-  // counted in its neighbours' gain) forms its own group.
-  std::vector<double> net(static_cast<size_t>(np), 0.0), weight(static_cast<size_t>(np), 0.0);
+  // A particle in no element of the new mesh (a drop that left the mesh) forms its own group. A group of wall
+  // or ghost particles only (their elements with the fluid changed, its particles did not) owes to them: they
+  // hand it to the fluid at the step's start (hand_owed_inward).
+  std::vector<double> net(static_cast<size_t>(np), 0.0), fluid(static_cast<size_t>(np), 0.0),
+      all(static_cast<size_t>(np), 0.0);
   const std::vector<ParticleKind>& kind = cloud_.kind();
   for (Index i = 0; i < np; ++i) {
     if (!changed[i]) continue;
-    net[find(i)] += change[i];
-    if (kind[i] == ParticleKind::Fluid) weight[find(i)] += std::abs(change[i]);
+    const Index r = find(i);
+    net[r] += change[i];
+    all[r] += std::abs(change[i]);
+    if (kind[i] == ParticleKind::Fluid) fluid[r] += std::abs(change[i]);
   }
   Vec& owed = cloud_.owed();
   for (Index i = 0; i < np; ++i) {
     if (!changed[i]) continue;
     const Index r = find(i);
-    if (!(weight[r] > 0)) {
-      if (r == i) unowed_ -= net[r];  // initial = final + owed + left + not_owed
-      continue;
+    if (fluid[r] > 0) {
+      if (kind[i] == ParticleKind::Fluid) owed[i] -= net[r] * std::abs(change[i]) / fluid[r];
+    } else if (all[r] > 0) {
+      owed[i] -= net[r] * std::abs(change[i]) / all[r];
+    } else if (r == i) {
+      unowed_ -= net[r];  // initial = final + owed + left + not_owed
     }
-    if (kind[i] == ParticleKind::Fluid) owed[i] -= net[r] * std::abs(change[i]) / weight[r];
   }
 }
 

@@ -27,14 +27,15 @@ namespace {
 using namespace lagfsi::testing;
 
 /// `scheme`: the scheme's keys (JSON members).
-std::string coarse_dam_break(const std::string& scheme) {
+std::string coarse_dam_break(const std::string& scheme, const std::string& wall_model = "constraints") {
   return R"({
     "name": "dam_break_coarse",
     "analysis": {"type": "dynamic", "dt": 2e-3, "end_time": 0.8},
     "gravity": [0.0, -9.81],
     "bodies": [{
       "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.0146,
-      "domain_detection": "advected", "wall_model": "constraints",
+      "domain_detection": "advected", "wall_model": ")" +
+         wall_model + R"(",
       "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.146, 0.292]}],
       "walls": [{"name": "tank", "points": [[0, 0.584], [0, 0], [0.584, 0], [0.584, 0.584]]}],
       "initial_pressure": {"type": "hydrostatic", "level": 0.292},
@@ -71,28 +72,50 @@ TEST(FreeSurfacePressure, RobinConditionKeepsTheSplashArea) {
   EXPECT_LT(std::abs(steps_r), 0.5 * std::abs(steps_d));
 }
 
-TEST(ParticleVolumes, TheSplashKeepsItsWaterInTheParticles) {
+/// The coarse dam break with particle volumes and the Robin condition: its largest drifts (water, mesh), and what
+/// its summary's balance, mesh + owed + left + not owed - initial, leaves, over the initial area.
+struct Water {
+  double water = 0, mesh = 0, balance = 1;
+};
+Water particle_volumes(const std::string& wall_model) {
   const RunResult r =
-      run_case_text(fresh_dir("dam_break_coarse_particle"),
+      run_case_text(fresh_dir("dam_break_coarse_particle_" + wall_model),
                     coarse_dam_break(R"("free_surface_pressure": "robin", )"
-                                     R"("volume_correction": "particle", "volume_relaxation_time": 0.02)"));
-  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+                                     R"("volume_correction": "particle", "volume_relaxation_time": 0.02)",
+                                     wall_model));
+  EXPECT_EQ(r.exit_code, 0) << r.stderr_text;
+  Water w;
+  if (r.exit_code != 0) return w;
   const Csv c = probes_of(r);
-  double mesh = 0, water = 0;
   for (size_t k = 0; k < c["area"].size(); ++k) {
-    mesh = std::max(mesh, std::abs(c["area"][k] / c["area"][0] - 1));
-    water = std::max(water, std::abs(c["water"][k] / c["water"][0] - 1));
+    w.mesh = std::max(w.mesh, std::abs(c["area"][k] / c["area"][0] - 1));
+    w.water = std::max(w.water, std::abs(c["water"][k] / c["water"][0] - 1));
   }
   const auto s = summary_of(r);
   const auto& area = s["bodies"][0]["fluid_area"];
   const double initial = area["initial"].get<double>();
   const double balance = area["final"].get<double>() + area["owed_by_particles"].get<double>() +
                          area["left_domain"].get<double>() + area["not_owed"].get<double>() - initial;
-  std::printf("largest drift: water %.2f %%, mesh %.2f %%; in flight %.2f %%; balance %.1e\n", 100 * water, 100 * mesh,
-              100 * area["in_flight"].get<double>() / initial, balance / initial);
-  EXPECT_LT(std::abs(balance), 1e-10 * initial);  // every particle's area is accounted for
-  EXPECT_LT(water, 0.01);
-  EXPECT_LT(water, 0.6 * mesh);  // the drops in flight carry their water
+  w.balance = balance / initial;
+  std::printf("%s: largest drift: water %.2f %%, mesh %.2f %%; in flight %.2f %%; balance %.1e\n", wall_model.c_str(),
+              100 * w.water, 100 * w.mesh, 100 * area["in_flight"].get<double>() / initial, w.balance);
+  return w;
+}
+
+TEST(ParticleVolumes, TheSplashKeepsItsWaterInTheParticles) {
+  const Water w = particle_volumes("constraints");
+  EXPECT_LT(std::abs(w.balance), 1e-10);  // every particle's area is accounted for
+  EXPECT_LT(w.water, 0.01);
+  EXPECT_LT(w.water, 0.6 * w.mesh);  // the drops in flight carry their water
+}
+
+TEST(ParticleVolumes, AFluidParticleRemovedAtAWallParticleLeavesItsAreaToIt) {
+  // With wall particles, a fluid particle pressed against one is removed (the wall stands for it): its share
+  // and what it was owed go to the wall particle, which hands them to the fluid. Before, they were lost: the
+  // L/20 dam break's balance missed 13.6 % of the area by 1 s.
+  const Water w = particle_volumes("particles");
+  EXPECT_LT(std::abs(w.balance), 1e-10);
+  EXPECT_LT(w.water, 0.02);
 }
 
 }  // namespace

@@ -52,7 +52,8 @@ class VolumeCorrection {
   /// neighbours (an edge flip changes four shares by up to h^2 / 6 but not their sum). What is owed is the
   /// change summed over each group of changed particles connected by the new mesh (zero for flips; the
   /// area of a gap closed, of a film merged, of a sliver torn off), shared among its fluid particles in
-  /// proportion to their own changes.
+  /// proportion to their own changes (a group of wall or ghost particles only: among them, and they hand it
+  /// to the fluid, hand_owed_inward).
   void owe_remesh_change(const std::vector<double>& before, const std::vector<Index>& present);
   /// "particle": a particle whose pressure is prescribed (`fixed`, 3 per particle: p = 0 on the free surface
   /// with "dirichlet", the fractional step's) has no continuity row to return its area: it hands what it is

@@ -1,8 +1,8 @@
 #pragma once
 /// @file fluid/particle_cloud.hpp
 /// The fluid's particles: the per-particle parallel arrays (kind, spacing, x, v, a, initial position,
-/// pressure, volume owed), kept aligned by the only operations that add, remove or reorder particles (compact, append,
-/// rebuild). Implemented in src/fluid/particle_cloud.cpp.
+/// pressure, owed area), kept aligned by the only operations that add, remove or reorder particles (compact,
+/// append, rebuild). Implemented in src/fluid/particle_cloud.cpp.
 #include <lagfsi/fluid/fluid_params.hpp>
 
 #include <lagfsi/state_archive.hpp>

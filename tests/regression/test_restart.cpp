@@ -109,6 +109,16 @@ TEST(Restart, FluidWithWallConstraintsContinuesBitForBit) {
                              {"analysis.end_time=0.05", "output.every=4"}, 5, 11, {"water", "water_walls"});
 }
 
+TEST(Restart, FluidWithParticleVolumesContinuesBitForBit) {
+  // The dam break with particle volumes (advected domain, walls as constraints, Robin free surface): the owed
+  // areas and the step's starting shares are in the checkpoint; 40 steps, stopped after 23.
+  expect_restart_is_seamless("fluid_particle_volumes", "cases/dam_break_tank/case.json",
+                             {"analysis.end_time=0.04", "output.every=4", "bodies.0.domain_detection=advected",
+                              "bodies.0.wall_model=constraints", "bodies.0.scheme.free_surface_pressure=robin",
+                              "bodies.0.scheme.volume_correction=particle"},
+                             10, 23, {"water", "water_walls"});
+}
+
 TEST(Restart, FsiContinuesBitForBit) {
   // The flexible tank wall (Dirichlet-Neumann with IQN-IMVJ, whose Jacobian carries over from step to step):
   // 20 coupled steps, stopped after 11.

@@ -43,7 +43,7 @@ void RemeshPipeline::serialize(StateArchive& ar) {
 void VolumeCorrection::serialize(StateArchive& ar) {
   ar.section("volume");
   ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_, change_in_steps_);
-  ar.io(nodal_start_, unowed_, in_flight_, water_drift_max_);
+  ar.io(in_flight_, water_drift_max_);  // the step's starting shares: set_remeshed, at the next step
 }
 
 void FluidEnergy::serialize(StateArchive& ar) {

@@ -146,7 +146,8 @@ void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, cons
     }
   // A particle in no element of the new mesh (a drop that left the mesh) forms its own group. A group of wall
   // or ghost particles only (their elements with the fluid changed, its particles did not) owes to them: they
-  // hand it to the fluid at the step's start (hand_owed_inward).
+  // hand it to the fluid at the step's start (hand_owed_inward). Every changed particle has |change| > 0, so
+  // every group has someone to owe its net change.
   std::vector<double> net(static_cast<size_t>(np), 0.0), fluid(static_cast<size_t>(np), 0.0),
       all(static_cast<size_t>(np), 0.0);
   const std::vector<ParticleKind>& kind = cloud_.kind();
@@ -161,13 +162,9 @@ void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, cons
   for (Index i = 0; i < np; ++i) {
     if (!changed[i]) continue;
     const Index r = find(i);
-    if (fluid[r] > 0) {
-      if (kind[i] == ParticleKind::Fluid) owed[i] -= net[r] * std::abs(change[i]) / fluid[r];
-    } else if (all[r] > 0) {
-      owed[i] -= net[r] * std::abs(change[i]) / all[r];
-    } else if (r == i) {
-      unowed_ -= net[r];  // initial = final + owed + left + not_owed
-    }
+    const bool to_fluid = fluid[r] > 0;
+    if (to_fluid && kind[i] != ParticleKind::Fluid) continue;
+    owed[i] -= net[r] * std::abs(change[i]) / (to_fluid ? fluid[r] : all[r]);
   }
 }
 
@@ -199,9 +196,8 @@ Json VolumeCorrection::summary() const {
             {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_},
             {"change_in_steps", change_in_steps_}};
   if (type_ == Type::particle) {
-    s["owed_by_particles"] = cloud_.owed().sum();  // not yet returned (initial = final + owed + left + not_owed)
+    s["owed_by_particles"] = cloud_.owed().sum();  // not yet returned (initial = final + owed + left)
     s["in_flight"] = in_flight_;
-    s["not_owed"] = unowed_;
     s["water_drift_max"] = water_drift_max_;
   }
   return s;

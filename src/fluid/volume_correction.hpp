@@ -91,7 +91,6 @@ class VolumeCorrection {
   double correction_energy_ = 0;
   double change_in_steps_ = 0;       // the sum over the steps of their area change after remeshing
   std::vector<double> nodal_start_;  // "particle": the particles' shares of the area at the step's start
-  double unowed_ = 0;                // "particle": remesh changes with no fluid particle to owe them to
   double in_flight_ = 0;             // "particle": the area owed to particles in no element (water_area)
   double water_drift_max_ = 0;       // "particle": the largest |water + left - initial| / initial of the steps
 };

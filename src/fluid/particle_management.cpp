@@ -133,10 +133,21 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     // particle already there that the previous mesh does not connect it to (a drop sliding into a corner
     // lands on the corner's particle): such pairs are merged too. Both may be out of the mesh (no mass):
     // the merge then takes the mean state.
+    // A fluid particle put on a wall's end where a structure stands (its ghost particle: the foot of an
+    // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
     const double r = std::max(s_.close_fraction, 0.05) * c_.h;
-    PointGrid grid(std::max(r, 1e-300));
+    PointGrid grid(std::max(r, 1e-300)), prescribed(std::max(r, 1e-300));
+    for (Index i = 0; i < np; ++i)
+      if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
     for (Index i = 0; i < np; ++i) {
       if (cloud_.kind(i) != ParticleKind::Fluid) continue;
+      if (const Index g = prescribed.find(pts[i], r, pts); g >= 0) {
+        drop[i] = touched[i] = 1;
+        heir[i] = g;
+        cloud_.owed()[g] += cloud_.owed()[i];
+        ++wall_removed_;
+        continue;
+      }
       const Index j = grid.find(pts[i], r, pts);
       if (j >= 0 && !touched[j] && !touched[i] && (walled(i) > 0 || walled(j) > 0)) {
         merge(j, i);

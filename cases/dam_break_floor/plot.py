@@ -80,6 +80,14 @@ for o in outs:
         record("area_drift_end", drift[-1] / 100)
         record("area_drift_max", max(abs(d) for d in drift) / 100)
         record("t_end", p["time"][-1])
+        try:  # "volume_correction": "particle" (the default of a remeshed monolithic run): the mesh + drops in flight
+            with open(os.path.join(o, "summary.json")) as f:
+                fa = json.load(f)["bodies"][0]["fluid_area"]
+            if "water_drift_max" in fa:
+                record("water_drift_max", fa["water_drift_max"])
+                print("%s: particle volumes: largest water drift %.3f %%" % (o, 100 * fa["water_drift_max"]))
+        except (OSError, KeyError, ValueError):
+            pass
     print("%s: front RMS with the computed front delayed by the best-fitting release delay: %.3f at %d ms"
           % (o, best[0], best[1]))
     print("%s (%s): ran to t = %.4f s (T = %.2f); front RMS in Z for T <= 3: %.3f (%d of %d points); "

@@ -27,7 +27,7 @@ double FluidEnergy::potential() const {
   return e;
 }
 
-void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force,
+void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, const Vec& boundary_force,
                           const Vec& constraint_force) {
   // On the step's mesh at x_n (lumped masses m_i = sum rho A/3, walls and ghosts included: their share of
   // the fluid moves with them): work of gravity sum m_i g . (x_{n+1} - x_n) and viscous dissipation
@@ -52,6 +52,11 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double dt, const Vec& 
       const Mat2 eps = 0.5 * (L + L.transpose());
       diss += dt * 2.0 * c_.mu * A * (eps.array() * eps.array()).sum();
     }
+  }
+  // The friction of the no-slip walls under "navier" (fluid_walls.hpp): k |v_t - v_wall,t|^2 dt.
+  for (const WallFriction& f : walls_.frictions()) {
+    const double dv = v[2 * f.i + f.c] - walls_.friction_velocity(f, t);
+    diss += dt * walls_.friction_coefficient() * dv * dv;
   }
   gravity_work_ += gw;
   dissipation_ += diss;

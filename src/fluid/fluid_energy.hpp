@@ -18,11 +18,13 @@ class FluidEnergy {
   /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
   /// lumped masses) it depends only on the present fluid: KE + PE is the energy balance of a remeshed flow.
   double potential() const;
-  /// Adds the step's gravity work, viscous dissipation and boundary work (before the state is updated):
-  /// x_new the step's new positions, v the step's velocity (the scheme's, FluidScheme::step_velocity), dt the
-  /// step, boundary_force the forces of the walls and ghosts on the fluid (FluidStep::boundary_force) and
-  /// constraint_force those of the walls through their constraints (FluidStep::constraint_force).
-  void account(const Vec& x_new, const Vec& v, double dt, const Vec& boundary_force, const Vec& constraint_force);
+  /// Adds the step's gravity work, viscous dissipation (the no-slip walls' "navier" friction included) and
+  /// boundary work (before the state is updated): x_new the step's new positions, v the step's velocity (the
+  /// scheme's, FluidScheme::step_velocity), t the step's end and dt its length, boundary_force the forces of
+  /// the walls and ghosts on the fluid (FluidStep::boundary_force) and constraint_force those of the walls
+  /// through their constraints (FluidStep::constraint_force).
+  void account(const Vec& x_new, const Vec& v, double t, double dt, const Vec& boundary_force,
+               const Vec& constraint_force);
   /// Work of gravity on the fluid and viscous dissipation since the start (summed only when a gravity_work,
   /// viscous_dissipation, total_energy or boundary_work probe exists: enabled()).
   double gravity_work() const { return gravity_work_; }

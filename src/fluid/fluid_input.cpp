@@ -29,6 +29,8 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"keep_edges_angle", 0.0},
               {"wall_model", "particles"},
               {"wall_snap_fraction", 0.1},
+              {"wall_friction", "held"},
+              {"slip_length", 0.5},
               {"domain_margin", 0.1},
               {"remesh", true},
               {"regions", nullptr},
@@ -72,6 +74,13 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     b.fail("wall_model",
            "\"constraints\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
            "shape's particle removal does not keep particles on walls)");
+  // No-slip walls as constraints: their particles held ("held"), or sliding against the Navier friction
+  // ("navier", monolithic scheme; fluid_walls.hpp).
+  const bool navier = b.choice("wall_friction", {"held", "navier"}) == "navier";
+  const double slip_length = b.positive("slip_length");
+  if (navier && !wall_constraints_)
+    b.fail("wall_friction",
+           "\"navier\" is for \"wall_model\": \"constraints\" (wall particles hold the fluid by the mesh)");
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
 
@@ -80,6 +89,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   const std::string scheme =
       s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   const bool pspg = scheme == "monolithic_pspg";
+  if (navier && !pspg)
+    b.fail("wall_friction", "\"navier\" needs the monolithic scheme (the fractional step holds them)");
+  if (navier) walls_.set_navier_friction(c_.mu, slip_length);
   // The "particle" correction returns each particle's area over a few steps; the global "source" over 0.1 s.
   const bool particle_volumes = s.has("volume_correction") && s.json()["volume_correction"] == "particle";
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.

@@ -109,10 +109,13 @@ void FluidModel::predict(double t_new, double dt) {
   // step's mesh is kept: it was built from that same state (the remeshing does not depend on t_new or dt), and
   // remeshing again would insert and remove particles a second time, unlike a clean step of the smaller dt.
   // A remesh that failed (e.g. all the fluid left the domain box) is not kept: the retry remeshes again, and
-  // fails again with the same message once the driver runs out of retries.
+  // fails again with the same message once the driver runs out of retries. Its particle management may have
+  // changed the cloud already (merged, inserted, dropped particles) before the triangulation failed, so the
+  // pressures are those the cloud carries (no solve changed them); the step's initial ones (p_old, of the
+  // last step's cloud) would no longer fit it (dam_break_obstacle read past the end of the pressures).
   const bool retry = step_open_;
-  if (retry) cloud_.p() = step_.p_old;
   const bool keep_mesh = retry && step_meshed_;
+  if (keep_mesh) cloud_.p() = step_.p_old;
   step_open_ = true;
   step_.t_new = t_new;
   step_.dt = dt;
@@ -163,7 +166,8 @@ IterationReport FluidModel::solve_iteration() { return scheme_->iterate(); }
 void FluidModel::finalize_step() {
   step_open_ = false;
   if (energy_.enabled())
-    energy_.account(step_.x, scheme_->step_velocity(), step_.dt, step_.boundary_force, step_.constraint_force);
+    energy_.account(step_.x, scheme_->step_velocity(), step_.t_new, step_.dt, step_.boundary_force,
+                    step_.constraint_force);
   const Vec x_start = cloud_.x();
   scheme_->end_step();
   if (walls_.constraint_model()) {
@@ -205,6 +209,7 @@ Json FluidModel::summary() const {
           {"wall_model", !c_.remesh                  ? "constraints (fixed connectivity)"
                          : walls_.constraint_model() ? "constraints"
                                                      : "particles"},
+          {"wall_friction", walls_.navier() ? "navier" : "held"},
           {"wall_crossings", walls_.crossings()},
           {"wall_snaps", walls_.snaps()},
           {"wall_releases", walls_.releases()},

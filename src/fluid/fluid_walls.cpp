@@ -154,6 +154,7 @@ void FluidWalls::place(double t, const Vec& X0, Vec& x) const {
 void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h) {
   if (!constraint_model_) return;
   constraints_.clear();
+  frictions_.clear();
   const double tol = 1e-6 * h;
   const Index np = static_cast<Index>(kind.size());
   for (size_t wi = 0; wi < walls_.size(); ++wi) {
@@ -175,7 +176,10 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
         if (std::abs(q[n] - a[n]) > tol || q[m] < lo || q[m] > hi) continue;
         const int wall = static_cast<int>(wi);
         constraints_.push_back({i, n, a[n] - off[n], wall, side});
-        if (!w.slip) constraints_.push_back({i, m, q[m] - off[m], wall, 0, true});  // held where it is
+        if (!w.slip && navier_)
+          frictions_.push_back({i, m, wall});  // slides against the wall's friction
+        else if (!w.slip)
+          constraints_.push_back({i, m, q[m] - off[m], wall, 0, true});  // held where it is
       }
     }
   }
@@ -188,6 +192,23 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
       std::unique(constraints_.begin(), constraints_.end(),
                   [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
       constraints_.end());
+  // A friction on a component that another wall constrains (a corner) goes, and so does a second one found
+  // at a joint.
+  if (frictions_.empty()) return;
+  std::sort(frictions_.begin(), frictions_.end(),
+            [](const WallFriction& p, const WallFriction& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; });
+  frictions_.erase(std::unique(frictions_.begin(), frictions_.end(),
+                               [](const WallFriction& p, const WallFriction& q) { return p.i == q.i && p.c == q.c; }),
+                   frictions_.end());
+  frictions_.erase(std::remove_if(frictions_.begin(), frictions_.end(),
+                                  [&](const WallFriction& f) {
+                                    return std::binary_search(constraints_.begin(), constraints_.end(),
+                                                              WallConstraint{f.i, f.c, 0.0, 0},
+                                                              [](const WallConstraint& p, const WallConstraint& q) {
+                                                                return p.i != q.i ? p.i < q.i : p.c < q.c;
+                                                              });
+                                  }),
+                   frictions_.end());
 }
 
 void FluidWalls::free_contact_line(const std::vector<std::uint8_t>& free) {
@@ -252,11 +273,11 @@ void FluidWalls::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double 
         const bool beyond = d1 < 0 && d0 > -h, near = in_span && d1 > 0 && d1 < snap_fraction * h && d1 < d0;
         if (!beyond && !near) continue;
         x.segment<2>(2 * i) = in_span ? Vec2(p1 - d1 * nrm) : Vec2(u < 0 ? a : b);
-        // The normal velocity and acceleration become the wall's (no-slip walls: the whole velocity, as the
-        // constraints of the next step will hold them).
+        // The normal velocity and acceleration become the wall's (no-slip walls held by constraints: the whole
+        // velocity, as the constraints of the next step will hold them; with "navier" friction it slides).
         Vec2 v = vel.segment<2>(2 * i), acc = cloud.a().segment<2>(2 * i);
         const Vec2 aw = w.acceleration_at(t);
-        if (w.slip) {
+        if (w.slip || navier_) {
           v -= (v - vw).dot(nrm) * nrm;
           acc -= (acc - aw).dot(nrm) * nrm;
         } else {

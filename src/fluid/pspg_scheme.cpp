@@ -184,6 +184,15 @@ IterationReport PspgScheme::iterate() {
       diag(3 * i + c) += cf.c_m * m0;
     }
   }
+  // No-slip walls with "navier" friction (fluid_walls.hpp): the tangential force k (v_t - v_wall,t) on each
+  // fluid particle on one (d v / d x = c_c).
+  const double kf = f_.walls.friction_coefficient();
+  for (const WallFriction& w : f_.walls.frictions()) {
+    const Index dof = 3 * w.i + w.c;
+    if (!has_mass[w.i] || fixed[dof]) continue;
+    R[dof] += kf * (ev.v[2 * w.i + w.c] - f_.walls.friction_velocity(w, ev.t));
+    diag(dof) += kf * cf.c_c;
+  }
   // Dirichlet: rows and columns of prescribed dofs become identity. Pressure columns are scaled by
   // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,

@@ -458,6 +458,32 @@ TEST(BadInput, FluidParticleVolumesNeedTheAdvectedDomain) {
   expect_one_line(o, "/bodies/0/scheme/volume_correction", "needs the monolithic scheme");
 }
 
+TEST(BadInput, FluidNavierWallFrictionNeedsWallConstraintsAndTheMonolithicScheme) {
+  // "wall_friction": "navier" lets the particles on no-slip walls held by constraints slide against a friction
+  // force in the monolithic scheme's Newton system: wall particles hold the fluid through the mesh instead,
+  // and the fractional step has no such term.
+  json j = fluid_case();
+  j["bodies"][0]["domain_detection"] = "advected";
+  j["bodies"][0]["wall_model"] = "constraints";
+  j["bodies"][0]["wall_friction"] = "navier";
+  j["bodies"][0]["scheme"] = {{"type", "monolithic_pspg"}};
+  EXPECT_EQ(run_json("navier_friction", j).code, 0);
+  j["bodies"][0]["slip_length"] = 0.0;
+  Outcome o = run_json("navier_friction_zero_slip_length", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/slip_length", "positive");
+  j["bodies"][0].erase("slip_length");
+  j["bodies"][0]["scheme"]["type"] = "fractional_step";
+  o = run_json("navier_friction_fractional", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/wall_friction", "needs the monolithic scheme");
+  j["bodies"][0].erase("scheme");
+  j["bodies"][0]["wall_model"] = "particles";
+  o = run_json("navier_friction_wall_particles", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/wall_friction", "is for \"wall_model\": \"constraints\"");
+}
+
 TEST(BadInput, FluidRegionFarBeyondTheWalls) {
   // A region 1000 times too large (fuzzing round 4: 0.875 million particles meshed for 89 s in check, or a
   // run that went out of memory in its first step) is refused from the region's corners before meshing; a

@@ -41,7 +41,12 @@ DETECTIONS = [("alpha", {}), ("advected", {}), ("level_set", {}),
               ("advected_constraints_robin_particle", {"bodies.0.domain_detection": "advected",
                                                        "bodies.0.wall_model": "constraints",
                                                        "bodies.0.scheme.free_surface_pressure": "robin",
-                                                       "bodies.0.scheme.volume_correction": "particle"})]
+                                                       "bodies.0.scheme.volume_correction": "particle"}),
+              ("advected_constraints_robin_particle_navier", {"bodies.0.domain_detection": "advected",
+                                                              "bodies.0.wall_model": "constraints",
+                                                              "bodies.0.wall_friction": "navier",
+                                                              "bodies.0.scheme.free_surface_pressure": "robin",
+                                                              "bodies.0.scheme.volume_correction": "particle"})]
 T1 = 1.18182  # the free sloshing's linear period (cases/sloshing_free)
 if S.quick:   # two detections, short runs: the smoke test checks that the tables are written
     DETECTIONS = [DETECTIONS[0], DETECTIONS[-1]]

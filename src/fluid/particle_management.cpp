@@ -128,6 +128,14 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     alias[j] = i;
     ++merged_;
   };
+  // A fluid particle f removed at a wall or ghost particle g: g stands for it, and takes its share of the area
+  // and what it was owed.
+  const auto leave_to = [&](Index f, Index g) {
+    drop[f] = touched[f] = 1;
+    heir[f] = g;
+    cloud_.owed()[g] += cloud_.owed()[f];
+    ++wall_removed_;
+  };
   if (!on_wall.empty()) {
     // Walls as constraints: a particle put on a wall (FluidWalls::snap_to_walls) may land on or next to a
     // particle already there that the previous mesh does not connect it to (a drop sliding into a corner
@@ -142,10 +150,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     for (Index i = 0; i < np; ++i) {
       if (cloud_.kind(i) != ParticleKind::Fluid) continue;
       if (const Index g = prescribed.find(pts[i], r, pts); g >= 0) {
-        drop[i] = touched[i] = 1;
-        heir[i] = g;
-        cloud_.owed()[g] += cloud_.owed()[i];
-        ++wall_removed_;
+        leave_to(i, g);
         continue;
       }
       const Index j = grid.find(pts[i], r, pts);
@@ -173,12 +178,10 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
             if (partner < 0 && q >= 0 && cloud_.kind(q) == ParticleKind::Fluid && !touched[q]) partner = q;
         if (partner >= 0) {
           merge(partner, f);
+          ++wall_removed_;
         } else {
-          drop[f] = touched[f] = 1;
-          heir[f] = f == a ? c : a;  // its share of the area and what it was owed go to the wall particle
-          cloud_.owed()[heir[f]] += cloud_.owed()[f];
+          leave_to(f, f == a ? c : a);
         }
-        ++wall_removed_;
       }
     for (const auto& [i, j] : meshing::close_fluid_pairs(pts, cloud_.kind(), cloud_.h(), mesh_.tri, s_.close_fraction))
       if (!touched[i] && !touched[j]) merge(i, j);

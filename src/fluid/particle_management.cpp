@@ -126,6 +126,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     cloud_.owed()[i] += cloud_.owed()[j];
     drop[j] = touched[i] = touched[j] = 1;
     alias[j] = i;
+    lumped[i] = w;  // a survivor merged again (a third particle on a corner) weighs the pair
     ++merged_;
   };
   // A fluid particle f removed at a wall or ghost particle g: g stands for it, and takes its share of the area
@@ -153,9 +154,12 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
         leave_to(i, g);
         continue;
       }
+      // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
+      // particle; it was left beside it, and the triangulation failed on the duplicate point).
       const Index j = grid.find(pts[i], r, pts);
-      if (j >= 0 && !touched[j] && !touched[i] && (walled(i) > 0 || walled(j) > 0)) {
+      if (j >= 0 && !drop[j] && (walled(i) > 0 || walled(j) > 0)) {
         merge(j, i);
+        if (drop[j]) grid.add(pts[i], i);  // i survived (the more constrained): the later find returns it
       } else {
         grid.add(pts[i], i);
       }
@@ -247,6 +251,9 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
       fresh.push_back(q);
       ++inserted_;
     }
+  // A merged particle's final survivor (a survivor may have been merged again at a corner).
+  for (Index i = 0; i < np; ++i)
+    while (alias[alias[i]] != alias[i]) alias[i] = alias[alias[i]];
   // The previous mesh's topology through the changes: boundary edges follow merges (to the survivor) and
   // splits (two halves); those of a removed particle go.
   std::vector<std::uint8_t> used(np + fresh.size(), 0);

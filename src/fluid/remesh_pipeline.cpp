@@ -100,7 +100,17 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
       if (k >= 0) k = survivor_[k];
     previous.set_topology(std::move(meshed), std::move(edges));
     previous.set_edges(std::move(all_edges));
-    remesh_now(&previous);
+    try {
+      remesh_now(&previous);
+    } catch (const SolverError&) {
+      // The management changed the cloud and the mesh (merged, split, inserted particles) before the
+      // triangulation failed; the retry starts from them. What it changed is owed now, as after a remesh
+      // that succeeded, or the retry would take the managed mesh's shares as its own `before` and the
+      // change would be lost from the bookkeeping (dam_break_obstacle with the advected domain: 2.8 % of
+      // the water in four failed remeshes).
+      if (owe) volume.owe_remesh_change(before, present);
+      throw;
+    }
   }
   if (owe) volume.owe_remesh_change(before, present);
   const double area1 = mesh_.area(cloud_.x());

@@ -80,7 +80,7 @@ for o in outs:
         record("area_drift_end", drift[-1] / 100)
         record("area_drift_max", max(abs(d) for d in drift) / 100)
         record("t_end", p["time"][-1])
-        try:  # "volume_correction": "particle" (the default of a remeshed monolithic run): the mesh + drops in flight
+        try:  # "volume_correction": "particle": the water, the mesh + drops in flight
             with open(os.path.join(o, "summary.json")) as f:
                 fa = json.load(f)["bodies"][0]["fluid_area"]
             if "water_drift_max" in fa:

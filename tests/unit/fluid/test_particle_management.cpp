@@ -12,33 +12,25 @@
 #include <gtest/gtest.h>
 
 #include "fluid_energy.hpp"
+#include "fluid_scene.hpp"
 #include "fluid_walls.hpp"
 #include "ghosts.hpp"
 #include "remesh_pipeline.hpp"
-#include "volume_correction.hpp"
 
 #include <vector>
 
 namespace lagfsi::fluid {
 namespace {
 
-constexpr double kH = 0.01;
+using fluid_test::kH;
 
-struct Scene {
-  FluidConstants c;
-  ParticleCloud cloud;
-  FluidMesh mesh;
+/// The scene with the remeshing's pieces, advected detection.
+struct Scene : fluid_test::FluidScene {
   Ghosts ghosts;
   FluidWalls walls;
-  VolumeCorrection volume{c, cloud, mesh};
   FluidEnergy energy{c, cloud, mesh, walls};
   RemeshPipeline remesh{c, cloud, mesh, ghosts};
-  Scene(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri) {
-    c.h = kH;
-    c.name = "water";
-    cloud.assign(pts, std::vector<ParticleKind>(pts.size(), ParticleKind::Fluid), kH);
-    mesh.tri = tri;
-    volume.configure(VolumeCorrection::Type::particle, 0.01);
+  Scene(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri) : FluidScene(pts, tri) {
     volume.start(mesh.area(cloud.x()));
     RemeshPipeline::Settings s;
     s.detection = meshing::DomainDetection::Advected;

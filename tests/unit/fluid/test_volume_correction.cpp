@@ -6,32 +6,15 @@
 // mesh + owed is the same before and after.
 #include <gtest/gtest.h>
 
-#include "fluid_mesh.hpp"
-#include "volume_correction.hpp"
+#include "fluid_scene.hpp"
 
 #include <vector>
 
 namespace lagfsi::fluid {
 namespace {
 
-constexpr double kH = 0.01;
-
-struct Scene {
-  FluidConstants c;
-  ParticleCloud cloud;
-  FluidMesh mesh;
-  VolumeCorrection volume{c, cloud, mesh};
-  explicit Scene(const std::vector<Vec2>& pts) {
-    c.h = kH;
-    cloud.assign(pts, std::vector<ParticleKind>(pts.size(), ParticleKind::Fluid), kH);
-    volume.configure(VolumeCorrection::Type::particle, 0.01);
-  }
-  std::vector<Index> identity() const {
-    std::vector<Index> k(static_cast<size_t>(cloud.n()));
-    for (Index i = 0; i < cloud.n(); ++i) k[static_cast<size_t>(i)] = i;
-    return k;
-  }
-};
+using fluid_test::kH;
+using Scene = fluid_test::FluidScene;
 
 TEST(ParticleVolumes, AnEdgeFlipOwesNothing) {
   // A unit square of side h, split along 0-2, then along 1-3: every particle's share changes by h^2 / 6.

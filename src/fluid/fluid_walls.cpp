@@ -185,28 +185,21 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
   }
   // A particle at a joint of two collinear segments (or of two walls) is found twice: one constraint per
   // component, a wall's normal one rather than another wall's tangential one (free_contact_line drops those).
-  std::sort(constraints_.begin(), constraints_.end(), [](const WallConstraint& p, const WallConstraint& q) {
-    return p.i != q.i ? p.i < q.i : p.c != q.c ? p.c < q.c : p.tangential < q.tangential;
+  const auto by_dof = [](const auto& p, const auto& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; };
+  const auto same_dof = [](const auto& p, const auto& q) { return p.i == q.i && p.c == q.c; };
+  std::sort(constraints_.begin(), constraints_.end(), [&](const WallConstraint& p, const WallConstraint& q) {
+    return same_dof(p, q) ? p.tangential < q.tangential : by_dof(p, q);
   });
-  constraints_.erase(
-      std::unique(constraints_.begin(), constraints_.end(),
-                  [](const WallConstraint& p, const WallConstraint& q) { return p.i == q.i && p.c == q.c; }),
-      constraints_.end());
+  constraints_.erase(std::unique(constraints_.begin(), constraints_.end(), same_dof), constraints_.end());
   // A friction on a component that another wall constrains (a corner) goes, and so does a second one found
   // at a joint.
   if (frictions_.empty()) return;
-  std::sort(frictions_.begin(), frictions_.end(),
-            [](const WallFriction& p, const WallFriction& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; });
-  frictions_.erase(std::unique(frictions_.begin(), frictions_.end(),
-                               [](const WallFriction& p, const WallFriction& q) { return p.i == q.i && p.c == q.c; }),
-                   frictions_.end());
+  std::sort(frictions_.begin(), frictions_.end(), by_dof);
+  frictions_.erase(std::unique(frictions_.begin(), frictions_.end(), same_dof), frictions_.end());
   frictions_.erase(std::remove_if(frictions_.begin(), frictions_.end(),
                                   [&](const WallFriction& f) {
                                     return std::binary_search(constraints_.begin(), constraints_.end(),
-                                                              WallConstraint{f.i, f.c, 0.0, 0},
-                                                              [](const WallConstraint& p, const WallConstraint& q) {
-                                                                return p.i != q.i ? p.i < q.i : p.c < q.c;
-                                                              });
+                                                              WallConstraint{f.i, f.c, 0.0, 0}, by_dof);
                                   }),
                    frictions_.end());
 }

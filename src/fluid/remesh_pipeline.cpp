@@ -39,7 +39,7 @@ void RemeshPipeline::set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const 
 
 void RemeshPipeline::extend_domain(const std::vector<Vec2>& points) {
   if (domain_lo_.x() <= domain_hi_.x()) {
-    const double margin = s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * s_.domain_margin);
+    const double margin = structure_margin();
     for (const auto& q : points) {
       domain_lo_ = domain_lo_.cwiseMin(q - Vec2::Constant(margin));
       domain_hi_ = domain_hi_.cwiseMax(q + Vec2::Constant(margin));
@@ -263,7 +263,7 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
   // plate pushed 23 mm away holds past the first box is not gone (cases/flexible_tank lost 0.24 % of its
   // area there).
   Vec2 box_lo = domain_lo_, box_hi = domain_hi_;
-  const double margin = s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * s_.domain_margin);
+  const double margin = structure_margin();
   for (Index i = 0; i < cloud_.n(); ++i)
     if (cloud_.kind(i) == ParticleKind::Ghost) {
       box_lo = box_lo.cwiseMin(cloud_.pos(i) - Vec2::Constant(margin));

@@ -82,6 +82,11 @@ class RemeshPipeline {
   void serialize(StateArchive& ar);
 
  private:
+  /// The margin around a structure's boundary (extend_domain, drop_outside_domain): domain_margin times the
+  /// larger side of the box without set_domain's margin.
+  double structure_margin() const {
+    return s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * s_.domain_margin);
+  }
   /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
   /// (particle_management.cpp).
   meshing::PreviousDomain advected_domain() const;

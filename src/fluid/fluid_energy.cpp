@@ -55,7 +55,7 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, c
   }
   // The friction of the no-slip walls under "navier" (fluid_walls.hpp): k |v_t - v_wall,t|^2 dt.
   for (const WallFriction& f : walls_.frictions()) {
-    const double dv = v[2 * f.i + f.c] - walls_.friction_velocity(f, t);
+    const double dv = walls_.component(v, f.i, f.c) - walls_.friction_velocity(f, t);
     diss += dt * walls_.friction_coefficient() * dv * dv;
   }
   gravity_work_ += gw;
@@ -73,8 +73,8 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, c
   const auto& ks = walls_.constraints();
   if (static_cast<size_t>(constraint_force.size()) == ks.size())
     for (size_t k = 0; k < ks.size(); ++k) {
-      const Index j = 2 * ks[k].i + ks[k].c;
-      boundary_work_ += constraint_force[static_cast<Index>(k)] * (x_new[j] - x[j]);
+      const double dx = walls_.component(x_new, ks[k].i, ks[k].c) - walls_.component(x, ks[k].i, ks[k].c);
+      boundary_work_ += constraint_force[static_cast<Index>(k)] * dx;
     }
 }
 

@@ -183,6 +183,10 @@ void FluidModel::build_particles(Params b) {
   // Walls first (their particles take precedence over fluid particles at the same place).
   Params walls = b.at("walls");
   walls_.read(walls, h, ctx_.base_dir, wall_constraints_);
+  if (wall_constraints_ && walls_.inclined() && !scheme_->wall_frames())
+    walls.fail(
+        "inclined segments with \"wall_model\": \"constraints\" need the monolithic scheme (the fractional "
+        "step constrains the x and y components)");
 
   std::vector<Vec2> pts;
   std::vector<ParticleKind> kind;

@@ -95,7 +95,10 @@ void FluidModel::initialize() {
     if (kind[i] != ParticleKind::Fluid) continue;
     s.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : c_.gravity;
   }
-  for (const auto& k : walls_.constraints()) s.a[2 * k.i + k.c] = s.v[2 * k.i + k.c] = 0.0;
+  for (const auto& k : walls_.constraints()) {
+    walls_.set_component(s.a, k.i, k.c, 0.0);
+    walls_.set_component(s.v, k.i, k.c, 0.0);
+  }
   walls_.set_wall_motion(0.0, s.v, s.a);
   times_.assembly += seconds_since(t0);
 }
@@ -124,6 +127,11 @@ void FluidModel::predict(double t_new, double dt) {
     // The particles on walls (those put on one at the end of the last step included): merging keeps them there.
     walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
     const std::vector<char> on_wall = walls_.constraint_model() ? walls_.on_wall(cloud_.n()) : std::vector<char>();
+    if (walls_.moving()) {  // the domain box follows them
+      Vec2 lo, hi;
+      walls_.bounding_box_at(t_new - dt, lo, hi);
+      remesh_.follow_walls(lo, hi);
+    }
     remesh_.remesh_step(t_new, volume_, energy_, on_wall);
   }
   if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface

@@ -56,6 +56,9 @@ class FluidScheme {
   /// The free-surface pressure: prescribed (p = 0: FluidModel::set_dirichlet; the fractional step's only one),
   /// or unknown, traction-free weakly (natural) or with the Robin condition of the element (fluid_element.hpp).
   virtual FreeSurfacePressure free_surface_pressure() const { return FreeSurfacePressure::dirichlet; }
+  /// Whether it solves particles on inclined walls in their walls' frames (FluidWalls::frames); without it
+  /// the walls held by constraints must be horizontal or vertical.
+  virtual bool wall_frames() const { return false; }
   /// A new step on a new mesh (predict, after remeshing, the Dirichlet flags set): patterns, matrices and
   /// the time integrator's start.
   virtual void begin_step() = 0;

@@ -23,14 +23,6 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
         w.fail("points", "segment " + std::to_string(k) + " has zero length (points " + std::to_string(k) + " and " +
                              std::to_string(k + 1) + " coincide)");
     wall.slip = w.boolean("slip");
-    if (constraints)
-      for (size_t k = 0; k + 1 < wall.polyline.size(); ++k) {
-        const Vec2 d = wall.polyline[k + 1] - wall.polyline[k];
-        if (std::abs(d.x()) > 1e-12 * d.norm() && std::abs(d.y()) > 1e-12 * d.norm())
-          w.fail("points", "segment " + std::to_string(k) +
-                               " is inclined: \"wall_model\": \"constraints\" needs horizontal or vertical segments "
-                               "in this version (use \"particles\")");
-      }
     Params mo = w.at("motion");
     if (!mo.json().empty()) {
       if (!mo.has("type")) mo.fail("type", "required key is missing");
@@ -42,6 +34,17 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
     }
     walls_.push_back(std::move(wall));
   }
+}
+
+namespace {
+bool axis_aligned(const Vec2& d) { return std::abs(d.x()) <= 1e-12 * d.norm() || std::abs(d.y()) <= 1e-12 * d.norm(); }
+}  // namespace
+
+bool FluidWalls::inclined() const {
+  for (const auto& w : walls_)
+    for (size_t k = 0; k + 1 < w.polyline.size(); ++k)
+      if (!axis_aligned(w.polyline[k + 1] - w.polyline[k])) return true;
+  return false;
 }
 
 void FluidWalls::place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
@@ -81,6 +84,18 @@ void FluidWalls::bounding_box(Vec2& lo, Vec2& hi) const {
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
+}
+
+void FluidWalls::bounding_box_at(double t, Vec2& lo, Vec2& hi) const {
+  lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (const auto& w : walls_) {
+    const Vec2 off = w.offset(t);
+    for (const auto& q : w.polyline) {
+      lo = lo.cwiseMin(q + off);
+      hi = hi.cwiseMax(q + off);
+    }
+  }
 }
 
 void FluidWalls::set_fluid_sides(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind) {
@@ -140,28 +155,45 @@ void FluidWalls::set_wall_motion(double t, Vec& v, Vec& a) const {
   // trapezoidal rule's v_{n+1} = 2 (x_{n+1} - x_n) / dt - v_n).
   for (const auto& k : constraints_) {
     const Wall& w = walls_[static_cast<size_t>(k.wall)];
-    v[2 * k.i + k.c] = w.velocity_at(t)[k.c];
-    a[2 * k.i + k.c] = w.acceleration_at(t)[k.c];
+    set_component(v, k.i, k.c, along(w.velocity_at(t), k.i, k.c));
+    set_component(a, k.i, k.c, along(w.acceleration_at(t), k.i, k.c));
   }
 }
 
 void FluidWalls::place(double t, const Vec& X0, Vec& x) const {
   for (const auto& w : walls_)
     for (Index j : w.particles) x.segment<2>(2 * j) = X0.segment<2>(2 * j) + w.offset(t);
-  for (const auto& k : constraints_) x[2 * k.i + k.c] = constraint_position(k, t);
+  for (const auto& k : constraints_) set_component(x, k.i, k.c, constraint_position(k, t));
 }
 
 void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h) {
   if (!constraint_model_) return;
   constraints_.clear();
   frictions_.clear();
+  frames_.clear();
   const double tol = 1e-6 * h;
   const Index np = static_cast<Index>(kind.size());
+  std::vector<Skew> skew;
   for (size_t wi = 0; wi < walls_.size(); ++wi) {
     const Wall& w = walls_[wi];
     const Vec2 off = w.offset(t);
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
       const Vec2 a = w.polyline[s] + off, b = w.polyline[s + 1] + off;
+      if (!axis_aligned(b - a)) {
+        const Vec2 e = b - a;
+        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
+        if (sided) nrm *= w.fluid_side[s];
+        const double len = e.norm();
+        for (Index i = 0; i < np; ++i) {
+          if (kind[i] != ParticleKind::Fluid) continue;
+          const Vec2 q = x.segment<2>(2 * i);
+          const double u = (q - a).dot(e) / len;
+          if (std::abs(nrm.dot(q - a)) > tol || u < -tol || u > len + tol) continue;
+          skew.push_back({i, nrm, nrm.dot(a - off), static_cast<int>(wi), sided ? 1 : 0});
+        }
+        continue;
+      }
       const int n = std::abs(b.y() - a.y()) < std::abs(b.x() - a.x()) ? 1 : 0;  // the normal component
       const int m = 1 - n;
       // The fluid side along n: the fluid side of the segment is that of perp(b - a) = (-(b - a).y, (b - a).x)
@@ -183,6 +215,7 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
       }
     }
   }
+  if (!skew.empty()) add_skew_contacts(skew, x, t);
   // A particle at a joint of two collinear segments (or of two walls) is found twice: one constraint per
   // component, a wall's normal one rather than another wall's tangential one (free_contact_line drops those).
   const auto by_dof = [](const auto& p, const auto& q) { return p.i != q.i ? p.i < q.i : p.c < q.c; };
@@ -204,6 +237,55 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
                    frictions_.end());
 }
 
+void FluidWalls::add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, double t) {
+  // Frames: a particle on inclined segments of one line takes the line's normal. One that is also on a
+  // segment of another direction (inclined, or axis-aligned: the constraints found before) is at a corner:
+  // held there, both components in the x-y frame (as the axes' constraints hold a corner of a tank).
+  const Index np = static_cast<Index>(x.size() / 2);
+  frames_.assign(static_cast<size_t>(np), Vec2::Zero());
+  std::vector<char> corner(static_cast<size_t>(np), 0), axis(static_cast<size_t>(np), 0);
+  for (const WallConstraint& k : constraints_) axis[static_cast<size_t>(k.i)] = 1;
+  for (const Skew& k : skew) {
+    const auto i = static_cast<size_t>(k.i);
+    Vec2& f = frames_[i];
+    if (axis[i] || (rotated(k.i) && std::abs(f.x() * k.n.y() - f.y() * k.n.x()) > 1e-9))
+      corner[i] = 1;
+    else if (!rotated(k.i))
+      f = k.n;
+  }
+  const auto at_corner = [&](Index i) { return corner[static_cast<size_t>(i)] != 0; };
+  // A corner: the axes' constraints and frictions found there go; it is held in the x-y frame.
+  const auto drop_at_corner = [&](auto& list) {
+    list.erase(std::remove_if(list.begin(), list.end(), [&](const auto& k) { return at_corner(k.i); }), list.end());
+  };
+  drop_at_corner(constraints_);
+  drop_at_corner(frictions_);
+  std::vector<char> done(static_cast<size_t>(np), 0);
+  for (const Skew& k : skew) {
+    const auto i = static_cast<size_t>(k.i);
+    if (done[i]) continue;
+    done[i] = 1;
+    const Wall& w = walls_[static_cast<size_t>(k.wall)];
+    const Vec2 off = w.offset(t), q = x.segment<2>(2 * k.i);
+    if (corner[i]) {
+      frames_[i] = Vec2::Zero();
+      constraints_.push_back({k.i, 0, q.x() - off.x(), k.wall, 0});
+      constraints_.push_back({k.i, 1, q.y() - off.y(), k.wall, 0});
+      continue;
+    }
+    // The normal constraint of its first segment; a collinear segment found later adds nothing (its line is
+    // the same, whichever way its normal faces).
+    constraints_.push_back({k.i, 0, k.base, k.wall, k.side});
+    if (!w.slip && navier_)
+      frictions_.push_back({k.i, 1, k.wall});
+    else if (!w.slip)
+      constraints_.push_back({k.i, 1, direction(k.i, 1).dot(q - off), k.wall, 0, true});
+  }
+  bool any = false;
+  for (Index i = 0; i < np && !any; ++i) any = rotated(i);
+  if (!any) frames_.clear();
+}
+
 void FluidWalls::free_contact_line(const std::vector<std::uint8_t>& free) {
   constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(),
                                     [&](const WallConstraint& k) {
@@ -218,8 +300,10 @@ long FluidWalls::release_pulled(ParticleCloud& cloud, const Vec& force, const Ve
   Vec& x = cloud.x();
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const WallConstraint& q = constraints_[k];
-    if (q.side == 0 || !(q.side * gravity[q.c] > 0) || !(q.side * force[static_cast<Index>(k)] < -threshold)) continue;
-    x[2 * q.i + q.c] += q.side * 1e-3 * cloud.h(q.i);
+    const Vec2 d = direction(q.i, q.c);
+    if (q.side == 0 || !(q.side * d.dot(gravity) > 0) || !(q.side * force[static_cast<Index>(k)] < -threshold))
+      continue;
+    x.segment<2>(2 * q.i) += q.side * 1e-3 * cloud.h(q.i) * d;
     ++released;
   }
   wall_releases_ += released;

@@ -8,7 +8,11 @@
 ///  - PFEM mode, "wall_model": "constraints": no wall particles; the fluid particles lying on a wall carry its
 ///    condition as constraints (the normal component on a slip wall; on a no-slip one the tangential
 ///    component too, "wall_friction": "held", or a friction force instead, "navier", below), found again at
-///    every step (find_contacts), a particle whose step ends on or beyond a wall, or within snap_fraction h
+///    every step (find_contacts). On a horizontal or vertical segment the components are x and y; a particle
+///    on an inclined segment takes the segment's frame (n, t) instead (frames(): its unknowns are rotated,
+///    u = n u_n + t u_t, and u_n is the constrained one; Zienkiewicz & Taylor's skew boundary conditions),
+///    and a particle where an inclined segment meets a segment of another direction is held at the corner
+///    (both components). A particle whose step ends on or beyond a wall, or within snap_fraction h
 ///    of it while approaching, is put on it (snap_to_walls), and a wall that pulls a particle lets it go
 ///    (release_pulled). The wall-particle layer is a
 ///    numerical friction in gentle flows (fluid sliding past a zero-velocity wall particle has a discrete
@@ -82,17 +86,20 @@ struct Wall {
   }
 };
 
-/// A fluid particle on a no-slip wall with "wall_friction": "navier": its component c (tangential to the wall)
-/// feels the wall's friction, -k (v_c - v_wall,c) with k = mu / slip_length.
+/// A fluid particle on a no-slip wall with "wall_friction": "navier": its component c (tangential to the wall;
+/// in the particle's frame, FluidWalls::direction) feels the wall's friction, -k (v_c - v_wall,c) with
+/// k = mu / slip_length.
 struct WallFriction {
   Index i;
   int c;
   int wall;
 };
 
-/// A constrained component of a fluid particle on a wall: x[2 i + c] = base + the wall's offset(t)[c]; side
-/// (+1 / -1) the direction of the wall's fluid side along c for the normal component of a particle on a wall
-/// with one fluid side ("wall_model": "constraints"), 0 otherwise.
+/// A constrained component of a fluid particle on a wall: d . x_i = base + d . the wall's offset(t), with d the
+/// direction of component c in the particle's frame (FluidWalls::direction: the axis c, or n / t on an
+/// inclined wall; x[2 i + c] = base + offset(t)[c] on the axes); side (+1 / -1) the direction of the wall's
+/// fluid side along d for the normal component of a particle on a wall with one fluid side ("wall_model":
+/// "constraints"), 0 otherwise.
 struct WallConstraint {
   Index i;
   int c;
@@ -104,9 +111,11 @@ struct WallConstraint {
 
 class FluidWalls {
  public:
-  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths. With
-  /// `constraints` (PFEM mode, "wall_model": "constraints") every segment must be horizontal or vertical.
+  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths. `constraints`:
+  /// PFEM mode with "wall_model": "constraints".
   void read(Params walls, double h, const std::filesystem::path& base_dir, bool constraints = false);
+  /// Whether a wall has a segment that is neither horizontal nor vertical.
+  bool inclined() const;
   /// PFEM mode with "wall_model": "constraints" (no wall particles; find_contacts, snap_to_walls).
   bool constraint_model() const { return constraint_model_; }
   /// "wall_friction": "navier" with the walls as constraints: the fluid particles on no-slip walls slide
@@ -121,7 +130,7 @@ class FluidWalls {
   const std::vector<WallFriction>& frictions() const { return frictions_; }
   /// The tangential velocity of the wall under friction f at time t.
   double friction_velocity(const WallFriction& f, double t) const {
-    return walls_[static_cast<size_t>(f.wall)].velocity_at(t)[f.c];
+    return along(walls_[static_cast<size_t>(f.wall)].velocity_at(t), f.i, f.c);
   }
   bool empty() const { return walls_.empty(); }
   const std::vector<Wall>& all() const { return walls_; }
@@ -130,8 +139,15 @@ class FluidWalls {
   /// wall reuses its particle), appended to pts and kind and added to `grid`; `walls` names the errors.
   void place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
                        PointGrid& grid);
-  /// The polylines' bounding box (lo > hi without walls).
+  /// The polylines' bounding box (lo > hi without walls); at time t, where their motions have taken them.
   void bounding_box(Vec2& lo, Vec2& hi) const;
+  void bounding_box_at(double t, Vec2& lo, Vec2& hi) const;
+  /// Whether a wall has a prescribed motion.
+  bool moving() const {
+    for (const auto& w : walls_)
+      if (w.fn) return true;
+    return false;
+  }
   /// The fluid side of each wall segment from the initial particles (`pts`, of kinds `kind`).
   void set_fluid_sides(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind);
   /// Fixed-connectivity mode: the particles (at `pts`) on a wall are constrained (both components, or the
@@ -153,10 +169,38 @@ class FluidWalls {
   std::vector<char> on_wall(Index n) const;
   /// The prescribed position and velocity of a constrained component at time t.
   double constraint_position(const WallConstraint& k, double t) const {
-    return k.base + walls_[static_cast<size_t>(k.wall)].offset(t)[k.c];
+    return k.base + along(walls_[static_cast<size_t>(k.wall)].offset(t), k.i, k.c);
   }
   double constraint_velocity(const WallConstraint& k, double t) const {
-    return walls_[static_cast<size_t>(k.wall)].velocity_at(t)[k.c];
+    return along(walls_[static_cast<size_t>(k.wall)].velocity_at(t), k.i, k.c);
+  }
+
+  /// Frames of the step's particles on inclined walls (find_contacts): frames()[i] is the unit normal n of
+  /// particle i's wall (its components are u_n = n . u and u_t = t . u, t = (-n_y, n_x)), zero for a particle
+  /// in the x-y frame; empty when no particle is on an inclined wall.
+  const std::vector<Vec2>& frames() const { return frames_; }
+  bool rotated(Index i) const {
+    return i < static_cast<Index>(frames_.size()) && (frames_[static_cast<size_t>(i)].array() != 0.0).any();
+  }
+  /// The unit vector of component c (0, 1) of particle i in its frame: n, t on an inclined wall, else x, y.
+  Vec2 direction(Index i, int c) const {
+    if (!rotated(i)) return c == 0 ? Vec2::UnitX() : Vec2::UnitY();
+    const Vec2 n = frames_[static_cast<size_t>(i)];
+    return c == 0 ? n : Vec2(-n.y(), n.x());
+  }
+  /// Component c of particle i's vector in its frame: of a global vector u (2 per particle), and of a 2-vector.
+  double component(const Vec& u, Index i, int c) const {
+    return rotated(i) ? direction(i, c).dot(u.segment<2>(2 * i)) : u[2 * i + c];
+  }
+  double along(const Vec2& w, Index i, int c) const { return rotated(i) ? direction(i, c).dot(w) : w[c]; }
+  /// Sets component c of particle i's vector in its frame to `value`, the other one unchanged.
+  void set_component(Vec& u, Index i, int c, double value) const {
+    if (!rotated(i)) {
+      u[2 * i + c] = value;
+      return;
+    }
+    const Vec2 d = direction(i, c);
+    u.segment<2>(2 * i) += (value - d.dot(u.segment<2>(2 * i))) * d;
   }
 
   /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
@@ -197,10 +241,22 @@ class FluidWalls {
   void serialize(StateArchive& ar);
 
  private:
+  /// A fluid particle on an inclined segment: the segment's unit normal (towards its fluid side when it has
+  /// one), the line n . x = base (without the wall's offset), the wall and whether it has a fluid side.
+  struct Skew {
+    Index i;
+    Vec2 n;
+    double base;
+    int wall, side;
+  };
+  /// find_contacts on inclined segments: the frames, corners, constraints and frictions of those particles.
+  void add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, double t);
+
   std::vector<Wall> walls_;
   std::vector<char> slip_particle_;          // per wall particle (wall particles come first and are never removed)
   std::vector<WallConstraint> constraints_;  // fixed connectivity, or the step's contacts ("constraints")
   std::vector<WallFriction> frictions_;      // the step's particles on no-slip walls, "navier" friction
+  std::vector<Vec2> frames_;                 // the step's particles on inclined walls: their walls' normals
   bool navier_ = false;                      // "wall_friction": "navier"
   double friction_k_ = 0;                    // mu / slip_length
   bool constraint_model_ = false;            // PFEM mode with "wall_model": "constraints"

@@ -66,6 +66,7 @@ class PspgScheme final : public FluidScheme {
     robin_factor_ = s.robin_factor;
   }
   FreeSurfacePressure free_surface_pressure() const override { return s_.free_surface; }
+  bool wall_frames() const override { return true; }
   void begin_step() override {
     if (s_.free_surface == FreeSurfacePressure::robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
     pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
@@ -149,6 +150,16 @@ IterationReport PspgScheme::iterate() {
     }
     inertia2 += i2;
     gravity2 += g2;
+    // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
+    if (!f_.walls.frames().empty())
+      for (int a = 0; a < 3; ++a)
+        if (f_.walls.rotated(t[a])) {
+          Mat2 Q;
+          Q << f_.walls.direction(t[a], 0), f_.walls.direction(t[a], 1);
+          r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
+          K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
+          K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
+        }
     for (int a = 0; a < 3; ++a) {
       for (int c = 0; c < 3; ++c) {
 #pragma omp atomic
@@ -179,8 +190,9 @@ IterationReport PspgScheme::iterate() {
   };
   for (Index i = 0; i < np; ++i) {
     if (has_mass[i] || kind[i] != ParticleKind::Fluid) continue;
+    const Vec2 acc = ev.a.segment<2>(2 * i) - g;
     for (int c = 0; c < 2; ++c) {
-      R[3 * i + c] = m0 * (ev.a[2 * i + c] - g[c]);
+      R[3 * i + c] = m0 * f_.walls.along(acc, i, c);  // (in its frame on an inclined wall)
       diag(3 * i + c) += cf.c_m * m0;
     }
   }
@@ -190,7 +202,7 @@ IterationReport PspgScheme::iterate() {
   for (const WallFriction& w : f_.walls.frictions()) {
     const Index dof = 3 * w.i + w.c;
     if (!has_mass[w.i] || fixed[dof]) continue;
-    R[dof] += kf * (ev.v[2 * w.i + w.c] - f_.walls.friction_velocity(w, ev.t));
+    R[dof] += kf * (f_.walls.component(ev.v, w.i, w.c) - f_.walls.friction_velocity(w, ev.t));
     diag(dof) += kf * cf.c_c;
   }
   // Dirichlet: rows and columns of prescribed dofs become identity. Pressure columns are scaled by
@@ -260,6 +272,12 @@ IterationReport PspgScheme::iterate() {
   Vec d;
   solver_->solve(-R, d);
   f_.times.solve += seconds_since(t0);
+  if (!f_.walls.frames().empty())  // back from the inclined walls' frames
+    for (Index i = 0; i < np; ++i)
+      if (f_.walls.rotated(i)) {
+        const Vec2 dl(d[3 * i], d[3 * i + 1]);
+        d.segment<2>(3 * i) = dl[0] * f_.walls.direction(i, 0) + dl[1] * f_.walls.direction(i, 1);
+      }
   prev_dx_ = last_dx_;
   last_dx_ = last_dp_ = 0;
   for (Index i = 0; i < np; ++i) {

@@ -38,6 +38,12 @@ class RemeshPipeline {
   void set_domain(const Vec2& wall_lo, const Vec2& wall_hi, const std::vector<Vec2>& pts);
   /// The domain box holds `points` too (a structure's boundary, add_ghosts).
   void extend_domain(const std::vector<Vec2>& points);
+  /// Moving walls: their box now (lo, hi), which the domain box follows with the structures' margin (set before
+  /// each remesh_step).
+  void follow_walls(const Vec2& lo, const Vec2& hi) {
+    walls_lo_ = lo;
+    walls_hi_ = hi;
+  }
 
   /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
   /// detections.
@@ -121,6 +127,7 @@ class RemeshPipeline {
   const Ghosts& ghosts_;
   Settings s_;
   Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
+  Vec2 walls_lo_ = Vec2::Constant(1.0), walls_hi_ = Vec2::Constant(-1.0);    // moving walls' box (follow_walls)
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
   std::vector<Index> renumber_;                        // the last drop_particles: old index -> new index, -1 if dropped
   std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's

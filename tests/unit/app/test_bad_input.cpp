@@ -384,7 +384,8 @@ TEST(BadInput, FluidProbeOutsideTheFluid) {
 
 TEST(BadInput, FluidWallModelConstraints) {
   // "wall_model": "constraints" (particles on the walls constrained) needs PFEM mode, the advected or
-  // level-set detection, and horizontal or vertical wall segments.
+  // level-set detection, and with inclined wall segments the monolithic scheme (the fractional step
+  // constrains x and y).
   json j = fluid_case();
   j["bodies"][0]["wall_model"] = "constraints";
   j["bodies"][0]["domain_detection"] = "advected";
@@ -400,9 +401,12 @@ TEST(BadInput, FluidWallModelConstraints) {
   expect_one_line(o, "/bodies/0/wall_model", "PFEM mode");
   j["bodies"][0].erase("remesh");
   j["bodies"][0]["walls"][0]["points"] = {{0, 0.3}, {0, 0}, {0.4, 0.05}, {0.4, 0.3}};
-  o = run_json("wall_constraints_inclined", j);
+  j["bodies"][0]["scheme"] = {{"type", "monolithic_pspg"}};
+  EXPECT_EQ(run_json("wall_constraints_inclined", j).code, 0);
+  j["bodies"][0]["scheme"] = {{"type", "fractional_step"}};
+  o = run_json("wall_constraints_inclined_fractional", j);
   EXPECT_EQ(o.code, 2);
-  expect_one_line(o, "/bodies/0/walls/0/points", "segment 1 is inclined");
+  expect_one_line(o, "/bodies/0/walls", "inclined segments");
   j = fluid_case();
   j["bodies"][0]["wall_model"] = "glue";
   o = run_json("wall_model_unknown", j);

@@ -307,7 +307,9 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     const int walls = (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid) +
                       (kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid) +
                       (kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid);
-    if (!(cr > 0)) {
+    // Flat to round-off (three particles on one inclined wall, collinear up to the last bits of their
+    // coordinates): never fluid, and not a separation either (it would be counted as one at each step).
+    if (!(cr > 1e-12 * std::max({lab2, lac2, lbc2}))) {
       ++removed_alpha;
       continue;
     }

@@ -20,9 +20,11 @@ t, A = p["time"], p["fluid_area"]
 # The still water of the same area: a triangle of depth d, A = d^2 (the initial one is 0.04 / (1 - eps^2)).
 d = math.sqrt(A[0])
 T = 2 * math.pi * math.sqrt(d / g)
-# Energies: potential of the still triangle, -rho g int y dA = rho g (2/3) d^3; the wave's energy is the rest.
+# Energies: potential of the still triangle of the area at that time, -rho g int y dA = rho g (2/3) A^(3/2); the
+# wave's energy is the rest (against the initial area instead, an area change of 1e-5 would read as 5 % of it).
 def wave(i):
-    return p["kinetic_energy"][i] + p["potential_energy"][i] - rho * g * 2.0 / 3.0 * d ** 3 + p["viscous_dissipation"][i]
+    return (p["kinetic_energy"][i] + p["potential_energy"][i] - rho * g * 2.0 / 3.0 * A[i] ** 1.5 +
+            p["viscous_dissipation"][i])
 e0 = wave(0)
 periods = int(t[-1] / T + 1e-6)
 end = min(range(len(t)), key=lambda i: abs(t[i] - periods * T))

@@ -340,7 +340,7 @@ void FluidModel::build_particles(Params b) {
     mesh_.tri.clear();
     for (size_t e = 0; e + 2 < fixed_conn.size(); e += 3)
       mesh_.tri.push_back({fixed_conn[e], fixed_conn[e + 1], fixed_conn[e + 2]});
-    walls_.constrain_fixed_mesh(b, pts, h);
+    walls_.constrain_fixed_mesh(b, pts, h, scheme_->wall_frames());
   }
 }
 

@@ -119,26 +119,42 @@ void FluidWalls::set_fluid_sides(const std::vector<Vec2>& pts, const std::vector
   }
 }
 
-void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h) {
-  // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them.
+void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h, bool frames) {
+  // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them (a node on an
+  // inclined slip segment in the segment's frame, as find_contacts does).
   const Index np = static_cast<Index>(pts.size());
+  std::vector<Skew> skew;
   for (size_t wi = 0; wi < walls_.size(); ++wi) {
     const Wall& w = walls_[wi];
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
       const Vec2 a = w.polyline[s], d = w.polyline[s + 1] - a;
       const bool horizontal = std::abs(d.y()) < 1e-12 * d.norm(), vertical = std::abs(d.x()) < 1e-12 * d.norm();
-      if (w.slip && !horizontal && !vertical)
-        body.fail("walls", "slip walls must be horizontal or vertical segments in this version");
+      const bool inclined_slip = w.slip && !horizontal && !vertical;
+      if (inclined_slip && !frames)
+        body.fail("walls",
+                  "inclined slip walls need the monolithic scheme (the fractional step constrains the x and "
+                  "y components)");
+      Vec2 nrm = Vec2(-d.y(), d.x()).normalized();
+      const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
+      if (sided) nrm *= w.fluid_side[s];
       const Vec2 off = w.offset(0.0);
       for (Index i = 0; i < np; ++i) {
         const double t = std::clamp((pts[i] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
         if ((pts[i] - (a + t * d)).norm() > 1e-6 * h) continue;
         const int wall = static_cast<int>(wi);
+        if (inclined_slip) {
+          skew.push_back({i, nrm, nrm.dot(pts[i] - off), wall, sided ? 1 : 0});
+          continue;
+        }
         if (!w.slip || horizontal) constraints_.push_back({i, 1, pts[i].y() - off.y(), wall});
         if (!w.slip || vertical) constraints_.push_back({i, 0, pts[i].x() - off.x(), wall});
       }
     }
   }
+  if (skew.empty()) return;
+  Vec x(2 * np);
+  for (Index i = 0; i < np; ++i) x.segment<2>(2 * i) = pts[static_cast<size_t>(i)];
+  add_skew_contacts(skew, x, 0.0);
 }
 
 void FluidWalls::set_wall_motion(double t, Vec& v, Vec& a) const {

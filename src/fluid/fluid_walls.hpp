@@ -151,8 +151,9 @@ class FluidWalls {
   /// The fluid side of each wall segment from the initial particles (`pts`, of kinds `kind`).
   void set_fluid_sides(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind);
   /// Fixed-connectivity mode: the particles (at `pts`) on a wall are constrained (both components, or the
-  /// normal one on a slip wall); `body` names the errors.
-  void constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h);
+  /// normal one on a slip wall: in the wall's frame on an inclined one, which needs a scheme that solves in
+  /// `frames`); `body` names the errors.
+  void constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h, bool frames);
   /// The constrained components of fluid particles on walls: fixed connectivity's (constrain_fixed_mesh), or
   /// the step's contacts ("wall_model": "constraints", find_contacts).
   const std::vector<WallConstraint>& constraints() const { return constraints_; }

@@ -407,6 +407,16 @@ TEST(BadInput, FluidWallModelConstraints) {
   o = run_json("wall_constraints_inclined_fractional", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/walls", "inclined segments");
+  // A fixed mesh's inclined slip walls: the same.
+  j["bodies"][0].erase("wall_model");
+  j["bodies"][0].erase("domain_detection");
+  j["bodies"][0]["remesh"] = false;
+  j["bodies"][0]["walls"][0]["slip"] = true;
+  o = run_json("fixed_mesh_inclined_slip_fractional", j);
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/walls", "inclined slip walls");
+  j["bodies"][0]["scheme"] = {{"type", "monolithic_pspg"}};
+  EXPECT_EQ(run_json("fixed_mesh_inclined_slip", j).code, 0);
   j = fluid_case();
   j["bodies"][0]["wall_model"] = "glue";
   o = run_json("wall_model_unknown", j);

@@ -50,17 +50,22 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
     }
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + nnz, 0.0);
 
+  // Scatter: column dpn n + c holds, for each neighbour of node n in order, its dpn rows; so the entry of row
+  // dpn m + d is at outer[dpn n + c] + dpn k + d, k the place of m among n's neighbours (one search per node
+  // pair, not per dof pair).
   scatter_.resize(static_cast<size_t>(ne_) * m_ * m_);
   const int* op = pattern_.outerIndexPtr();
-  const int* ip = pattern_.innerIndexPtr();
   for (Index e = 0; e < ne_; ++e) {
     const Index* c = conn.data() + static_cast<size_t>(e) * npe;
     int* sc = scatter_.data() + static_cast<size_t>(e) * m_ * m_;
-    for (int j = 0; j < m_; ++j) {
-      const int gj = dpn * c[j / dpn] + j % dpn;
-      for (int i = 0; i < m_; ++i) {
-        const int gi = dpn * c[i / dpn] + i % dpn;
-        sc[j * m_ + i] = static_cast<int>(std::lower_bound(ip + op[gj], ip + op[gj + 1], gi) - ip);
+    for (int a = 0; a < npe; ++a) {
+      const Index* row = adj.data() + start[c[a]];
+      for (int b = 0; b < npe; ++b) {
+        const int k = static_cast<int>(std::lower_bound(row, row + count[c[a]], c[b]) - row);
+        for (int cj = 0; cj < dpn; ++cj) {
+          const int base = op[dpn * c[a] + cj] + dpn * k;
+          for (int ci = 0; ci < dpn; ++ci) sc[(a * dpn + cj) * m_ + b * dpn + ci] = base + ci;
+        }
       }
     }
   }

@@ -41,21 +41,32 @@ std::vector<char> FluidMesh::beside_interior_fluid(const std::vector<ParticleKin
 }
 
 std::vector<std::pair<Index, int>> FluidMesh::boundary_edges() const {
+  // The edges bucketed by their smaller particle (a counting sort), each bucket (a few edges) sorted by the
+  // larger one: an edge found once is on the boundary. In the order of (smaller, larger) particle.
   const Index ne = num_elements();
-  std::vector<std::array<Index, 3>> edges;  // (smaller particle, larger particle, 3 e + k)
-  edges.reserve(3 * static_cast<size_t>(ne));
+  Index np = 0;
+  for (const auto& t : tri) np = std::max({np, t[0] + 1, t[1] + 1, t[2] + 1});
+  std::vector<int> start(static_cast<size_t>(np) + 1, 0);
+  for (const auto& t : tri)
+    for (int k = 0; k < 3; ++k) ++start[static_cast<size_t>(std::min(t[k], t[(k + 1) % 3])) + 1];
+  for (Index i = 0; i < np; ++i) start[i + 1] += start[i];
+  std::vector<std::pair<Index, Index>> edges(3 * static_cast<size_t>(ne));  // (larger particle, 3 e + k)
+  std::vector<int> fill(start.begin(), start.end() - 1);
   for (Index e = 0; e < ne; ++e)
     for (int k = 0; k < 3; ++k) {
       const Index i = tri[e][k], j = tri[e][(k + 1) % 3];
-      edges.push_back({std::min(i, j), std::max(i, j), 3 * e + k});
+      edges[static_cast<size_t>(fill[std::min(i, j)]++)] = {std::max(i, j), 3 * e + k};
     }
-  std::sort(edges.begin(), edges.end());
   std::vector<std::pair<Index, int>> boundary;
-  for (size_t q = 0; q < edges.size();) {
-    size_t r = q + 1;
-    while (r < edges.size() && edges[r][0] == edges[q][0] && edges[r][1] == edges[q][1]) ++r;
-    if (r == q + 1) boundary.emplace_back(edges[q][2] / 3, static_cast<int>(edges[q][2] % 3));
-    q = r;
+  for (Index i = 0; i < np; ++i) {
+    const auto first = edges.begin() + start[i], last = edges.begin() + start[i + 1];
+    std::sort(first, last);
+    for (auto q = first; q != last;) {
+      auto r = q + 1;
+      while (r != last && r->first == q->first) ++r;
+      if (r == q + 1) boundary.emplace_back(q->second / 3, static_cast<int>(q->second % 3));
+      q = r;
+    }
   }
   return boundary;
 }

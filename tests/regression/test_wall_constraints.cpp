@@ -18,8 +18,8 @@
 //    end of a floor where an obstacle's ghost stands goes to the ghost (before, the next remesh stopped on a
 //    duplicate point at 0.213 s);
 //  - inclined walls (each particle on one solved in the wall's frame): water at rest in a tank with 45-degree
-//    slip sides stays at rest (measured: largest speed 1e-18 m/s over 1 s), a wave sloshing in it keeps its
-//    energy (measured 0.9967 of it after 2 s, its water to 4e-7), and a block sliding down a 30-degree slip
+//    slip sides stays at rest (measured: largest speed 2e-14 m/s over 1 s), a wave sloshing in it keeps its
+//    energy (measured 0.9966 of it after 2 s, its area to 3e-7), and a block sliding down a 30-degree slip
 //    slope moves as the same block on a floor under gravity turned by 30 degrees (kinetic energy within 0.2 %
 //    at 0.1 s), and so does a viscous one on a no-slip slope, sliding against its Navier friction or held;
 //  - a step retried after a remesh that failed once its particle management had changed the cloud keeps the

@@ -134,9 +134,8 @@ void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2
         body.fail("walls",
                   "inclined slip walls need the monolithic scheme (the fractional step constrains the x and "
                   "y components)");
-      Vec2 nrm = Vec2(-d.y(), d.x()).normalized();
+      const Vec2 nrm = w.fluid_normal(s);
       const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
-      if (sided) nrm *= w.fluid_side[s];
       const Vec2 off = w.offset(0.0);
       for (Index i = 0; i < np; ++i) {
         const double t = std::clamp((pts[i] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
@@ -196,10 +195,8 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
       const Vec2 a = w.polyline[s] + off, b = w.polyline[s + 1] + off;
       if (!axis_aligned(b - a)) {
-        const Vec2 e = b - a;
-        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        const Vec2 e = b - a, nrm = w.fluid_normal(s);
         const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
-        if (sided) nrm *= w.fluid_side[s];
         const double len = e.norm();
         for (Index i = 0; i < np; ++i) {
           if (kind[i] != ParticleKind::Fluid) continue;
@@ -350,15 +347,13 @@ void FluidWalls::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double 
       for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
         const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
         const Vec2 p0 = x_start.segment<2>(2 * i), p1 = x.segment<2>(2 * i);
-        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        Vec2 nrm = w.fluid_normal(k);
         // Within the segment's span, or (beyond it) within half a spacing past one of its ends: a particle
         // leaving through a corner is past both segments' ends (it lands on the end, the corner).
         const double u = (p1 - a).dot(e) / e.squaredNorm(), slack = 1e-6 * h / e.norm(), reach = 0.5 * h / e.norm();
         if (!(u >= -reach && u <= 1 + reach)) continue;
         const bool in_span = u >= -slack && u <= 1 + slack;
-        if (w.fluid_side[k] != 0) {
-          nrm *= w.fluid_side[k];
-        } else if (nrm.dot(p0 - a) < 0) {
+        if (w.fluid_side[k] == 0 && nrm.dot(p0 - a) < 0) {
           nrm = -nrm;  // a wall with fluid on both sides: towards the side the particle came from
         }
         const double d1 = nrm.dot(p1 - a), d0 = nrm.dot(p0 - a);
@@ -415,10 +410,9 @@ void FluidWalls::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, 
       const Vec2 off = w.offset(t);
       for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
         const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
-        Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
+        Vec2 nrm = w.fluid_normal(k);
         double u;  // where the particle goes back, along the segment
         if (w.fluid_side[k] != 0) {
-          nrm *= w.fluid_side[k];
           u = (p1 - a).dot(e) / e.squaredNorm();
           // Past an end of the segment by less than tol, at a corner whose other segment the particle is
           // beyond as well (the outer quadrant of a tank's corner): a film sliding along the floor a little

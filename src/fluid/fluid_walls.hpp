@@ -72,6 +72,12 @@ struct Wall {
     const double d = 1e-6;
     return (offset(t + d) - offset(t - d)) / (2 * d);
   }
+  /// The unit normal of segment k, towards its fluid side when it has one (perp(b - a) otherwise).
+  Vec2 fluid_normal(size_t k) const {
+    const Vec2 e = polyline[k + 1] - polyline[k];
+    const Vec2 n = Vec2(-e.y(), e.x()).normalized();
+    return k < fluid_side.size() && fluid_side[k] != 0 ? Vec2(fluid_side[k] * n) : n;
+  }
   /// Whether p lies strictly beyond the line of segment k, on the side away from its fluid (false for a
   /// segment with fluid on both sides or none); `off` is the wall's offset at the time.
   bool beyond_line(size_t k, const Vec2& p, const Vec2& off) const {
@@ -182,6 +188,13 @@ class FluidWalls {
   const std::vector<Vec2>& frames() const { return frames_; }
   bool rotated(Index i) const {
     return i < static_cast<Index>(frames_.size()) && (frames_[static_cast<size_t>(i)].array() != 0.0).any();
+  }
+  /// Particle i's frame as the columns of a rotation, [n t] (the identity off inclined walls): its components
+  /// u_l = Q^T u, and u = Q u_l.
+  Mat2 frame(Index i) const {
+    Mat2 q;
+    q << direction(i, 0), direction(i, 1);
+    return q;
   }
   /// The unit vector of component c (0, 1) of particle i in its frame: n, t on an inclined wall, else x, y.
   Vec2 direction(Index i, int c) const {

@@ -154,8 +154,7 @@ IterationReport PspgScheme::iterate() {
     if (!f_.walls.frames().empty())
       for (int a = 0; a < 3; ++a)
         if (f_.walls.rotated(t[a])) {
-          Mat2 Q;
-          Q << f_.walls.direction(t[a], 0), f_.walls.direction(t[a], 1);
+          const Mat2 Q = f_.walls.frame(t[a]);
           r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
           K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
           K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
@@ -274,10 +273,7 @@ IterationReport PspgScheme::iterate() {
   f_.times.solve += seconds_since(t0);
   if (!f_.walls.frames().empty())  // back from the inclined walls' frames
     for (Index i = 0; i < np; ++i)
-      if (f_.walls.rotated(i)) {
-        const Vec2 dl(d[3 * i], d[3 * i + 1]);
-        d.segment<2>(3 * i) = dl[0] * f_.walls.direction(i, 0) + dl[1] * f_.walls.direction(i, 1);
-      }
+      if (f_.walls.rotated(i)) d.segment<2>(3 * i) = (f_.walls.frame(i) * d.segment<2>(3 * i)).eval();
   prev_dx_ = last_dx_;
   last_dx_ = last_dp_ = 0;
   for (Index i = 0; i < np; ++i) {

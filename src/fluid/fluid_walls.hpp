@@ -20,7 +20,7 @@
 ///    normal constraint slide freely, as in a fixed mesh;
 ///  - fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
 ///
-/// No-slip walls as constraints, "wall_friction": "navier" (monolithic scheme; "held" by default): holding the
+/// No-slip walls as constraints, "wall_friction": "navier" ("held" by default): holding the
 /// tangential component of every fluid particle on the wall holds a layer of fluid one spacing thick (h) in
 /// place, where the real boundary layer is far thinner (sqrt(nu t) = 0.45 mm for water after 0.2 s, against
 /// h = 2.9 mm in cases/dam_break_floor): the column's water stays on the wall (its height error at the wall
@@ -30,7 +30,8 @@
 /// ("slip_length" s, 0.5 by default: the particle's velocity is taken as the fluid's at half a spacing from
 /// the wall, a modelling choice); over the particle's share of the wall, h, the force on it is
 ///   F_t = -(mu / s) (v_t - v_wall,t),
-/// independent of h. Its dissipation (mu / s) |v_t - v_wall,t|^2 joins the viscous dissipation.
+/// independent of h. Its dissipation (mu / s) |v_t - v_wall,t|^2 joins the viscous dissipation. The
+/// monolithic scheme adds it to its momentum rows, the fractional step to its viscous predictor (implicitly).
 #include <lagfsi/fluid/particle_cloud.hpp>
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"

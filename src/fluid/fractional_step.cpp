@@ -6,7 +6,8 @@
 //  1. predictor   m_a (u*_a - u^n_a) / dt = m_a g + sum_e A_e pbar^n_e grad N_a - sum_e mu A_e (L + L^T) grad N_a
 //                 with the viscous term at u^n (explicit) or its Laplacian part at u* (implicit: one symmetric
 //                 positive definite scalar system for both components); wall particles take the wall's
-//                 velocity.
+//                 velocity; a particle sliding on a no-slip wall ("wall_friction": "navier") feels
+//                 -k (u*_t - v_wall,t) (fluid_walls.hpp), implicitly in both variants.
 //  2. pressure    (dt / rho) L dp + C dp = - sum_e (A_e / 3)(div u*_e + c_vol),   dp = p^{n+1} - p^n,
 //                 L_ab = sum_e A_e grad N_a . grad N_b (the Laplacian replaces D M^-1 G: the stabilization
 //                 of equal-order interpolation, Codina 2001), C = diag((A/3) / (K dt)) the slight
@@ -180,6 +181,16 @@ IterationReport FractionalStep::iterate() {
     vfixed[2 * k.i + k.c] = 1;
     ustar[2 * k.i + k.c] = f_.walls.constraint_velocity(k, f_.step.t_new);
   }
+  // No-slip walls with "navier" friction (fluid_walls.hpp): the force -k (u*_t - v_wall,t) on the free
+  // tangential component of a particle on one, taken at u* (implicit: unconditionally stable). The walls
+  // are horizontal or vertical here (FluidScheme::wall_frames), so the component is x or y.
+  Vec friction = Vec::Zero(2 * np), friction_force = Vec::Zero(2 * np);  // k, k v_wall,t per component
+  for (const WallFriction& w : f_.walls.frictions()) {
+    const Index dof = 2 * w.i + w.c;
+    if (vfixed[dof]) continue;
+    friction[dof] = f_.walls.friction_coefficient();
+    friction_force[dof] = friction[dof] * f_.walls.friction_velocity(w, f_.step.t_new);
+  }
   // Ghost particles: the mean velocity of the structure's boundary over the step, (x_new{n+1} - x_n)/dt. The
   // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
   // step's mesh motion consistent with the boundary's; the structure's own v_{n+1} (trapezoidal rule)
@@ -214,14 +225,20 @@ IterationReport FractionalStep::iterate() {
   f_.times.assembly += seconds_since(t0);
 
   if (!implicit) {
-    for (Index k = 0; k < 2 * np; ++k)
-      if (!vfixed[k]) ustar[k] = v[k] + dt * force[k] / mass[k / 2];
+    for (Index k = 0; k < 2 * np; ++k) {
+      if (vfixed[k]) continue;
+      const double m = mass[k / 2];
+      ustar[k] = friction[k] == 0 ? v[k] + dt * force[k] / m
+                                  : (m * v[k] / dt + force[k] + friction_force[k]) / (m / dt + friction[k]);
+    }
   } else {
     // Per component c: (M / dt + K) u*_c = M u^n_c / dt + f_c, K_ab = sum_e mu A grad N_a . grad N_b, the
-    // prescribed components eliminated (symmetric positive definite). Both components share the matrix
-    // unless a fixed mesh constrains one component only (slip walls), then each gets its own.
+    // prescribed components eliminated (symmetric positive definite), the wall friction k on the diagonal
+    // of its component. Both components share the matrix unless a wall constrains one component only
+    // (slip walls, a fixed mesh's or the constraints') or a friction acts on one, then each gets its own.
     bool same = true;
-    for (Index i = 0; i < np && same; ++i) same = vfixed[2 * i] == vfixed[2 * i + 1];
+    for (Index i = 0; i < np && same; ++i)
+      same = vfixed[2 * i] == vfixed[2 * i + 1] && friction[2 * i] == friction[2 * i + 1];
     for (int c = 0; c < 2; ++c) {
       // The matrix depends on the step's mesh only: a re-solve of the step (a coupling pass) reuses it.
       if ((c == 0 && !step_factorized_) || !same) {
@@ -237,7 +254,8 @@ IterationReport FractionalStep::iterate() {
         }
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
         constrain(
-            viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; }, [&](Index i) { return mass[i] / dt; });
+            viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; },
+            [&](Index i) { return mass[i] / dt + friction[2 * i + c]; });
         f_.times.assembly += seconds_since(t0);
         factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
@@ -247,7 +265,9 @@ IterationReport FractionalStep::iterate() {
         if (vfixed[2 * i + c]) known[i] = ustar[2 * i + c];
       const Vec moved = viscous_stiffness_ * known;
       for (Index i = 0; i < np; ++i)
-        rhs[i] = vfixed[2 * i + c] ? ustar[2 * i + c] : mass[i] * v[2 * i + c] / dt + force[2 * i + c] - moved[i];
+        rhs[i] = vfixed[2 * i + c]
+                     ? ustar[2 * i + c]
+                     : mass[i] * v[2 * i + c] / dt + force[2 * i + c] + friction_force[2 * i + c] - moved[i];
       Vec u;
       viscous_solver_->solve(rhs, u);
       for (Index i = 0; i < np; ++i)

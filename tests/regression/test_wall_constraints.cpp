@@ -12,7 +12,8 @@
 //    blob's top at 0.311 and 0.306 m after 0.2 s, free fall 0.304 m; held, it would stay at 0.5 m);
 //  - a block of viscous fluid sliding on a no-slip floor: with "wall_friction": "navier" the
 //    particles on the floor slide against the friction (mu / s)(v_t - v_wall,t), whose dissipation the energy
-//    balance counts; held ("held"), a layer one spacing thick stops, and the block loses more of its energy;
+//    balance counts; held ("held"), a layer one spacing thick stops, and the block loses more of its energy
+//    (each scheme: the fractional step's friction acts in its viscous predictor, explicit or implicit);
 //  - beside a structure (FSI, ghost particles): water pressed against a plate that bends 23 mm away stays in
 //    the domain (the box follows the structure; it lost 6e-6 m² by 0.2 s before), and a particle put on the
 //    end of a floor where an obstacle's ghost stands goes to the ghost (before, the next remesh stopped on a
@@ -136,7 +137,8 @@ TEST(WallConstraints, WaterUnderACeilingFalls) {
   }
 }
 
-std::string block_on_floor(const std::string& friction, bool slip) {
+/// `scheme`: the body's "scheme" object ("" the default, the monolithic scheme).
+std::string block_on_floor(const std::string& friction, bool slip, const std::string& scheme = "") {
   return R"({
     "name": "block_on_floor",
     "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 0.1},
@@ -148,7 +150,8 @@ std::string block_on_floor(const std::string& friction, bool slip) {
       "regions": [{"type": "rectangle", "origin": [0.1, 0], "size": [0.2, 0.05]}],
       "walls": [{"name": "floor", "points": [[0, 0], [1, 0]], "slip": )" +
          (slip ? "true" : "false") + R"(}],
-      "initial_velocity": [1.0, 0.0],
+      "initial_velocity": [1.0, 0.0],)" +
+         (scheme.empty() ? std::string() : R"("scheme": )" + scheme + ",") + R"(
       "initial_pressure": {"type": "hydrostatic", "level": 0.05}
     }],
     "probes": [{"name": "ke", "type": "kinetic_energy", "body": "water"},
@@ -162,9 +165,10 @@ TEST(WallConstraints, NoSlipWallsSlideAgainstTheirNavierFriction) {
   struct Outcome {
     double ke_lost, dissipated, balance;
   };
-  const auto run = [](const std::string& friction, bool slip) {
-    const std::string tag = "wall_constraints_block_" + friction + (slip ? "_slip" : "");
-    const RunResult r = run_case_text(fresh_dir(tag), block_on_floor(friction, slip));
+  const auto run = [](const std::string& friction, bool slip, const std::string& scheme = "",
+                      const std::string& scheme_tag = "") {
+    const std::string tag = "wall_constraints_block_" + friction + (slip ? "_slip" : "") + scheme_tag;
+    const RunResult r = run_case_text(fresh_dir(tag), block_on_floor(friction, slip, scheme));
     EXPECT_EQ(r.exit_code, 0) << tag << ": " << r.stderr_text;
     if (r.exit_code != 0) return Outcome{0, 0, 1e300};
     const auto s = summary_of(r);
@@ -193,6 +197,21 @@ TEST(WallConstraints, NoSlipWallsSlideAgainstTheirNavierFriction) {
   EXPECT_LT(slip.balance, 0.01);
   // Held, the floor layer stops at once: more is lost.
   EXPECT_GT(held.ke_lost, navier.ke_lost);
+
+  // The fractional step: the friction in its viscous predictor, explicit and implicit. It slides as the
+  // monolithic scheme's block does (measured: kinetic energy lost 0.2231 and 0.2238 against 0.2213), and the
+  // balance holds to 2 % (measured 9e-3; on the slip floor 4e-3: the symplectic Euler's own error, and the
+  // friction acts on u* where the dissipation counts it at u^{n+1}). Held, the fractional step's block loses
+  // 0.295.
+  for (const auto& [scheme, tag] :
+       {std::pair<std::string, std::string>{R"({"type": "fractional_step", "viscous_step": "explicit"})", "_fs"},
+        {R"({"type": "fractional_step", "viscous_step": "implicit"})", "_fs_implicit"}}) {
+    const Outcome fs_navier = run("navier", false, scheme, tag), fs_held = run("held", false, scheme, tag);
+    EXPECT_GT(fs_navier.dissipated, 0.2) << tag;
+    EXPECT_NEAR(fs_navier.ke_lost, navier.ke_lost, 0.05) << tag;
+    EXPECT_LT(fs_navier.balance, 0.02) << tag;
+    EXPECT_GT(fs_held.ke_lost, fs_navier.ke_lost + 0.05) << tag;
+  }
 }
 
 TEST(WallConstraints, BesideAStructure) {

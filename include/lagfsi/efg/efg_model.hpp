@@ -78,11 +78,12 @@ class EfgModel final : public PhysicsModel {
   std::pair<double, double> energy_error() const;
 
  private:
-  // setup (efg_setup.cpp)
+  // input (efg_input.cpp)
   void read_discretization(Params b);
   void read_boundary_conditions(Params b);
   void read_loads(Params b);
   void read_control(Params b);
+  // setup (efg_setup.cpp)
   void build_integration_points();
   void build_pattern();
   /// Shape functions at natural coordinates (xi, eta) of cell c (coupled where the cell is a coupling element).

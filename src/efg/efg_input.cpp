@@ -1,0 +1,367 @@
+// EFG body input: background cells and nodes, MLS settings, materials and regions, essential conditions
+// (coupling, penalty, Lagrange), loads and the path-following control, read from /bodies/i of type "efg"
+// (the cached integration points and the matrix pattern: efg_setup.cpp). See include/lagfsi/efg/efg_model.hpp.
+#include <lagfsi/efg/efg_model.hpp>
+
+#include <lagfsi/error.hpp>
+
+#include <algorithm>
+#include <set>
+
+namespace lagfsi::efg {
+
+namespace {
+Vec2 box_corner(Params p, const std::string& key) { return p.vec2(key); }
+}  // namespace
+
+EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
+  b.validate({{"name", nullptr},
+              {"type", "efg"},
+              {"thickness", 1.0},
+              {"domain", nullptr},
+              {"material", nullptr},
+              {"regions", Json::array()},
+              {"efg", Json::object()},
+              {"essential", Json::object()},
+              {"exact", Json::object()},
+              {"boundary_conditions", Json::array()},
+              {"loads", Json::array()},
+              {"operator", "tangent"},
+              {"control", Json::object()}});
+  name_ = b.identifier("name");
+  thickness_ = b.positive("thickness");
+  if (ctx.analysis.type != "static")
+    b.at("type").fail("an efg body needs a static analysis (analysis.type = \"static\")");
+  material_ = make_material(b.at("material"));
+  Params regions = b.at("regions");
+  for (size_t i = 0; i < regions.size(); ++i) {
+    Params r = regions.at(i);
+    r.validate({{"min", nullptr}, {"max", nullptr}, {"material", nullptr}});
+    region_boxes_.push_back({box_corner(r, "min"), box_corner(r, "max")});
+    region_materials_.push_back(make_material(r.at("material")));
+  }
+  operator_ = b.choice("operator", {"tangent", "secant"}) == "tangent" ? Operator::tangent : Operator::secant;
+  Params ex = b.at("exact");
+  ex.validate({{"type", "none"},
+               {"P", 0.0},
+               {"L", 0.0},
+               {"D", 0.0},
+               {"sigma0", 0.0},
+               {"radius", 0.0},
+               {"ux", Json::array({0, 0, 0, 0, 0, 0})},
+               {"uy", Json::array({0, 0, 0, 0, 0, 0})}});
+  exact_.type = ex.choice("type", {"none", "timoshenko", "kirsch", "polynomial"});
+  if (exact_.type == "polynomial")
+    for (const char* k : {"ux", "uy"}) {
+      const auto c = ex.numbers(k);
+      if (c.size() != 6) ex.fail(k, "expected 6 coefficients (of 1, x, y, x^2, xy, y^2)");
+      for (int i = 0; i < 6; ++i) (k[1] == 'x' ? exact_.cx : exact_.cy)[i] = c[i];
+    }
+  exact_.E = material_->young();
+  exact_.nu = material_->poisson();
+  if (material_->plane_strain()) {  // the formulas are plane stress: E -> E/(1-nu^2), nu -> nu/(1-nu)
+    exact_.E = exact_.E / (1 - exact_.nu * exact_.nu);
+    exact_.nu = exact_.nu / (1 - exact_.nu);
+  }
+  if (exact_.type == "timoshenko") {
+    exact_.P = ex.number("P");
+    exact_.L = ex.positive("L");
+    exact_.D = ex.positive("D");
+  } else if (exact_.type == "kirsch") {
+    exact_.sigma0 = ex.number("sigma0");
+    exact_.a = ex.positive("radius");
+  }
+  read_discretization(b);
+  read_boundary_conditions(b);
+  build_integration_points();
+  read_loads(b);
+  read_control(b);
+  build_pattern();
+  const std::string ls = ctx.analysis.linear_solver;
+  solver_ = make_linear_solver(ls);
+  const bool unsym = (operator_ == Operator::tangent && !material_->linear()) || (material_->type() == "smeared_crack");
+  if (solver_->symmetric_only() && (essential_ == "lagrange" || unsym))
+    b.at(essential_ == "lagrange" ? "essential" : "operator")
+        .fail(std::string(essential_ == "lagrange" ? "Lagrange multipliers give an indefinite system"
+                                                   : "this operator is unsymmetric") +
+              ": set analysis.linear_solver.type to umfpack or klu");
+}
+
+void EfgModel::read_discretization(Params b) {
+  Params d = b.at("domain");
+  if (!d.json().is_object() || !d.has("type")) d.fail("type", "required key is missing");
+  const std::string t = d.choice("type", {"rectangle", "plate_with_hole"});
+  try {
+    if (t == "rectangle") {
+      d.validate({{"type", t},
+                  {"origin", Json::array({0.0, 0.0})},
+                  {"size", nullptr},
+                  {"divisions", nullptr},
+                  {"holes", Json::array()},
+                  {"cells", "q4"}});
+      const int order = d.choice("cells", {"q4", "q9"}) == "q9" ? 2 : 1;
+      const Vec2 size = d.vec2("size");
+      if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
+      const auto div = d.numbers("divisions");
+      if (div.size() != 2 || div[0] < 1 || div[1] < 1 || div[0] != std::floor(div[0]) || div[1] != std::floor(div[1]))
+        d.fail("divisions", "expected [nx, ny], positive integers");
+      std::vector<std::array<Vec2, 2>> holes;
+      Params h = d.at("holes");
+      for (size_t i = 0; i < h.size(); ++i) {
+        Params hi = h.at(i);
+        hi.validate({{"min", nullptr}, {"max", nullptr}});
+        holes.push_back({hi.vec2("min"), hi.vec2("max")});
+      }
+      mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes, order);
+    } else {
+      d.validate({{"type", t}, {"radius", nullptr}, {"size", nullptr}, {"divisions", nullptr}, {"grading", 1.0}});
+      const auto div = d.numbers("divisions");
+      if (div.size() != 2 || div[0] < 1 || div[1] < 1) d.fail("divisions", "expected [n_arc, n_radial] (each >= 1)");
+      mesh_ = plate_with_hole(d.positive("radius"), d.positive("size"), static_cast<int>(div[0]),
+                              static_cast<int>(div[1]), d.positive("grading"));
+    }
+  } catch (const std::invalid_argument& e) {
+    d.fail(e.what());
+  }
+  Params e = b.at("efg");
+  e.validate({{"basis", "bilinear"},
+              {"weight", "cubic_spline"},
+              {"domain", "rectangular"},
+              {"alpha", 2.0},
+              {"gauss", 5},
+              {"integration", "gauss"},
+              {"rcond_min", 1e-12},
+              {"protected_segments", Json::array()}});
+  consistent_ = e.choice("integration", {"gauss", "consistent"}) == "consistent";
+  Basis basis;
+  basis.type = Basis::parse(e.choice("basis", Basis::names()));
+  InfluenceDomain dom;
+  dom.weight.type = Weight::parse(e.choice("weight", Weight::names()));
+  dom.shape =
+      e.choice("domain", {"rectangular", "circular"}) == "circular" ? DomainShape::circular : DomainShape::rectangular;
+  const double alpha = e.positive("alpha");
+  gauss_ = e.integer("gauss", 1);
+  if (gauss_ > 12) e.fail("gauss", "at most 12 points per direction");
+  mls_ = MlsShape(basis, dom, e.positive("rcond_min"));
+  Params segs = e.at("protected_segments");
+  for (size_t i = 0; i < segs.size(); ++i) {
+    Params s = segs.at(i);
+    s.validate({{"from", nullptr}, {"to", nullptr}});
+    vis_.segments.push_back({s.vec2("from"), s.vec2("to")});
+  }
+  // rho_j = alpha h_j, h_j the largest node spacing (width / height of the cells, halved for Q9 cells) at node j.
+  const Index nn = mesh_.num_nodes();
+  std::vector<Vec2> h(nn, Vec2::Zero());
+  const int npc = mesh_.nodes_per_cell();
+  for (Index c = 0; c < mesh_.num_cells(); ++c) {
+    Vec2 lo = mesh_.nodes[mesh_.cells[c][0]], hi = lo;
+    for (Index n : mesh_.cells[c]) {
+      lo = lo.cwiseMin(mesh_.nodes[n]);
+      hi = hi.cwiseMax(mesh_.nodes[n]);
+    }
+    const Vec2 spacing = (hi - lo) / (mesh_.quadratic() ? 2.0 : 1.0);
+    for (int a = 0; a < npc; ++a) h[mesh_.cell_node(c, a)] = h[mesh_.cell_node(c, a)].cwiseMax(spacing);
+  }
+  rho_.resize(nn);
+  for (Index i = 0; i < nn; ++i) {
+    rho_[i] = alpha * h[i];
+    if (dom.shape == DomainShape::circular) rho_[i] = Vec2::Constant(alpha * h[i].maxCoeff());
+    rho_max_ = std::max(rho_max_, rho_[i].maxCoeff());
+  }
+  search_ = NodeSearch(mesh_.nodes, rho_max_);
+  cell_material_.assign(mesh_.num_cells(), -1);
+  for (Index c = 0; c < mesh_.num_cells(); ++c) {
+    Vec2 ctr = Vec2::Zero();
+    for (Index n : mesh_.cells[c]) ctr += 0.25 * mesh_.nodes[n];
+    for (size_t r = 0; r < region_boxes_.size(); ++r)
+      if ((ctr.array() > region_boxes_[r][0].array()).all() && (ctr.array() < region_boxes_[r][1].array()).all())
+        cell_material_[c] = static_cast<int>(r);
+  }
+}
+
+void EfgModel::read_boundary_conditions(Params b) {
+  Params es = b.at("essential");
+  es.validate({{"method", "coupling"}, {"penalty", 1e4}, {"fe_nodes", Json::array()}});
+  essential_ = es.choice("method", {"coupling", "penalty", "lagrange"});
+  penalty_ = es.positive("penalty") * material_->young();
+  const Index nn = mesh_.num_nodes();
+  active_.assign(nn, 0);
+  coupling_cell_.assign(mesh_.num_cells(), 0);
+  std::vector<double> value(2 * nn, 0.0);
+  std::vector<char> held(2 * nn, 0);
+  Params bcs = b.at("boundary_conditions");
+  for (size_t i = 0; i < bcs.size(); ++i) {
+    Params c = bcs.at(i);
+    if (!c.json().is_object() || !c.has("type")) c.fail("type", "required key is missing");
+    const std::string t = c.choice("type", {"fixed", "prescribed", "exact"});
+    c.validate({{"type", t}, {"select", nullptr}, {"components", "xy"}, {"value", Json::array({0.0, 0.0})}});
+    const std::string comps = c.choice("components", {"x", "y", "xy"});
+    if (t == "exact" && exact_.type != "timoshenko" && exact_.type != "polynomial")
+      c.fail("type", "\"exact\" displacements need exact.type = timoshenko or polynomial");
+    const Vec2 v = c.vec2("value");
+    for (Index n : select_nodes(c.at("select"), mesh_.nodes)) {
+      const Vec2 u = t == "exact" ? exact_.displacement(mesh_.nodes[n]) : (t == "prescribed" ? v : Vec2::Zero());
+      for (int k = 0; k < 2; ++k)
+        if (comps.find(k == 0 ? 'x' : 'y') != std::string::npos) {
+          held[2 * n + k] = 1;
+          value[2 * n + k] = u[k];
+        }
+      active_[n] = 1;
+    }
+  }
+  for (Index d = 0; d < 2 * nn; ++d)
+    if (held[d]) {
+      fixed_dofs_.push_back(d);
+      fixed_ref_.push_back(value[d]);
+    }
+  // Active FE nodes that hold nothing (a node selection each; {"type": "all"}: the FE mesh everywhere).
+  Params fe = es.at("fe_nodes");
+  if (!fe.json().is_array()) es.fail("fe_nodes", "expected an array of node selections");
+  if (fe.size() > 0 && essential_ != "coupling") es.fail("fe_nodes", "active FE nodes need method = \"coupling\"");
+  for (size_t i = 0; i < fe.size(); ++i)
+    for (Index n : select_nodes(fe.at(i), mesh_.nodes)) active_[n] = 1;
+  if (essential_ == "coupling") {
+    for (Index c = 0; c < mesh_.num_cells(); ++c)
+      for (int a = 0; a < mesh_.nodes_per_cell(); ++a)
+        if (active_[mesh_.cell_node(c, a)]) coupling_cell_[c] = 1;
+  } else {
+    std::fill(active_.begin(), active_.end(), 0);
+  }
+}
+
+void EfgModel::read_loads(Params b) {
+  const Index nn = mesh_.num_nodes();
+  ndof_ = 2 * nn;
+  // Collocation constraints (penalty, Lagrange).
+  if (essential_ != "coupling") {
+    for (size_t i = 0; i < fixed_dofs_.size(); ++i) {
+      const Index n = fixed_dofs_[i] / 2;
+      Constraint c{n, static_cast<int>(fixed_dofs_[i] % 2), fixed_ref_[i], {}};
+      for (const auto& [j, v] : node_eval_[n]) {
+        c.sh.nodes.push_back(j);
+        c.sh.N.push_back(v);
+      }
+      constraints_.push_back(std::move(c));
+    }
+  }
+  nsys_ = ndof_ + (essential_ == "lagrange" ? static_cast<Index>(constraints_.size()) : 0);
+  P_ = Vec::Zero(nsys_);
+  const auto edges = boundary_cell_edges(mesh_);
+  std::vector<double> gx, gw;
+  gauss_legendre(std::max(2, gauss_), gx, gw);
+  Params loads = b.at("loads");
+  ShapeValues sh;
+  for (size_t i = 0; i < loads.size(); ++i) {
+    Params l = loads.at(i);
+    if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
+    const std::string t = l.choice("type", {"traction", "exact_traction", "exact_body_force"});
+    if (t == "exact_body_force") {
+      l.validate({{"type", t}});
+      if (!exact_.available()) l.fail("type", "exact_body_force needs an exact solution (exact.type)");
+      for (const auto& gp : gps_) {
+        const Vec2 bf = exact_.body_force(gp.x);
+        for (Index k = 0; k < gp.n; ++k) {
+          const Index j = gp.begin + k;
+          P_[2 * gnode_[j]] += gN_[j] * bf.x() * gp.w;
+          P_[2 * gnode_[j] + 1] += gN_[j] * bf.y() * gp.w;
+        }
+      }
+      continue;
+    }
+    l.validate({{"type", t}, {"select", nullptr}, {"value", Json::array({0.0, 0.0})}, {"profile", "uniform"}});
+    // (the edge rule is the one of the consistent-integration correction: interior edges cancel, boundary ones match)
+    if (t == "exact_traction" && !exact_.available())
+      l.fail("type", "exact_traction needs an exact solution (exact.type)");
+    const std::string profile = l.choice("profile", {"uniform", "parabolic", "triangular"});
+    const Vec2 value = l.vec2("value");
+    Params sel = l.at("select");
+    const auto nodes = select_nodes(sel, mesh_.nodes);
+    Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+    if (profile != "uniform") {
+      if (sel.string("type") != "segment") l.fail("profile", "a non-uniform profile needs a segment selection");
+      from = sel.vec2("from");
+      to = sel.vec2("to");
+    }
+    const std::set<Index> in(nodes.begin(), nodes.end());
+    int used = 0;
+    for (const auto& e : edges) {
+      const Index c = e[0];
+      const int k = e[1];
+      const Index a = mesh_.cells[c][k], bnode = mesh_.cells[c][(k + 1) % 4];
+      if (!in.count(a) || !in.count(bnode)) continue;
+      ++used;
+      // Natural coordinates along the edge k: corners (-1,-1), (1,-1), (1,1), (-1,1).
+      static const double cxi[4] = {-1, 1, 1, -1}, ceta[4] = {-1, -1, 1, 1};
+      const Vec2 pa = mesh_.nodes[a], pb = mesh_.nodes[bnode];
+      const Vec2 normal = Vec2((pb - pa).y(), -(pb - pa).x()).normalized();
+      const double half = 0.5 * (pb - pa).norm();
+      for (size_t q = 0; q < gx.size(); ++q) {
+        const double s = 0.5 * (1 + gx[q]);
+        const double xi = cxi[k] + s * (cxi[(k + 1) % 4] - cxi[k]), eta = ceta[k] + s * (ceta[(k + 1) % 4] - ceta[k]);
+        const Vec2 x = pa + s * (pb - pa);
+        Vec2 tr;
+        if (t == "exact_traction") {
+          const Vec3 sg = exact_.stress(x);
+          tr = Vec2(sg[0] * normal.x() + sg[2] * normal.y(), sg[2] * normal.x() + sg[1] * normal.y());
+        } else {
+          double f = 1;
+          if (profile != "uniform") {
+            const Vec2 d = to - from;
+            const double r = std::clamp((x - from).dot(d) / d.squaredNorm(), 0.0, 1.0);
+            f = profile == "parabolic" ? 6 * r * (1 - r) : 2 * r;
+          }
+          tr = f * value;
+        }
+        shape_at(c, xi, eta, sh, false);
+        const double w = gw[q] * half * thickness_;
+        for (size_t m = 0; m < sh.nodes.size(); ++m) {
+          P_[2 * sh.nodes[m]] += sh.N[m] * tr.x() * w;
+          P_[2 * sh.nodes[m] + 1] += sh.N[m] * tr.y() * w;
+        }
+      }
+    }
+    if (used == 0) sel.fail("the selection contains no boundary edge of the background cells");
+  }
+  Ptr_ = P_;
+  // Prescribed values of the collocation constraints, times lambda like the loads.
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const auto& c = constraints_[k];
+    if (essential_ == "lagrange") {
+      P_[ndof_ + static_cast<Index>(k)] = c.value;
+    } else {
+      for (size_t a = 0; a < c.sh.nodes.size(); ++a) P_[2 * c.sh.nodes[a] + c.comp] += penalty_ * c.sh.N[a] * c.value;
+    }
+  }
+}
+
+void EfgModel::read_control(Params b) {
+  Params c = b.at("control");
+  c.validate({{"type", "load"},
+              {"form", "V"},
+              {"increment", 0.0},
+              {"at", Json::array({0.0, 0.0})},
+              {"component", "y"},
+              {"complex_roots", "real_part"}});
+  const ControlType t =
+      PathFollowing::parse(c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
+  control_u_form_ = c.choice("form", {"U", "V"}) == "U";
+  double inc = c.number("increment");
+  if (inc == 0.0) {
+    if (t != ControlType::load)
+      c.fail("increment", "required for this control (initial load factor or displacement increment)");
+    inc = ctx_.analysis.dt;  // load control by default follows the driver's load factor (time)
+  }
+  if (t == ControlType::displacement) {
+    Json sel = {{"type", "point"}, {"at", c.json()["at"]}};
+    Params sp(sel, c.file(), c.path());
+    const Index n = select_nodes(sp, mesh_.nodes).front();
+    control_dof_ = 2 * n + (c.choice("component", {"x", "y"}) == "x" ? 0 : 1);
+    if (std::find(fixed_dofs_.begin(), fixed_dofs_.end(), control_dof_) != fixed_dofs_.end())
+      c.fail("at", "the controlled dof is held by a boundary condition");
+  }
+  const ComplexRoots cr =
+      PathFollowing::parse_complex_roots(c.choice("complex_roots", {"real_part", "normal_plane", "cut_back"}));
+  control_ = PathFollowing(t, inc, control_dof_, cr);
+}
+
+}  // namespace lagfsi::efg

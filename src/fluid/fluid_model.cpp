@@ -43,16 +43,17 @@ void FluidModel::initialize() {
   const auto t0 = Clock::now();
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
+  const auto along_wall = [this](const Vec2& p) { return walls_.on_a_segment(p); };
   if (c_.remesh) {
     remesh_.initial_mesh();
     if (walls_.constraint_model()) {  // the particles on the walls: constrained, and not free surface
       walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h);
-      remesh_.mark_free_surface(walls_.on_wall(np));
+      remesh_.mark_free_surface(walls_.on_wall(np), along_wall);
       walls_.free_contact_line(mesh_.free);
     }
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
-    remesh_.mark_free_surface(walls_.on_wall(np));
+    remesh_.mark_free_surface(walls_.on_wall(np), along_wall);
   }
   remesh_.free_regions();  // only the initial domain needs them
   volume_.start(mesh_.area(cloud_.x()));
@@ -136,7 +137,7 @@ void FluidModel::predict(double t_new, double dt) {
   }
   if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface
     walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
-    remesh_.mark_free_surface(walls_.on_wall(cloud_.n()));
+    remesh_.mark_free_surface(walls_.on_wall(cloud_.n()), [this](const Vec2& p) { return walls_.on_a_segment(p); });
     walls_.free_contact_line(mesh_.free);
   }
   step_meshed_ = true;

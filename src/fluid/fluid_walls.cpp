@@ -123,6 +123,8 @@ void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2
   // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them (a node on an
   // inclined slip segment in the segment's frame, as find_contacts does).
   const Index np = static_cast<Index>(pts.size());
+  contact_t_ = 0;
+  contact_tol_ = 1e-6 * h;
   std::vector<Skew> skew;
   for (size_t wi = 0; wi < walls_.size(); ++wi) {
     const Wall& w = walls_[wi];
@@ -187,6 +189,8 @@ void FluidWalls::find_contacts(const Vec& x, const std::vector<ParticleKind>& ki
   frictions_.clear();
   frames_.clear();
   const double tol = 1e-6 * h;
+  contact_t_ = t;
+  contact_tol_ = tol;
   const Index np = static_cast<Index>(kind.size());
   std::vector<Skew> skew;
   for (size_t wi = 0; wi < walls_.size(); ++wi) {
@@ -321,6 +325,18 @@ long FluidWalls::release_pulled(ParticleCloud& cloud, const Vec& force, const Ve
   }
   wall_releases_ += released;
   return released;
+}
+
+bool FluidWalls::on_a_segment(const Vec2& p) const {
+  for (const Wall& w : walls_) {
+    const Vec2 off = w.offset(contact_t_);
+    for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
+      const Vec2 a = w.polyline[s] + off, e = w.polyline[s + 1] - w.polyline[s];
+      const double u = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+      if ((a + u * e - p).norm() <= contact_tol_) return true;
+    }
+  }
+  return false;
 }
 
 std::vector<char> FluidWalls::on_wall(Index n) const {

@@ -172,9 +172,14 @@ class FluidWalls {
   /// line moves (held, it would pin the water's edge where it first touched).
   void free_contact_line(const std::vector<std::uint8_t>& free);
   /// Per particle (n of them): how many of its components are constrained (0, 1 or 2; free-surface marking:
-  /// an unshared edge between two particles on walls is a wall, not a free surface; particle management: a
-  /// particle on a wall keeps its place when merged).
+  /// an unshared edge between two particles on walls is a wall, not a free surface, where it runs along one,
+  /// on_a_segment; particle management: a particle on a wall keeps its place when merged).
   std::vector<char> on_wall(Index n) const;
+  /// Whether p lies on a wall segment (within 1e-6 h, at the time of the last find_contacts or
+  /// constrain_fixed_mesh): free-surface marking asks it of the midpoint of an unshared edge between two
+  /// particles on walls, which is a wall only if it runs along one. One from a floor particle to a side
+  /// wall's particle (the long side of a corner's triangle) is a free surface.
+  bool on_a_segment(const Vec2& p) const;
   /// The prescribed position and velocity of a constrained component at time t.
   double constraint_position(const WallConstraint& k, double t) const {
     return k.base + along(walls_[static_cast<size_t>(k.wall)].offset(t), k.i, k.c);
@@ -275,6 +280,7 @@ class FluidWalls {
   bool navier_ = false;                      // "wall_friction": "navier"
   double friction_k_ = 0;                    // mu / slip_length
   bool constraint_model_ = false;            // PFEM mode with "wall_model": "constraints"
+  double contact_t_ = 0, contact_tol_ = 0;   // the time and tolerance of the last contacts (on_a_segment)
   long wall_crossings_ = 0;                  // fluid particles put back inside a wall (keep_inside_walls)
   long wall_snaps_ = 0;                      // fluid particles put on a wall from its fluid side
   long wall_releases_ = 0;                   // fluid particles let go by a wall pulling them

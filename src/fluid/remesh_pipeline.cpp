@@ -192,15 +192,18 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
   }
 }
 
-void RemeshPipeline::mark_free_surface(const std::vector<char>& on_wall) {
+void RemeshPipeline::mark_free_surface(const std::vector<char>& on_wall,
+                                       const std::function<bool(const Vec2&)>& along_wall) {
   const Index np = cloud_.n();
   mesh_.connected.assign(np, 0);
   for (const auto& t : mesh_.tri)
     for (Index i : t) mesh_.connected[i] = 1;
   mesh_.free.assign(np, 0);
+  const Vec& x = cloud_.x();
   for (const auto& [e, k] : mesh_.boundary_edges()) {
     const Index a = mesh_.tri[e][k], b = mesh_.tri[e][(k + 1) % 3];
-    if (on_wall[a] && on_wall[b]) continue;
+    if (on_wall[a] && on_wall[b] && (!along_wall || along_wall(0.5 * (x.segment<2>(2 * a) + x.segment<2>(2 * b)))))
+      continue;
     for (Index i : {a, b})
       if (cloud_.kind(i) == ParticleKind::Fluid) mesh_.free[i] = 1;
   }

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -69,8 +70,11 @@ class RemeshPipeline {
   /// the free-surface flags of what is left.
   void remesh_now(const meshing::PreviousDomain* previous = nullptr);
   /// free and connected of the mesh from its elements: particles of edges used by one element, unless both
-  /// ends are on a wall (`on_wall`); only Fluid particles are free surface.
-  void mark_free_surface(const std::vector<char>& on_wall);
+  /// ends are on a wall (`on_wall`) and, when `along_wall` is given, the edge's midpoint lies on one
+  /// (FluidWalls::on_a_segment: not the long side of a corner's triangle); only Fluid particles are free
+  /// surface.
+  void mark_free_surface(const std::vector<char>& on_wall,
+                         const std::function<bool(const Vec2&)>& along_wall = nullptr);
   /// Removes fluid particles closer than close_fraction * h to another particle; true when some were.
   bool remove_close_particles();
   /// Inserts particles at the centroids of the oversized elements; true when some were.

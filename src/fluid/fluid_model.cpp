@@ -14,6 +14,14 @@
 namespace lagfsi {
 namespace fluid {
 
+namespace {
+/// The free-surface flags with walls that constrain the fluid particles on them (the constraints, or a fixed
+/// mesh): an unshared edge between two particles on walls is a wall where it runs along one.
+void mark_free_surface(RemeshPipeline& remesh, const FluidWalls& walls, Index n) {
+  remesh.mark_free_surface(walls.on_wall(n), [&walls](const Vec2& p) { return walls.on_a_segment(p); });
+}
+}  // namespace
+
 void FluidModel::set_dirichlet() {
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
@@ -43,17 +51,16 @@ void FluidModel::initialize() {
   const auto t0 = Clock::now();
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
-  const auto along_wall = [this](const Vec2& p) { return walls_.on_a_segment(p); };
   if (c_.remesh) {
     remesh_.initial_mesh();
     if (walls_.constraint_model()) {  // the particles on the walls: constrained, and not free surface
       walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h);
-      remesh_.mark_free_surface(walls_.on_wall(np), along_wall);
+      mark_free_surface(remesh_, walls_, np);
       walls_.free_contact_line(mesh_.free);
     }
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
-    remesh_.mark_free_surface(walls_.on_wall(np), along_wall);
+    mark_free_surface(remesh_, walls_, np);
   }
   remesh_.free_regions();  // only the initial domain needs them
   volume_.start(mesh_.area(cloud_.x()));
@@ -137,7 +144,7 @@ void FluidModel::predict(double t_new, double dt) {
   }
   if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface
     walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
-    remesh_.mark_free_surface(walls_.on_wall(cloud_.n()), [this](const Vec2& p) { return walls_.on_a_segment(p); });
+    mark_free_surface(remesh_, walls_, cloud_.n());
     walls_.free_contact_line(mesh_.free);
   }
   step_meshed_ = true;

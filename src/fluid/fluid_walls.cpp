@@ -140,8 +140,7 @@ void FluidWalls::constrain_fixed_mesh(const Params& body, const std::vector<Vec2
       const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
       const Vec2 off = w.offset(0.0);
       for (Index i = 0; i < np; ++i) {
-        const double t = std::clamp((pts[i] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        if ((pts[i] - (a + t * d)).norm() > 1e-6 * h) continue;
+        if (w.distance(s, pts[i], Vec2::Zero()) > 1e-6 * h) continue;
         const int wall = static_cast<int>(wi);
         if (inclined_slip) {
           skew.push_back({i, nrm, nrm.dot(pts[i] - off), wall, sided ? 1 : 0});
@@ -330,11 +329,8 @@ long FluidWalls::release_pulled(ParticleCloud& cloud, const Vec& force, const Ve
 bool FluidWalls::on_a_segment(const Vec2& p) const {
   for (const Wall& w : walls_) {
     const Vec2 off = w.offset(contact_t_);
-    for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
-      const Vec2 a = w.polyline[s] + off, e = w.polyline[s + 1] - w.polyline[s];
-      const double u = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-      if ((a + u * e - p).norm() <= contact_tol_) return true;
-    }
+    for (size_t s = 0; s + 1 < w.polyline.size(); ++s)
+      if (w.distance(s, p, off) <= contact_tol_) return true;
   }
   return false;
 }

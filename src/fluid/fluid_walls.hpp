@@ -40,6 +40,7 @@
 #include <lagfsi/params.hpp>
 #include <lagfsi/time_function.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -78,6 +79,12 @@ struct Wall {
     const Vec2 e = polyline[k + 1] - polyline[k];
     const Vec2 n = Vec2(-e.y(), e.x()).normalized();
     return k < fluid_side.size() && fluid_side[k] != 0 ? Vec2(fluid_side[k] * n) : n;
+  }
+  /// The distance from p to segment k, the wall offset by `off`.
+  double distance(size_t k, const Vec2& p, const Vec2& off) const {
+    const Vec2 a = polyline[k] + off, e = polyline[k + 1] - polyline[k];
+    const double u = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    return (p - (a + u * e)).norm();
   }
   /// Whether p lies strictly beyond the line of segment k, on the side away from its fluid (false for a
   /// segment with fluid on both sides or none); `off` is the wall's offset at the time.

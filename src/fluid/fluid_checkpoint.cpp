@@ -37,13 +37,15 @@ void RemeshPipeline::serialize(StateArchive& ar) {
   ar.section("remesh");
   ar.io(domain_lo_, domain_hi_, remesh_dA_, remesh_dKE_, remesh_area_added_, remesh_area_removed_, remesh_ke_total_,
         remesh_pe_total_);
-  ar.io(merged_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_, area_excess_);
+  ar.io(merged_, merged_meeting_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_,
+        area_excess_);
 }
 
 void VolumeCorrection::serialize(StateArchive& ar) {
   ar.section("volume");
   ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_, change_in_steps_);
-  ar.io(in_flight_, water_drift_max_);  // the step's starting shares: set_remeshed, at the next step
+  // The step's starting shares are not kept: set_remeshed makes them, at the next step.
+  ar.io(in_flight_, water_drift_max_, returned_through_bulk_);
 }
 
 void FluidEnergy::serialize(StateArchive& ar) {

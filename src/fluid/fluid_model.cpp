@@ -154,6 +154,7 @@ void FluidModel::predict(double t_new, double dt) {
   mesh_.flatten();
   set_dirichlet();
   volume_.hand_owed_inward(step_.fixed);
+  volume_.return_unpayable_through_bulk(step_.fixed);
   volume_.set_remeshed(mesh_.area(cloud_.x()));
   // A new mesh: new matrices (the scheme's patterns; its integrator starts the step).
   scheme_->begin_step();

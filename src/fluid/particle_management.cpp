@@ -17,7 +17,8 @@
 //       mass-weighted velocity, acceleration and pressure (masses: the lumped areas sum_e A_e / 3, so
 //       momentum is kept); inside the fluid it sits at the pair's centre of mass, on the free surface at
 //       the position that keeps the area of the boundary polygon p-a-b-q (p, q the neighbours of the pair
-//       along the boundary), and a pair with one surface particle keeps the surface particle's position;
+//       along the boundary), and a pair with one surface particle keeps the surface particle's position; a
+//       close pair that the advected mesh does not connect (two surfaces that meet) is merged too;
 //     - a free-surface edge longer than split_edge_factor h gets a particle at its midpoint, and an element
 //       larger than insert_area_factor h^2 one at its centroid, with the P1 interpolation of the state;
 //       both lie on or inside the advected domain, which they therefore do not change.
@@ -189,6 +190,23 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
       }
     for (const auto& [i, j] : meshing::close_fluid_pairs(pts, cloud_.kind(), cloud_.h(), mesh_.tri, s_.close_fraction))
       if (!touched[i] && !touched[j]) merge(i, j);
+    // Two surfaces that meet (a film landing on the pool, two jets crossing, two drops): a pair closer than
+    // close_fraction h that the previous mesh does not connect. Its edges do not see the pair; the new
+    // triangulation joins it by a sliver whose particles pass each other within the step (dam_break_obstacle:
+    // two film particles 0.03 h apart at 3 m/s against each other, a sliver turned over at every step down to
+    // dt/16). Merged too, as the alpha detection merges close pairs on the new mesh.
+    const double r_meet = s_.close_fraction * c_.h;
+    PointGrid untouched(r_meet);
+    for (Index i = 0; i < np; ++i) {
+      if (cloud_.kind(i) != ParticleKind::Fluid || touched[i]) continue;
+      const Index j = untouched.find(pts[i], r_meet, pts);
+      if (j >= 0 && !touched[j]) {
+        merge(j, i);
+        ++merged_meeting_;
+      } else {
+        untouched.add(pts[i], i);
+      }
+    }
   }
 
   // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:

@@ -338,6 +338,7 @@ Json RemeshPipeline::summary() const {
           {"kinetic_energy_change", remesh_ke_total_},
           {"potential_energy_change", remesh_pe_total_},
           {"particles_merged", merged_},
+          {"pairs_merged_meeting", merged_meeting_},
           {"edges_split", split_},
           {"particles_inserted", inserted_},
           {"particles_removed_at_walls", wall_removed_},

@@ -139,7 +139,8 @@ class RemeshPipeline {
   // Remeshing's effect per step (log.csv) and over the run (summary.json).
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
-  long merged_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0, wall_removed_ = 0, kept_edges_ = 0;
+  long merged_ = 0, merged_meeting_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0,
+       wall_removed_ = 0, kept_edges_ = 0;
   double area_excess_ = 0;  // area of the elements added outside the advected domain, less those torn off
 };
 

@@ -59,6 +59,11 @@ class VolumeCorrection {
   /// with "dirichlet", the fractional step's) has no continuity row to return its area: it hands what it is
   /// owed to the particles with one that share an element with it (equal shares per element), once a step.
   void hand_owed_inward(const std::vector<char>& fixed);
+  /// "particle": a particle with a continuity row owed less than minus its share of the area (asked to give
+  /// more than its elements have: a film's or a jet's tip) keeps a debt of its share; the rest goes to the
+  /// particles inside the water in proportion to their shares (summary.json "returned_through_bulk"). Once a
+  /// step, after hand_owed_inward.
+  void return_unpayable_through_bulk(const std::vector<char>& fixed);
   /// "particle": the local source of particle i's continuity row, the rate at which its share of the area
   /// must grow, owed_i / T (T = "volume_relaxation_time"); 0 otherwise.
   double owed_rate(Index i) const { return type_ == Type::particle ? cloud_.owed()[i] / relax_time_ : 0.0; }
@@ -89,10 +94,11 @@ class VolumeCorrection {
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
   double correction_energy_ = 0;
-  double change_in_steps_ = 0;       // the sum over the steps of their area change after remeshing
-  std::vector<double> nodal_start_;  // "particle": the particles' shares of the area at the step's start
-  double in_flight_ = 0;             // "particle": the area owed to particles in no element (water_area)
-  double water_drift_max_ = 0;       // "particle": the largest |water + left - initial| / initial of the steps
+  double change_in_steps_ = 0;        // the sum over the steps of their area change after remeshing
+  std::vector<double> nodal_start_;   // "particle": the particles' shares of the area at the step's start
+  double in_flight_ = 0;              // "particle": the area owed to particles in no element (water_area)
+  double returned_through_bulk_ = 0;  // "particle": return_unpayable_through_bulk, added up
+  double water_drift_max_ = 0;        // "particle": the largest |water + left - initial| / initial of the steps
 };
 
 }  // namespace lagfsi::fluid

@@ -3,7 +3,8 @@
 // remesh changes is owed to the group of changed particles where it changed (owe_remesh_change), so that a
 // re-triangulation of the same points (an edge flip), which moves area between neighbours, owes nothing, and the
 // area of a gap the remesh closes is owed back by the particles around it. The area is conserved exactly:
-// mesh + owed is the same before and after.
+// mesh + owed is the same before and after. A particle asked to give more than its share keeps a debt of its
+// share and the bulk takes the rest (return_unpayable_through_bulk).
 #include <gtest/gtest.h>
 
 #include "fluid_scene.hpp"
@@ -94,6 +95,25 @@ TEST(ParticleVolumes, AParticleAtPrescribedPressureHandsItsAreaInward) {
   EXPECT_NEAR(owed[2], 3e-7, 1e-20);
   EXPECT_NEAR(owed[3], 1.5e-7, 1e-20);
   EXPECT_EQ(owed[4], 2e-7);
+}
+
+TEST(ParticleVolumes, ADebtBeyondAParticlesShareIsReturnedThroughTheBulk) {
+  // A square of side 2h around an interior particle 4 (four elements; its share 4h^2/3, the corners' 2h^2/3).
+  // Corner 0 is owed -3 times its share: it could not give that without turning its elements over. It keeps a
+  // debt of its share; the rest goes to 4, the one particle inside. Corner 1, owed -0.5 share, keeps it.
+  Scene s({{0, 0}, {2 * kH, 0}, {2 * kH, 2 * kH}, {0, 2 * kH}, {kH, kH}});
+  s.mesh.tri = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  s.mesh.free = {1, 1, 1, 1, 0};
+  const std::vector<double> share = s.mesh.nodal_areas(s.cloud.x(), 5);
+  s.cloud.owed() << -3 * share[0], -0.5 * share[1], 0, 0, 1e-8;
+  const double owed_before = s.cloud.owed().sum();
+  s.volume.return_unpayable_through_bulk(std::vector<char>(15, 0));
+  const Vec& owed = s.cloud.owed();
+  EXPECT_NEAR(owed[0], -share[0], 1e-20);
+  EXPECT_EQ(owed[1], -0.5 * share[1]);
+  EXPECT_NEAR(owed[4], 1e-8 - 2 * share[0], 1e-20);
+  EXPECT_NEAR(owed.sum(), owed_before, 1e-20);
+  EXPECT_NEAR(s.volume.summary()["returned_through_bulk"].get<double>(), 2 * share[0], 1e-20);
 }
 
 }  // namespace

@@ -199,7 +199,9 @@ void VolumeCorrection::return_unpayable_through_bulk(const std::vector<char>& fi
   const Index np = cloud_.n();
   const std::vector<double> share = mesh_.nodal_areas(cloud_.x(), np);
   const auto row = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2]; };
-  const auto bulk = [&](Index i) { return row(i) && !mesh_.free[i] && share[i] > 0; };
+  const auto bulk = [&](Index i) {
+    return row(i) && share[i] > 0 && static_cast<size_t>(i) < mesh_.free.size() && !mesh_.free[i];
+  };
   double bulk_area = 0;
   for (Index i = 0; i < np; ++i)
     if (bulk(i)) bulk_area += share[i];

@@ -151,9 +151,9 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   // free surface takes from the surface particles. Measured on the dam break (advected, no-slip walls as
   // constraints): held, the area the remeshing adds outruns what the interior returns (the water +19 % by
   // 0.98 s, then it fails); with "navier" friction +15 % by 1 s, where without particle volumes it drifts
-  // 2-4 %. A Robin surface condition on the Poisson equation (the monolithic scheme's) was tried: its weak form
-  // is a porous wall, not a free surface, and it blew up unless close to p = 0 (robin_factor 10: the water
-  // within 1.0-2.5 %, but one run of six blew up at 1 s).
+  // 3-8 %. A Robin surface condition on the Poisson equation (the monolithic scheme's) was tried: its weak form
+  // is a porous wall, not a free surface, and it blew up unless close to p = 0 (robin_factor 3-30: the water
+  // within 1.0-2.7 % in seven runs of nine, two blew up near 1 s).
   if (vc == "particle" && !pspg)
     s.fail("volume_correction",
            "\"particle\" needs the monolithic scheme (with the fractional step it does not "

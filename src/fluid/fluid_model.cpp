@@ -153,9 +153,9 @@ void FluidModel::predict(double t_new, double dt) {
   solved_once_ = true;
   mesh_.flatten();
   set_dirichlet();
+  volume_.set_remeshed(mesh_.area(cloud_.x()));
   volume_.hand_owed_inward(step_.fixed);
   volume_.return_unpayable_through_bulk(step_.fixed);
-  volume_.set_remeshed(mesh_.area(cloud_.x()));
   // A new mesh: new matrices (the scheme's patterns; its integrator starts the step).
   scheme_->begin_step();
   step_.p_old = cloud_.p();

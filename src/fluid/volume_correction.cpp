@@ -197,7 +197,8 @@ void VolumeCorrection::return_unpayable_through_bulk(const std::vector<char>& fi
   // the particles inside the water (a continuity row, not on the free surface), in proportion to their
   // shares: still returned, by the bulk rather than where it was taken.
   const Index np = cloud_.n();
-  const std::vector<double> share = mesh_.nodal_areas(cloud_.x(), np);
+  if (nodal_start_.size() != static_cast<size_t>(np)) return;
+  const std::vector<double>& share = nodal_start_;  // the step's starting shares (set_remeshed)
   const auto row = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2]; };
   const auto bulk = [&](Index i) {
     return row(i) && share[i] > 0 && static_cast<size_t>(i) < mesh_.free.size() && !mesh_.free[i];

@@ -62,7 +62,7 @@ class VolumeCorrection {
   /// "particle": a particle with a continuity row owed less than minus its share of the area (asked to give
   /// more than its elements have: a film's or a jet's tip) keeps a debt of its share; the rest goes to the
   /// particles inside the water in proportion to their shares (summary.json "returned_through_bulk"). Once a
-  /// step, after hand_owed_inward.
+  /// step, after set_remeshed (whose shares it uses) and hand_owed_inward.
   void return_unpayable_through_bulk(const std::vector<char>& fixed);
   /// "particle": the local source of particle i's continuity row, the rate at which its share of the area
   /// must grow, owed_i / T (T = "volume_relaxation_time"); 0 otherwise.

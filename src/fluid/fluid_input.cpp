@@ -11,25 +11,66 @@
 
 namespace lagfsi::fluid {
 
+namespace {
+
+// The defaults that depend on other keys (README, "the fluid's keys"). With the monolithic scheme and remeshing
+// they are the conservative package of issue #16: the previous domain advected with the particles decides which
+// new triangles are fluid, rigid walls are constraints on the fluid particles on them, sliding against their
+// Navier friction, the free-surface pressure is held weakly (Robin) and each particle keeps its own area
+// (measured in cases/dam_break_tank, cases/dam_break_obstacle, cases/sloshing_free and the FSI cases). The
+// fractional step has no particle volumes (below), and a fixed mesh does not remesh: they, and a case that
+// chooses "alpha", keep the classic PFEM defaults: the alpha shape, wall particles, p = 0 on the free surface
+// and the surface correction. The peek reads a key only when it has the right type; the validation below
+// reports any other value.
+struct FluidDefaults {
+  std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
+  double contact_gap = 0.0, volume_relaxation_time = 0.1;
+};
+
+std::string peek(const Json& o, const char* key, const std::string& fallback) {
+  return o.is_object() && o.contains(key) && o.at(key).is_string() ? o.at(key).get<std::string>() : fallback;
+}
+
+FluidDefaults fluid_defaults(const Json& body) {
+  const bool remesh =
+      !(body.is_object() && body.contains("remesh") && body.at("remesh").is_boolean()) || body.at("remesh").get<bool>();
+  const Json scheme = body.is_object() && body.contains("scheme") ? body.at("scheme") : Json::object();
+  const bool conservative = remesh && peek(scheme, "type", "monolithic_pspg") == "monolithic_pspg";
+  FluidDefaults d;
+  d.detection = conservative ? "advected" : "alpha";
+  const std::string detection = peek(body, "domain_detection", d.detection);
+  const bool alpha = detection == "alpha";
+  // 0.3 for "advected", where it keeps the splash's landings from adding area (cases/studies/conservation).
+  d.contact_gap = detection == "advected" ? 0.3 : 0.0;
+  d.wall_model = conservative && !alpha ? "constraints" : "particles";
+  d.wall_friction = conservative && peek(body, "wall_model", d.wall_model) == "constraints" ? "navier" : "held";
+  d.free_surface_pressure = conservative && !alpha ? "robin" : "dirichlet";
+  // The alpha shape changes the area at every remesh and needs the surface correction; the advected and
+  // level-set detections keep it where the topology does not change, and particle volumes return the rest.
+  d.volume_correction = alpha ? "surface" : conservative ? "particle" : "none";
+  // The "particle" correction returns each particle's area over a few steps; the global "source" over 0.1 s.
+  d.volume_relaxation_time = peek(scheme, "volume_correction", d.volume_correction) == "particle" ? 0.02 : 0.1;
+  return d;
+}
+
+}  // namespace
+
 FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
-  // contact_gap's default depends on the detection (validated below): 0.3 for "advected", where it keeps the
-  // splash's landings from adding area (cases/studies/conservation), 0 (off) otherwise.
-  const bool advected =
-      b.json().is_object() && b.json().contains("domain_detection") && b.json().at("domain_detection") == "advected";
+  const FluidDefaults d = fluid_defaults(b.json());
   b.validate({{"name", nullptr},
               {"type", "fluid"},
               {"density", nullptr},
               {"viscosity", nullptr},
               {"spacing", nullptr},
               {"alpha", 1.2},
-              {"domain_detection", "alpha"},
+              {"domain_detection", d.detection},
               {"separation_alpha", 2.5},
               {"level_set_band", 0.25},
-              {"contact_gap", advected ? 0.3 : 0.0},
+              {"contact_gap", d.contact_gap},
               {"keep_edges_angle", 0.0},
-              {"wall_model", "particles"},
+              {"wall_model", d.wall_model},
               {"wall_snap_fraction", 0.1},
-              {"wall_friction", "held"},
+              {"wall_friction", d.wall_friction},
               {"slip_length", 0.5},
               {"domain_margin", 0.1},
               {"remesh", true},
@@ -90,15 +131,11 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
       s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   const bool pspg = scheme == "monolithic_pspg";
   if (navier) walls_.set_navier_friction(c_.mu, slip_length);
-  // The "particle" correction returns each particle's area over a few steps; the global "source" over 0.1 s.
-  const bool particle_volumes = s.has("volume_correction") && s.json()["volume_correction"] == "particle";
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.
   Json keys = {{"type", scheme},
-               // The alpha shape changes the area at every remesh and needs the surface correction; the
-               // advected and level-set detections keep it where the topology does not change.
-               {"volume_correction", rs.detection == meshing::DomainDetection::Alpha ? "surface" : "none"},
+               {"volume_correction", d.volume_correction},
                {"split_edge_factor", 1.6},
-               {"volume_relaxation_time", particle_volumes ? 0.02 : 0.1},
+               {"volume_relaxation_time", d.volume_relaxation_time},
                {"remove_close_fraction", 0.3},
                {"insert_area_factor", 1.0},
                {"bulk_modulus", 2.2e9},
@@ -106,7 +143,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (pspg) {
     keys.update(Json{{"tau", Json{{"type", "automatic"}}},
                      {"mass", "lumped"},
-                     {"free_surface_pressure", "dirichlet"},
+                     {"free_surface_pressure", d.free_surface_pressure},
                      {"robin_factor", 0.04},
                      {"tolerance", 1e-4},
                      {"refactorize_every", 0},

@@ -20,13 +20,13 @@
 ///    normal constraint slide freely, as in a fixed mesh;
 ///  - fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
 ///
-/// No-slip walls as constraints, "wall_friction": "navier" ("held" by default): holding the
-/// tangential component of every fluid particle on the wall holds a layer of fluid one spacing thick (h) in
-/// place, where the real boundary layer is far thinner (sqrt(nu t) = 0.45 mm for water after 0.2 s, against
-/// h = 2.9 mm in cases/dam_break_floor): the column's water stays on the wall (its height error at the wall
-/// was 0.13 of the column against 0.013 with wall particles and the alpha shape) and the dam break in a tank
-/// loses 10 % of its energy before the impact. Instead the particle slides with the Navier condition
-/// (Navier 1823): the wall's shear stress is mu (v_t - v_wall,t) / l, with the slip length l = s h
+/// No-slip walls as constraints, "wall_friction": "navier" (the monolithic scheme's default; "held" the fractional
+/// step's): holding the tangential component of every fluid particle on the wall holds a layer of fluid one spacing
+/// thick (h) in place, where the real boundary layer is far thinner (sqrt(nu t) = 0.45 mm for water after 0.2 s,
+/// against h = 2.9 mm in cases/dam_break_floor): the column's water stays on the wall (its height error at the wall was
+/// 0.13 of the column against 0.013 with wall particles and the alpha shape) and the dam break in a tank loses 10 % of
+/// its energy before the impact. Instead the particle slides with the Navier condition (Navier 1823): the wall's shear
+/// stress is mu (v_t - v_wall,t) / l, with the slip length l = s h
 /// ("slip_length" s, 0.5 by default: the particle's velocity is taken as the fluid's at half a spacing from
 /// the wall, a modelling choice); over the particle's share of the wall, h, the force on it is
 ///   F_t = -(mu / s) (v_t - v_wall,t),

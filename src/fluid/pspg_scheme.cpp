@@ -9,8 +9,9 @@
 // with P1 shape functions on the current (last iterate) configuration, Newmark (or generalized-alpha)
 // kinematics a(x), v(x) from the shared time integrators, and the tangent at frozen geometry
 // (d/dx of grad N and A neglected; Ryzhakov et al. 2010). c_vol is the optional global volume-correction
-// source ("volume_correction": "source", volume_correction.hpp); the default correction ("surface") is
-// geometric, see VolumeCorrection::restore_area.
+// source ("volume_correction": "source", volume_correction.hpp); the alpha shape's default correction ("surface")
+// is geometric, see VolumeCorrection::restore_area; the advected domain's default, "particle", a local source per
+// particle (volume_correction.hpp).
 #include "fluid_scheme.hpp"
 
 #include <lagfsi/assembly.hpp>

@@ -1,12 +1,13 @@
 #pragma once
 /// @file remesh_pipeline.hpp (private to src/fluid)
 /// The PFEM remeshing of a step (remesh_step): the fluid that left the domain box goes, then
-///  - "domain_detection": "alpha" (the default): the particles are remeshed (Delaunay + alpha shape,
-///    meshing/remesh.hpp, then the meniscus, flat and crossing filters), particles too close together are
-///    removed and particles are inserted in oversized elements (each followed by a remesh);
-///  - "advected" / "level_set" (conservative remeshing, particle_management.cpp): the last step's mesh at the
-///    particles' present positions is the predicate of the new domain (meshing/previous_domain.hpp); the
-///    particles are managed on it (merged, split, inserted) before one Delaunay triangulation;
+///  - "domain_detection": "alpha" (the fractional step's default): the particles are remeshed (Delaunay +
+///    alpha shape, meshing/remesh.hpp, then the meniscus, flat and crossing filters), particles too close
+///    together are removed and particles are inserted in oversized elements (each followed by a remesh);
+///  - "advected" (the monolithic scheme's default) / "level_set" (conservative remeshing,
+///    particle_management.cpp): the last step's mesh at the particles' present positions is the predicate of
+///    the new domain (meshing/previous_domain.hpp); the particles are managed on it (merged, split, inserted)
+///    before one Delaunay triangulation;
 /// what the remesh changed (area, kinetic energy) is measured, and the "surface" volume correction moves the
 /// free surface.
 #include <lagfsi/fluid/particle_cloud.hpp>

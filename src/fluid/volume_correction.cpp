@@ -98,7 +98,7 @@ void VolumeCorrection::set_remeshed(double area) {
   // that closes the area error of remeshing (alpha shape, inserted/removed particles) over the relaxation
   // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt;
   // then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
-  // elements): the default is the "surface" correction (restore_area) instead.
+  // elements): the alpha shape's default is the "surface" correction (restore_area) instead.
   c_vol_ = type_ == Type::source && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
   if (type_ == Type::particle) nodal_start_ = mesh_.nodal_areas(cloud_.x(), cloud_.n());
 }

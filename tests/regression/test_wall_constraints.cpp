@@ -67,7 +67,12 @@ TEST(WallConstraints, StandingWaveKeepsItsEnergy) {
   EXPECT_LT(drift, 1e-5);
 }
 
+/// A 5 x 5 particle blob thrown into a tank with slip walls as constraints. With the monolithic scheme it keeps
+/// the settings it was measured with, p = 0 on the free surface and no correction (the default package's particle
+/// volumes throw a drop of this unresolved splash out over the walls at 5 m/s, 0.4 % of the area).
 std::string blob_in_tank(const std::string& scheme) {
+  const std::string settings =
+      scheme == "monolithic_pspg" ? R"(, "free_surface_pressure": "dirichlet", "volume_correction": "none")" : "";
   return R"({
     "name": "blob_in_tank",
     "analysis": {"type": "dynamic", "dt": 2e-3, "end_time": 0.5},
@@ -79,7 +84,7 @@ std::string blob_in_tank(const std::string& scheme) {
       "walls": [{"points": [[0, 0.4], [0, 0], [0.3, 0], [0.3, 0.4]], "slip": true}],
       "initial_velocity": [1.0, 0.0],
       "scheme": {"type": ")" +
-         scheme + R"("}
+         scheme + "\"" + settings + R"(}
     }],
     "probes": [{"name": "area", "type": "fluid_area", "body": "water"}],
     "output": {"every": 50}

@@ -24,6 +24,7 @@ for scheme in SCHEMES:
     for alpha in ALPHAS:
         r = S.run("dam_break_tank/case.json", "%s_alpha%.1f" % (scheme, alpha),
                   {"analysis.end_time": END, "bodies.0.alpha": alpha, "bodies.0.scheme.type": scheme,
+                   "bodies.0.domain_detection": "alpha",
                    "output.every": 50}, timeout=900)
         row = {"scheme": scheme, "alpha": alpha, "exit_code": r.rc, "status": r.summary.get("status", "?"),
                "t_end": r.summary.get("time", float("nan")), "wall_time_s": r.solver_wall,

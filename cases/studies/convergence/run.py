@@ -114,7 +114,7 @@ for scheme, dt in (("monolithic_pspg", 2e-3), ("fractional_step", 5e-4)):
     for h in hydro_h:
         r = S.run("hydrostatic/case.json", "hydrostatic_%s_h%g" % (scheme, h),
                   dict(NOVTK, **{"analysis.end_time": 0.2, "analysis.dt": dt, "bodies.0.spacing": h,
-                                 "bodies.0.scheme.type": scheme}), timeout=900)
+                                 "bodies.0.scheme.type": scheme, "bodies.0.domain_detection": "alpha"}), timeout=900)
         q = {}
         if r.ok:
             p = r.probes()
@@ -134,7 +134,8 @@ def flexible(div, dt, scheme="fractional_step"):
     tag = "flexible_div%d_dt%g" % (div, dt) + ("" if scheme == "fractional_step" else "_" + scheme)
     r = S.run("flexible_tank/case.json", tag,
               dict(NOVTK, **{"analysis.end_time": flex_end, "analysis.dt": dt, "bodies.0.spacing": h,
-                             "bodies.1.mesh.divisions": [1, div], "bodies.0.scheme.type": scheme}),
+                             "bodies.1.mesh.divisions": [1, div], "bodies.0.scheme.type": scheme,
+                             "bodies.0.domain_detection": "alpha"}),
               timeout=900)
     q = {}
     if r.ok:

@@ -66,6 +66,7 @@ for scheme in SCHEMES:
             r = S.run("dam_break_tank/case.json", "tank_%s_L%d_dt%g" % (scheme, n, dt),
                       {"output.vtk": False, "analysis.end_time": END, "analysis.dt": dt,
                        "analysis.max_step_halvings": 0, "bodies.0.spacing": h, "bodies.0.scheme.type": scheme,
+                       "bodies.0.domain_detection": "alpha",
                        "probes": PROBES}, timeout=900)
             row = {"scheme": scheme, "h": h, "h_label": "L/%d" % n, "dt": dt, "courant": U * dt / h,
                    "exit_code": r.rc, "class": classify(r), "t_reached": r.summary.get("time", float("nan")),

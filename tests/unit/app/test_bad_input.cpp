@@ -461,7 +461,7 @@ TEST(BadInput, FluidParticleVolumesNeedTheAdvectedDomain) {
   j["bodies"][0]["domain_detection"] = "advected";
   j["bodies"][0]["scheme"] = {{"type", "monolithic_pspg"}, {"volume_correction", "particle"}};
   EXPECT_EQ(run_json("particle_volumes", j).code, 0);
-  j["bodies"][0].erase("domain_detection");
+  j["bodies"][0]["domain_detection"] = "alpha";
   Outcome o = run_json("particle_volumes_alpha", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/scheme/volume_correction", "needs \"domain_detection\"");

@@ -222,4 +222,48 @@ TEST(BadInputCase, IntegratorStability) {
   EXPECT_NE(s["warnings"][0].get<std::string>().find("conditionally stable"), std::string::npos);
 }
 
+TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
+  // `check` prints the case with every default filled in. With the monolithic scheme and remeshing the defaults
+  // are issue #16's conservative package; the fractional step, a fixed mesh and a chosen "alpha" keep the
+  // classic PFEM's (src/fluid/fluid_input.cpp).
+  struct Expected {
+    std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
+    double contact_gap, relaxation_time;
+  };
+  auto resolved = [](const std::string& tag, const json& body, const Expected& e) {
+    const Finished r = check(tag, case_of({body}));
+    ASSERT_EQ(r.code, 0) << tag << ": " << r.err;
+    const size_t start = r.out.find('{');
+    ASSERT_NE(start, std::string::npos) << r.out;
+    const json b = json::parse(r.out.substr(start))["bodies"][0];
+    EXPECT_EQ(b["domain_detection"], e.detection) << tag;
+    EXPECT_EQ(b["wall_model"], e.wall_model) << tag;
+    EXPECT_EQ(b["wall_friction"], e.wall_friction) << tag;
+    EXPECT_EQ(b["contact_gap"].get<double>(), e.contact_gap) << tag;
+    EXPECT_EQ(b["scheme"]["volume_correction"], e.volume_correction) << tag;
+    EXPECT_EQ(b["scheme"]["volume_relaxation_time"].get<double>(), e.relaxation_time) << tag;
+    if (e.free_surface_pressure.empty())
+      EXPECT_FALSE(b["scheme"].contains("free_surface_pressure")) << tag;
+    else
+      EXPECT_EQ(b["scheme"]["free_surface_pressure"], e.free_surface_pressure) << tag;
+  };
+  json mono = fluid_body();
+  mono["scheme"] = json::object();
+  resolved("defaults_monolithic", mono, {"advected", "constraints", "navier", "robin", "particle", 0.3, 0.02});
+  resolved("defaults_fractional", fluid_body(), {"alpha", "particles", "held", "", "surface", 0.0, 0.1});
+  json alpha = mono;
+  alpha["domain_detection"] = "alpha";
+  resolved("defaults_alpha", alpha, {"alpha", "particles", "held", "dirichlet", "surface", 0.0, 0.1});
+  json fixed = mono;
+  fixed["remesh"] = false;
+  resolved("defaults_fixed_mesh", fixed, {"alpha", "particles", "held", "dirichlet", "surface", 0.0, 0.1});
+  json particles = mono;
+  particles["wall_model"] = "particles";
+  resolved("defaults_wall_particles", particles, {"advected", "particles", "held", "robin", "particle", 0.3, 0.02});
+  json level_set = mono;
+  level_set["domain_detection"] = "level_set";
+  level_set["scheme"]["volume_correction"] = "none";
+  resolved("defaults_level_set", level_set, {"level_set", "constraints", "navier", "robin", "none", 0.0, 0.1});
+}
+
 }  // namespace

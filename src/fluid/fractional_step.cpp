@@ -326,20 +326,26 @@ IterationReport FractionalStep::iterate() {
   for (Index k = 0; k < 2 * np; ++k)
     if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
   pres += dp;
+  // The implicit viscous predictor's K u* in the rows of the particles `wanted` selects (ghost, wall and
+  // constrained particles: the forces they apply), K_ab = sum_e mu A grad N_a . grad N_b over the viscous
+  // elements; zero with the explicit predictor, whose viscous term is in `force`.
+  auto viscous_rows = [&](auto wanted) {
+    Vec Ku = Vec::Zero(2 * np);
+    if (!implicit) return Ku;
+    for (Index e = 0; e < ne; ++e) {
+      const auto& t = tri[e];
+      if (f_.walls.inviscid(t) || !(wanted(t[0]) || wanted(t[1]) || wanted(t[2]))) continue;
+      for (int a = 0; a < 3; ++a)
+        if (wanted(t[a]))
+          for (int b = 0; b < 3; ++b)
+            Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+    }
+    return Ku;
+  };
   if (f_.ghosts.count() > 0) {
     // Forces on the ghost particles: what the structure must apply to give them the prescribed velocity,
     // F = m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor), sign flipped.
-    Vec Ku = Vec::Zero(2 * np);
-    if (implicit)
-      for (Index e = 0; e < ne; ++e) {
-        const auto& t = tri[e];
-        if (f_.walls.inviscid(tri[e]) ||
-            !(f_.ghosts.is_ghost(t[0]) || f_.ghosts.is_ghost(t[1]) || f_.ghosts.is_ghost(t[2])))
-          continue;
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b)
-            Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
-      }
+    const Vec Ku = viscous_rows([&](Index i) { return f_.ghosts.is_ghost(i); });
     for (size_t gi = 0; gi < f_.ghosts.count(); ++gi) {
       const Index i = f_.ghosts.index(gi);
       if (f_.ghosts.merged(gi)) {
@@ -354,16 +360,7 @@ IterationReport FractionalStep::iterate() {
     // The force each wall or ghost particle applies to the fluid (the boundary work of the energy balance):
     // m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor).
     const Index nb = f_.cloud.n_boundary_particles();
-    Vec Ku = Vec::Zero(2 * nb);
-    if (implicit)
-      for (Index e = 0; e < ne; ++e) {
-        const auto& t = tri[e];
-        if (f_.walls.inviscid(t) || !(t[0] < nb || t[1] < nb || t[2] < nb)) continue;
-        for (int a = 0; a < 3; ++a)
-          if (t[a] < nb)
-            for (int b = 0; b < 3; ++b)
-              Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
-      }
+    const Vec Ku = viscous_rows([&](Index i) { return i < nb; });
     Vec& boundary_force = f_.step.boundary_force;
     boundary_force.resize(2 * nb);
     for (Index i = 0; i < nb; ++i)
@@ -377,16 +374,7 @@ IterationReport FractionalStep::iterate() {
     Vec& kf = f_.step.constraint_force;
     kf.resize(static_cast<Index>(ks.size()));
     std::vector<char> on_wall = f_.walls.on_wall(np);
-    Vec Kw = Vec::Zero(2 * np);
-    if (implicit && !ks.empty())
-      for (Index e = 0; e < ne; ++e) {
-        const auto& t = tri[e];
-        if (f_.walls.inviscid(t) || !(on_wall[t[0]] || on_wall[t[1]] || on_wall[t[2]])) continue;
-        for (int a = 0; a < 3; ++a)
-          if (on_wall[t[a]])
-            for (int b = 0; b < 3; ++b)
-              Kw.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
-      }
+    const Vec Kw = viscous_rows([&](Index i) { return on_wall[i] != 0; });
     for (size_t k = 0; k < ks.size(); ++k) {
       const Index j = 2 * ks[k].i + ks[k].c;
       kf[static_cast<Index>(k)] = mass[ks[k].i] * (v_new_[j] - v[j]) / dt - force[j] - du[j] + Kw[j];

@@ -98,23 +98,63 @@ void FluidWalls::bounding_box_at(double t, Vec2& lo, Vec2& hi) const {
   }
 }
 
+namespace {
+// Whether the path from p to q (on a wall) crosses the segment c-d before it reaches q: then that segment stands
+// between p and the wall. A parallel segment (a collinear neighbour) is not in the way.
+bool path_blocked(const Vec2& p, const Vec2& q, const Vec2& c, const Vec2& d) {
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const Vec2 r = q - p, s = d - c;
+  const double den = cross(r, s);
+  if (std::abs(den) <= 1e-14 * r.norm() * s.norm()) return false;
+  const double t = cross(c - p, s) / den, u = cross(c - p, r) / den;
+  return t > 1e-9 && t < 1.0 - 1e-9 && u >= 0.0 && u <= 1.0;
+}
+}  // namespace
+
 void FluidWalls::set_fluid_sides(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind) {
-  // The fluid side of each wall segment: the side of the initial fluid particles that face it (whose
-  // projection falls on it; 0 when there are some on both sides, as beside a baffle, or none).
+  // The fluid side of each wall segment: the side of the initial fluid particles that see it (whose
+  // projection falls on it, with no wall segment between; 0 when there are some on both sides, as beside a
+  // baffle). A segment that no particle sees, as the downstream face of an obstacle hidden by the obstacle
+  // itself, takes the side of its neighbours along the polyline when they agree: the fluid stays on the same
+  // side of a wall's walk around a corner. (Counting the particles that face a segment through the obstacle
+  // gave that face the upstream side, and particles sliding along the floor into the obstacle's foot went
+  // through it: cases/dam_break_obstacle with walls as constraints.)
+  std::vector<std::pair<Vec2, Vec2>> segments;  // every wall's, for the visibility test
+  for (const auto& w : walls_)
+    for (size_t k = 0; k + 1 < w.polyline.size(); ++k) segments.emplace_back(w.polyline[k], w.polyline[k + 1]);
   const Index np = static_cast<Index>(pts.size());
   for (auto& w : walls_) {
-    w.fluid_side.assign(w.polyline.size() > 1 ? w.polyline.size() - 1 : 0, 0);
-    for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
+    const size_t ns = w.polyline.size() > 1 ? w.polyline.size() - 1 : 0;
+    w.fluid_side.assign(ns, 0);
+    std::vector<char> seen(ns, 0);
+    for (size_t k = 0; k < ns; ++k) {
       const Vec2 a = w.polyline[k], e = w.polyline[k + 1] - a;
       const Vec2 nrm = Vec2(-e.y(), e.x()).normalized();
-      int pos = 0, neg = 0;
-      for (Index i = 0; i < np; ++i) {
+      bool pos = false, neg = false;  // a particle sees it from that side
+      for (Index i = 0; i < np && !(pos && neg); ++i) {
         if (kind[i] != ParticleKind::Fluid) continue;
         const double u = (pts[i] - a).dot(e) / e.squaredNorm(), dist = (pts[i] - a).dot(nrm);
         if (u < 0 || u > 1 || std::abs(dist) <= 1e-9 * e.norm()) continue;  // (a particle on the wall)
-        (dist > 0 ? pos : neg) += 1;
+        bool& side = dist > 0 ? pos : neg;
+        if (side) continue;
+        const Vec2 foot = a + u * e;
+        side = std::none_of(segments.begin(), segments.end(),
+                            [&](const auto& cd) { return path_blocked(pts[i], foot, cd.first, cd.second); });
       }
-      w.fluid_side[k] = pos > 0 && neg == 0 ? 1 : neg > 0 && pos == 0 ? -1 : 0;
+      w.fluid_side[k] = pos && !neg ? 1 : neg && !pos ? -1 : 0;
+      seen[k] = pos || neg;
+    }
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (size_t k = 0; k < ns; ++k) {
+        if (seen[k] || w.fluid_side[k] != 0) continue;
+        const int before = k > 0 ? w.fluid_side[k - 1] : 0, after = k + 1 < ns ? w.fluid_side[k + 1] : 0;
+        const int side = before != 0 && after != 0 ? (before == after ? before : 0) : before + after;
+        if (side != 0) {
+          w.fluid_side[k] = side;
+          changed = true;
+        }
+      }
     }
   }
 }

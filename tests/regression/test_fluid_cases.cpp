@@ -162,9 +162,11 @@ TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
   // wet within the issue's window (measured 0.307 s). The jet's tip is a film a few particles thick and its
   // arrival scatters by about 5 ms with small changes (0.298-0.308 s over recent versions), so the jet is
   // checked within 0.29-0.35 s. Measured with the default package (walls as constraints sliding against their
-  // Navier friction, particle volumes): jet 0.322 s, sensor 0.332 s; the alpha shape with wall particles: 0.304
-  // and 0.305 s. The water (mesh + drops in flight): within 2 % (measured 1.58 %; issue #3 asked 1 %, which the
-  // alpha shape's surface correction holds, 0.34 %); the mesh's own area drifts by what is in flight (3.4 %).
+  // Navier friction, particle volumes): jet 0.327 s, sensor 0.339 s; the alpha shape with wall particles: 0.304
+  // and 0.305 s. The water (mesh + drops in flight): within issue #3's 1 % (measured 0.65 %, 0.41-0.86 % around
+  // its settings; 1.58 % while particles sliding along the floor went through the obstacle's downstream face,
+  // whose fluid side was taken from the water facing it through the obstacle); the mesh's own area drifts by
+  // what is in flight (2.4 %).
   const RunResult r = run_case_1thread("cases/dam_break_obstacle/case.json", "dam_break_obstacle");
   const Csv c = probes_of(r);
   EXPECT_NEAR(c["time"].back(), 1.0, 1e-9) << "stable to 1 s";
@@ -180,8 +182,8 @@ TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
   EXPECT_LE(t_wet, 0.35);
   const auto area = summary_of(r)["bodies"][0]["fluid_area"];
   ASSERT_TRUE(area.contains("water_drift_max")) << "the default keeps particle volumes";
-  EXPECT_LT(area["water_drift_max"].get<double>(), 0.02);
-  EXPECT_LT(max_area_drift(c), 0.06) << "the mesh's area: the water less what is in flight";
+  EXPECT_LT(area["water_drift_max"].get<double>(), 0.01);
+  EXPECT_LT(max_area_drift(c), 0.05) << "the mesh's area: the water less what is in flight";
   for (size_t i = 0; i < c.rows(); ++i) EXPECT_TRUE(std::isfinite(c["kinetic_energy"][i])) << "t " << c["time"][i];
   std::printf(
       "dam break with obstacle: jet at the right wall %.4f s, wall sensor wet %.4f s, water drift %.2f %%, "

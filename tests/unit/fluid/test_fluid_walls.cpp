@@ -6,6 +6,9 @@
 //    dam break with the level-set detection lost water there).
 //  - A particle falling past the outside corner of an obstacle is not pulled onto the obstacle's top: past a
 //    segment's end only counts where the particle is beyond the neighbouring segment too.
+//  - The fluid side of a segment the initial fluid cannot see (an obstacle's downstream face, hidden by the
+//    obstacle) is its neighbours' along the polyline; a particle sliding along the floor into the obstacle's
+//    foot is then put on that face (FluidWalls::snap_to_walls), not let through it.
 #include <gtest/gtest.h>
 
 #include "fluid_mesh.hpp"
@@ -69,6 +72,32 @@ TEST(FluidWalls, AParticleFallingPastAnObstaclesCornerStaysBesideIt) {
   EXPECT_DOUBLE_EQ(p.x(), 0.403);
   EXPECT_DOUBLE_EQ(p.y(), 0.09);
   EXPECT_EQ(s.walls.crossings(), 0);
+}
+
+TEST(FluidWalls, AnObstaclesHiddenFaceTakesItsNeighboursFluidSide) {
+  WallScene s;
+  // cases/dam_break_obstacle: the obstacle is a bump of the tank's polyline, the water a column left of it.
+  const Json tank = Json::array(
+      {{{"name", "tank"},
+        {"points",
+         {{0, 0.584}, {0, 0}, {0.280, 0}, {0.280, 0.048}, {0.304, 0.048}, {0.304, 0}, {0.584, 0}, {0.584, 0.584}}}}});
+  make(s, tank, {{0.05, 0.01}, {0.1, 0.03}, {0.1, 0.2}}, {0.3074, 0.0});
+  const auto& w = s.walls.all().front();
+  EXPECT_EQ(w.fluid_normal(2), Vec2(-1, 0));  // the upstream face, seen by the column
+  EXPECT_EQ(w.fluid_normal(3), Vec2(0, 1));   // the top and the downstream face, seen by none: their neighbours'
+  EXPECT_EQ(w.fluid_normal(4), Vec2(1, 0));   // (before, the column facing it through the obstacle: -x)
+  EXPECT_EQ(w.fluid_normal(5), Vec2(0, 1));
+  EXPECT_EQ(w.fluid_normal(6), Vec2(-1, 0));  // the right wall, seen across the tank
+  // A particle on the floor sliding left at 4.6 m/s (1 ms) into the obstacle's foot goes onto the face.
+  const Index i = s.cloud.n() - 1;
+  const Vec x_start = s.cloud.x();
+  s.cloud.x().segment<2>(2 * i) = Vec2(0.30283, 0.0);
+  s.cloud.v().segment<2>(2 * i) = Vec2(-4.6, 0.0);
+  s.walls.snap_to_walls(s.cloud, x_start, 0.0, 0.1);
+  EXPECT_NEAR(s.cloud.x()[2 * i], 0.304, 1e-12);
+  EXPECT_NEAR(s.cloud.x()[2 * i + 1], 0.0, 1e-12);
+  EXPECT_NEAR(s.cloud.v()[2 * i], 0.0, 1e-12);  // its velocity into the face is gone
+  EXPECT_EQ(s.walls.crossings(), 1);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace lagfsi::fluid {
 
 namespace {
 
-// The defaults that depend on other keys (README, "the fluid's keys"). With the monolithic scheme and remeshing
+// The defaults that depend on other keys (README, "The fluid's defaults"). With the monolithic scheme and remeshing
 // they are the conservative package of issue #16: the previous domain advected with the particles decides which
 // new triangles are fluid, rigid walls are constraints on the fluid particles on them, sliding against their
 // Navier friction, the free-surface pressure is held weakly (Robin) and each particle keeps its own area

@@ -171,7 +171,7 @@ void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, cons
 void VolumeCorrection::hand_owed_inward(const std::vector<char>& fixed) {
   if (type_ != Type::particle) return;
   const Index np = cloud_.n();
-  const auto row = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2]; };
+  const auto row = [&](Index i) { return has_row(i, fixed); };
   std::vector<int> takers(static_cast<size_t>(np), 0);  // per prescribed particle: (element, particle) pairs
   for (const auto& t : mesh_.tri)
     for (Index i : t)
@@ -199,7 +199,7 @@ void VolumeCorrection::return_unpayable_through_bulk(const std::vector<char>& fi
   const Index np = cloud_.n();
   if (nodal_start_.size() != static_cast<size_t>(np)) return;
   const std::vector<double>& share = nodal_start_;  // the step's starting shares (set_remeshed)
-  const auto row = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2]; };
+  const auto row = [&](Index i) { return has_row(i, fixed); };
   const auto bulk = [&](Index i) {
     return row(i) && share[i] > 0 && static_cast<size_t>(i) < mesh_.free.size() && !mesh_.free[i];
   };

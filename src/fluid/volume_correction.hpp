@@ -86,6 +86,11 @@ class VolumeCorrection {
   void serialize(StateArchive& ar);
 
  private:
+  /// Whether particle i returns its own area, through its continuity row: a fluid particle whose pressure is
+  /// not prescribed (`fixed`: the step's Dirichlet flags, 3 per particle).
+  bool has_row(Index i, const std::vector<char>& fixed) const {
+    return cloud_.kind(i) == ParticleKind::Fluid && !fixed[3 * i + 2];
+  }
   const FluidConstants& c_;
   ParticleCloud& cloud_;
   const FluidMesh& mesh_;

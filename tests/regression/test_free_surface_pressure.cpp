@@ -1,8 +1,8 @@
 // The free-surface pressure condition of the monolithic scheme, the particles' own volumes, and the area a splash
 // keeps (issue #16).
-// With p = 0 prescribed ("dirichlet", the default), the free-surface particles have no continuity row, and in a
-// splash, where most particles lie on a surface, the steps lose area (cases/studies/conservation: 4-17 % of the
-// dam break's area by 1 s in every domain detection but the level set's). The Robin condition ("robin",
+// With p = 0 prescribed ("dirichlet", the alpha shape's default), the free-surface particles have no continuity row,
+// and in a splash, where most particles lie on a surface, the steps lose area (cases/studies/conservation: 4-17 % of
+// the dam break's area by 1 s in every domain detection but the level set's). The Robin condition ("robin",
 // fluid_element.hpp) keeps the continuity there and pulls the pressure weakly to the traction-free value.
 //  - A coarse dam break (L/10, 0.8 s, advected domain, no-slip walls as constraints, no volume correction):
 //    measured largest area drift 5.64 % with "dirichlet" (+1.73 % changed in the steps) and 1.21 % with "robin"

@@ -1,6 +1,8 @@
 // Still water stays still under remeshing (issue #16, item 5): a tank at rest, remeshed every step for 20 s;
-// the largest particle speed stays below 1e-4 sqrt(g H). Run with each domain detection: the alpha shape
-// with its surface volume correction (the default) and the advected previous domain without correction, with
+// the largest particle speed stays below 1e-4 sqrt(g H). Run with the monolithic scheme's defaults (the
+// advected domain, walls as constraints sliding against their Navier friction, the Robin free-surface pressure and
+// particle volumes), and with each domain detection: the alpha shape with its surface volume correction (the
+// default before) and the advected previous domain without correction, with
 // wall particles and with the walls as constraints on the particles on them ("wall_model": "constraints"), and
 // the latter with the Robin free-surface pressure ("free_surface_pressure": "robin"). A tank carried at constant
 // velocity keeps its water, which moves with it (the domain box follows moving walls: before, this tank lost all
@@ -55,6 +57,26 @@ void expect_still(const std::string& detection, const std::string& correction, c
   EXPECT_NEAR(a.back(), a.front(), 1e-6 * a.front()) << detection;
 }
 
+TEST(StillWater, TheDefaultsStayStill) {
+  // The tank with no domain, wall or scheme key: the monolithic scheme's defaults (src/fluid/fluid_input.cpp).
+  nlohmann::json j = nlohmann::json::parse(still_tank("advected", "none", "constraints", "robin"));
+  auto& b = j["bodies"][0];
+  b.erase("domain_detection");
+  b.erase("wall_model");
+  b.erase("scheme");
+  const RunResult r = run_case_text(fresh_dir("still_water_defaults"), j.dump());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const auto& v = p["max_speed"];
+  ASSERT_GT(v.size(), 1999u);
+  EXPECT_LT(*std::max_element(v.begin(), v.end()), 1e-4 * std::sqrt(9.81 * 0.2));
+  const auto& a = p["area"];
+  EXPECT_NEAR(a.back(), a.front(), 1e-6 * a.front());
+  const auto body = summary_of(r)["bodies"][0];
+  EXPECT_EQ(body["remeshing"]["domain_detection"], "advected");
+  EXPECT_EQ(body["wall_model"], "constraints");
+  EXPECT_TRUE(body["fluid_area"].contains("water_drift_max")) << "particle volumes";
+}
 TEST(StillWater, AlphaShapeWithSurfaceCorrectionStaysStill) { expect_still("alpha", "surface"); }
 TEST(StillWater, AdvectedDomainStaysStill) { expect_still("advected", "none"); }
 TEST(StillWater, WallConstraintsStayStill) { expect_still("advected", "none", "constraints"); }

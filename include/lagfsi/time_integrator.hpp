@@ -88,8 +88,15 @@ class TimeIntegrator {
   virtual void begin_step(const KinematicState& s, double dt) = 0;
   /// First guess for x_{n+1} (the "constant position" or the "constant acceleration" predictor).
   virtual Vec predictor() const = 0;
-  /// Evaluation point for a trial x_{n+1}.
+  /// Evaluation point for a trial x_{n+1}: evaluation(end) of the end state end_step(x_{n+1}) writes.
   virtual EvalPoint kinematics(const Vec& x_new) const = 0;
+  /// Evaluation point of a given end state (x_{n+1}, v_{n+1}, a_{n+1}) from the stored start. A model whose dofs
+  /// include a prescribed motion (moving walls, a coupled structure's ghost particles) takes end_step()'s state
+  /// of its trial x_{n+1}, writes the prescribed v and a at t_{n+1} into those dofs and evaluates here, so that
+  /// every dof is taken at the same level (t_{n+1-af} under generalized-alpha; the end state itself under
+  /// Newmark). Writing the prescribed rates into kinematics()'s point instead puts those dofs at t_{n+1} and the
+  /// others at t_{n+1-af}: a coupled step then pumps energy at the interface.
+  virtual EvalPoint evaluation(const KinematicState& end) const = 0;
   virtual TangentCoefficients coefficients() const = 0;
   /// v_{n+1}, a_{n+1} from the converged x_{n+1}; writes the new state (t_{n+1} = t_n + dt).
   virtual void end_step(const Vec& x_new, KinematicState& s) const = 0;

@@ -39,13 +39,17 @@ class AlphaNewmark final : public TimeIntegrator {
   Vec predictor() const override { return old_.x; }
 
   EvalPoint kinematics(const Vec& x_new) const override {
-    const Vec a_new = acceleration(x_new);
-    const Vec v_new = old_.v + dt_ * ((1.0 - gamma_) * old_.a + gamma_ * a_new);
+    KinematicState end;
+    end_step(x_new, end);
+    return evaluation(end);
+  }
+
+  EvalPoint evaluation(const KinematicState& end) const override {
     EvalPoint p;
     p.t = old_.t + (1.0 - af_) * dt_;
-    p.x = (1.0 - af_) * x_new + af_ * old_.x;
-    p.v = (1.0 - af_) * v_new + af_ * old_.v;
-    p.a = (1.0 - am_) * a_new + am_ * old_.a;
+    p.x = (1.0 - af_) * end.x + af_ * old_.x;
+    p.v = (1.0 - af_) * end.v + af_ * old_.v;
+    p.a = (1.0 - am_) * end.a + am_ * old_.a;
     return p;
   }
 
@@ -84,6 +88,7 @@ class CentralDifference final : public TimeIntegrator {
   }
   Vec predictor() const override { return old_.x + dt_ * old_.v + 0.5 * dt_ * dt_ * old_.a; }
   EvalPoint kinematics(const Vec& x_new) const override { return {old_.t + dt_, x_new, old_.v, old_.a}; }
+  EvalPoint evaluation(const KinematicState& end) const override { return {old_.t + dt_, end.x, old_.v, old_.a}; }
   TangentCoefficients coefficients() const override { return {0.0, 0.0, 0.0}; }
   void end_step(const Vec& x_new, KinematicState& s) const override {
     s.x = x_new;

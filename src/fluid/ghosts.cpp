@@ -37,10 +37,11 @@ int Ghosts::add(const std::vector<Vec2>& points, const std::vector<std::pair<Ind
   }
   ghost_particles_ = static_cast<Index>(fresh.size());
   ghost_neighbours_.assign(fresh.size(), {});
+  // Neighbours along the structure, as particle indices: a ghost merged with a wall particle is that wall
+  // particle (the foot of a plate clamped on the floor), so the face's first segment is kept too.
   for (const auto& [a, b] : adjacent) {
-    if (local[a] < 0 || local[b] < 0) continue;
-    ghost_neighbours_[local[a]].push_back(n_wall + local[b]);
-    ghost_neighbours_[local[b]].push_back(n_wall + local[a]);
+    if (local[a] >= 0) ghost_neighbours_[local[a]].push_back(ghost_index_[b]);
+    if (local[b] >= 0) ghost_neighbours_[local[b]].push_back(ghost_index_[a]);
   }
   // Rebuild the cloud: walls, ghosts, then the fluid particles not within h/2 of a ghost.
   const Index np = cloud.n();
@@ -84,6 +85,11 @@ bool Ghosts::crosses_structure(const std::array<Index, 3>& t) const {
     if (std::find(nb.begin(), nb.end(), j) == nb.end()) return true;
   }
   return false;
+}
+
+const std::vector<Index>& Ghosts::face_neighbours(Index i) const {
+  static const std::vector<Index> none;
+  return is_ghost(i) ? ghost_neighbours_[static_cast<size_t>(i - ghost_begin_)] : none;
 }
 
 void Ghosts::set_motion(const Vec& x, const Vec& v, const Vec& a, const std::string& body) {

@@ -29,6 +29,9 @@ class Ghosts {
   bool is_ghost(Index i) const { return i >= ghost_begin_ && i < ghost_begin_ + ghost_particles_; }
   /// An element with two ghost particles that are not neighbours along the structure crosses it.
   bool crosses_structure(const std::array<Index, 3>& t) const;
+  /// Ghost particle i's neighbours along the structure's face (ghost particles, or the wall particle a ghost
+  /// was merged with); none for any other particle. Each pair is a segment of the wet face.
+  const std::vector<Index>& face_neighbours(Index i) const;
   /// Element t has two or three particles with prescribed motion, one of them a ghost: a structure's boundary
   /// sliding past a wall or another part of it (a gate's tip over the floor). Such an element may turn over
   /// within a step without the flow being wrong; an element between walls alone that turns over is a failed
@@ -68,7 +71,7 @@ class Ghosts {
   Index ghost_begin_ = 0, ghost_particles_ = 0;
   std::vector<Index> ghost_index_;
   std::vector<char> ghost_merged_;
-  std::vector<std::vector<Index>> ghost_neighbours_;  // per ghost particle (local), neighbouring ghost particles
+  std::vector<std::vector<Index>> ghost_neighbours_;  // per ghost particle (local), its face neighbours' particles
   Vec ghost_x_, ghost_v_, ghost_a_, ghost_force_;
   bool contact_ = false;
 };

@@ -114,12 +114,17 @@ IterationReport PspgScheme::iterate() {
   const std::vector<char>& fixed = step.fixed;
   const double h = f_.c.h;
   const Index np = f_.cloud.n();
-  EvalPoint ev = integrator_->kinematics(x_new);
-  // Moving walls: their particles' velocity and acceleration are those of the prescribed motion (from the
-  // trapezoidal rule they would alternate around it after the jump of the wall's velocity at the start,
-  // and the pressure in the tank then grows step after step).
+  // Ghost particles: their velocity and acceleration are the structure's at t_{n+1}. They are written into the
+  // end state and taken to the evaluation point with every other dof (under generalized-alpha, a ghost's
+  // a_{n+1} among the others' a_{n+1-am} made the coupled flexible_tank unstable: its plate turned over at
+  // 0.19 s). Moving walls: their motion is known at any time, so their particles take it at the evaluation
+  // time itself (from the trapezoidal rule they would alternate around it after the jump of the wall's
+  // velocity at the start, and the pressure in the tank then grows step after step).
+  KinematicState end;
+  integrator_->end_step(x_new, end);
+  f_.ghosts.set_rates(end.v, end.a);
+  EvalPoint ev = integrator_->evaluation(end);
   f_.walls.set_wall_motion(ev.t, ev.v, ev.a);
-  f_.ghosts.set_rates(ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = f_.c.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);

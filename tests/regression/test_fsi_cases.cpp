@@ -52,16 +52,20 @@ double rms_against(const Csv& c, const std::string& col, const std::vector<std::
   return n ? std::sqrt(e2 / n) : std::nan("");
 }
 
-TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
+/// The flexible tank's run (with `sets`) against beam theory; returns the mean FSI iterations per coupled step.
+double check_flexible_tank(const std::string& name, const std::vector<std::string>& sets) {
   // Seed 7.3.1, monolithic PSPG fluid, matching interface, IQN-IMVJ, 1 s. No digitized reference: the wall
   // must oscillate about its static deflection under the water load, 9.77 mm by beam theory (README), up to
   // the amplification by the plate's own weight (P-delta, at most 1.35) and the drop of the water level as
   // the wall leans: the mean after the start-up lies in [1.0, 1.3] x 9.77 mm (measured 11.1 mm). The first
   // overshoot, about twice the static value for a suddenly applied load, lies in [1.8, 2.8] x 9.77 mm
   // (measured 23.3 mm at 0.169 s).
-  const auto r = run_case_1thread("cases/flexible_tank/case.json", "fsi_flexible_tank", {"output.every=50"});
+  std::vector<std::string> all = {"output.every=50"};
+  all.insert(all.end(), sets.begin(), sets.end());
+  const auto r = run_case_1thread("cases/flexible_tank/case.json", name, all);
   const Csv c = probes_of(r);
-  ASSERT_GT(c.rows(), 900u);
+  EXPECT_GT(c.rows(), 900u);
+  if (c.rows() <= 900u) return 1e30;
   const double w = 9.77e-3;
   double mean = 0, first_peak = 0;
   int n = 0;
@@ -78,7 +82,22 @@ TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
   EXPECT_GT(first_peak, 1.8 * w);
   EXPECT_LT(first_peak, 2.8 * w);
   EXPECT_LE(max_area_drift(c), 0.01);
-  EXPECT_LE(check_coupling(r, 1000), 5.0) << "IQN-IMVJ iterations per coupled step (measured 4.05)";
+  return check_coupling(r, 1000);
+}
+
+TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
+  EXPECT_LE(check_flexible_tank("fsi_flexible_tank", {}), 5.0)
+      << "IQN-IMVJ iterations per coupled step (measured 4.03)";
+}
+
+TEST(FlexibleTank, TheSameUnderGeneralizedAlpha) {
+  // Generalized-alpha (rho_inf = 0.8) for the plate and the water. The fluid wrote the structure's velocity
+  // and acceleration at t_{n+1} into its ghost particles among the other particles' values at t_{n+1-af}
+  // (TimeIntegrator::evaluation): the pressure at the plate grew step after step and a plate element
+  // turned over at 0.19 s. Then water went into the plate at its waterline from 0.57 s, between two ghost
+  // particles (a fluid particle on a structure's face now goes as one pressed against a ghost): 9.6 % of
+  // the water by 1 s. Measured now: mean 1.145 of beam theory, first peak 23.35 mm, water within 0.07 %.
+  EXPECT_LE(check_flexible_tank("fsi_flexible_tank_ga", {R"(analysis.integrator={"type": "generalized_alpha"})"}), 5.0);
 }
 
 TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {

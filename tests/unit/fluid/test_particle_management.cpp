@@ -11,6 +11,10 @@
 //    its water from the bookkeeping in four such failures);
 //  - two surfaces that meet merge their close pair, which the previous mesh does not connect (the same case:
 //    a sliver between two films' particles 0.03 h apart turned over at every step down to dt/16).
+//  - a surface particle that drifts onto a structure's face midway between two ghost particles goes as one
+//    pressed against a ghost: the distance is to the face's segment. The Delaunay mesh does not keep the
+//    segment as an edge, and the two triangles that join the particle to the two ghosts stay valid as it
+//    crosses (flexible_tank under generalized-alpha: water went into the plate at its waterline).
 // And the free-surface marking with walls as constraints (RemeshPipeline::mark_free_surface): an unshared edge
 // between two particles on walls is a wall only where it runs along one. The long side of a triangle in a
 // tank's corner, from a floor particle to a side wall's, is a free surface. Marked a wall, the triangle had no
@@ -101,6 +105,33 @@ TEST(ParticleManagement, TwoSurfacesThatMeetMergeTheirClosePair) {
   double vmax = 0;
   for (Index i = 0; i < s.cloud.n(); ++i) vmax = std::max(vmax, s.cloud.v().segment<2>(2 * i).norm());
   EXPECT_LT(vmax, 1e-12);
+}
+
+TEST(ParticleManagement, AParticleOnAStructuresFaceGoesLikeOnePressedAgainstAGhost) {
+  // A structure's face x = 0 between two ghost particles h apart, water on its left: 3 is 0.1 h from the face,
+  // midway between the ghosts (0.51 h from each, further than remove_close_fraction h = 0.3 h), and joined to
+  // them as in the plate's run: by two triangles with the same fluid particle 2, none with the face's segment.
+  Scene s({{-kH, 0.5 * kH}, {-0.1 * kH, 0.5 * kH}}, {});
+  Ghosts& g = s.ghosts;
+  ASSERT_EQ(g.add({{0, 0}, {0, kH}}, {{0, 1}}, s.cloud, kH, "water"), 0);
+  ASSERT_EQ(s.cloud.n(), 4);
+  ASSERT_EQ(s.cloud.pos(3), Vec2(-0.1 * kH, 0.5 * kH)) << "walls, ghosts, then the fluid";
+  EXPECT_EQ(g.face_neighbours(0), std::vector<Index>{1});
+  EXPECT_TRUE(g.face_neighbours(2).empty());
+  s.mesh.tri = {{2, 0, 3}, {2, 3, 1}};
+  s.volume.start(s.mesh.area(s.cloud.x()));
+  const double before = s.water();
+  ASSERT_NO_THROW(s.remesh.remesh_step(0.001, s.volume, s.energy));
+  EXPECT_EQ(s.cloud.n(), 3) << "the particle on the face went";
+  EXPECT_EQ(s.remesh.summary()["particles_removed_at_walls"], 1);
+  EXPECT_NEAR(s.water(), before, 1e-18) << "the area the face's triangle adds is owed";
+  // Half an h from the face (further than 0.3 h from the segment too), it stays.
+  Scene far({{-kH, 0.5 * kH}, {-0.5 * kH, 0.5 * kH}}, {});
+  ASSERT_EQ(far.ghosts.add({{0, 0}, {0, kH}}, {{0, 1}}, far.cloud, kH, "water"), 0);
+  far.mesh.tri = {{2, 0, 3}, {2, 3, 1}};
+  far.volume.start(far.mesh.area(far.cloud.x()));
+  ASSERT_NO_THROW(far.remesh.remesh_step(0.001, far.volume, far.energy));
+  EXPECT_EQ(far.cloud.n(), 4);
 }
 
 TEST(ParticleManagement, TheLongSideOfACornersTriangleIsAFreeSurface) {

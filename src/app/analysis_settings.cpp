@@ -8,13 +8,13 @@
 
 namespace lagfsi {
 
-AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings) {
+AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& default_integrator) {
   a.validate({{"type", nullptr},
               {"dt", 0.0},
               {"end_time", 0.0},
               {"load_steps", 10},
               {"max_step_halvings", 4},
-              {"integrator", Json{{"type", "newmark"}}},
+              {"integrator", default_integrator.is_object() ? default_integrator : Json{{"type", "newmark"}}},
               {"newton", Json::object()},
               {"linear_solver", Json{{"type", "cholmod"}}}});
   AnalysisSettings s;

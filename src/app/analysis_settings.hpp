@@ -9,7 +9,10 @@
 namespace lagfsi {
 
 /// Validates /analysis (defaults filled in) and reads it; `warnings` receives what was chosen on purpose (a
-/// conditionally stable integrator), for stderr and summary.json.
-AnalysisSettings read_analysis(Params analysis, std::vector<std::string>& warnings);
+/// conditionally stable integrator), for stderr and summary.json. `default_integrator` (an object, or null for
+/// Newmark's trapezoidal rule) is the integrator when the case names none: what its bodies ask for
+/// (fluid_preferred_integrator).
+AnalysisSettings read_analysis(Params analysis, std::vector<std::string>& warnings,
+                               const Json& default_integrator = nullptr);
 
 }  // namespace lagfsi

@@ -385,3 +385,15 @@ void FluidModel::build_particles(Params b) {
 }
 
 }  // namespace lagfsi::fluid
+
+namespace lagfsi {
+
+Json fluid_preferred_integrator(const Json& body) {
+  const Json scheme = body.is_object() && body.contains("scheme") ? body.at("scheme") : Json::object();
+  if (fluid::peek(scheme, "type", "monolithic_pspg") != "monolithic_pspg") return nullptr;
+  const std::string surface =
+      fluid::peek(scheme, "free_surface_pressure", fluid::fluid_defaults(body).free_surface_pressure);
+  return surface == "robin" ? Json{{"type", "generalized_alpha"}, {"rho_inf", 0.8}} : Json(nullptr);
+}
+
+}  // namespace lagfsi

@@ -87,17 +87,19 @@ double check_flexible_tank(const std::string& name, const std::vector<std::strin
 
 TEST(FlexibleTank, OscillatesAboutTheStaticDeflection) {
   EXPECT_LE(check_flexible_tank("fsi_flexible_tank", {}), 5.0)
-      << "IQN-IMVJ iterations per coupled step (measured 4.03)";
+      << "IQN-IMVJ iterations per coupled step (measured 4.00)";
 }
 
-TEST(FlexibleTank, TheSameUnderGeneralizedAlpha) {
-  // Generalized-alpha (rho_inf = 0.8) for the plate and the water. The fluid wrote the structure's velocity
-  // and acceleration at t_{n+1} into its ghost particles among the other particles' values at t_{n+1-af}
-  // (TimeIntegrator::evaluation): the pressure at the plate grew step after step and a plate element
-  // turned over at 0.19 s. Then water went into the plate at its waterline from 0.57 s, between two ghost
-  // particles (a fluid particle on a structure's face now goes as one pressed against a ghost): 9.6 % of
-  // the water by 1 s. Measured now: mean 1.145 of beam theory, first peak 23.35 mm, water within 0.07 %.
-  EXPECT_LE(check_flexible_tank("fsi_flexible_tank_ga", {R"(analysis.integrator={"type": "generalized_alpha"})"}), 5.0);
+TEST(FlexibleTank, TheSameUnderNewmark) {
+  // The default is generalized-alpha (rho_inf = 0.8: the analysis' default with a Robin fluid). Before it could
+  // be, two defects had to go: the fluid wrote the structure's velocity and acceleration at t_{n+1} into its
+  // ghost particles among the other particles' values at t_{n+1-af} (TimeIntegrator::evaluation): the pressure
+  // at the plate grew step after step and a plate element turned over at 0.19 s; then water went into the
+  // plate at its waterline from 0.57 s, between two ghost particles (a fluid particle on a structure's face now
+  // goes as one pressed against a ghost): 9.6 % of the water by 1 s. The default's run is the test above
+  // (measured: mean 1.145 of beam theory, first peak 23.35 mm, largest area drift 0.07 %). The trapezoidal rule
+  // (measured: the same mean and peak, 0.05 %) keeps its own run.
+  EXPECT_LE(check_flexible_tank("fsi_flexible_tank_newmark", {R"(analysis.integrator={"type": "newmark"})"}), 5.0);
 }
 
 TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {

@@ -36,4 +36,11 @@ namespace lagfsi {
 /// body (its case-file object), builds its walls, particles and scheme; throws InputError for a bad body.
 std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& ctx);
 
+/// The analysis integrator a fluid body (its case-file object) asks for when the case names none: generalized-alpha
+/// (rho_inf = 0.8) for the monolithic scheme with the Robin free-surface pressure (the conservative package's, its
+/// default with remeshing), whose pressure alternates from one step to the next under the trapezoidal rule (README,
+/// "The fluid's defaults"); null otherwise (the analysis' Newmark). Reads what it needs leniently: a bad body is
+/// reported by make_fluid_model.
+Json fluid_preferred_integrator(const Json& body);
+
 }  // namespace lagfsi

@@ -225,7 +225,8 @@ TEST(BadInputCase, IntegratorStability) {
 TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   // `check` prints the case with every default filled in. With the monolithic scheme and remeshing the defaults
   // are issue #16's conservative package; the fractional step, a fixed mesh and a chosen "alpha" keep the
-  // classic PFEM's (src/fluid/fluid_input.cpp).
+  // classic PFEM's (src/fluid/fluid_input.cpp). A Robin free surface makes generalized-alpha the analysis'
+  // default integrator (fluid_preferred_integrator); any other case gets Newmark.
   struct Expected {
     std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
     double contact_gap, relaxation_time;
@@ -235,7 +236,14 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
     ASSERT_EQ(r.code, 0) << tag << ": " << r.err;
     const size_t start = r.out.find('{');
     ASSERT_NE(start, std::string::npos) << r.out;
-    const json b = json::parse(r.out.substr(start))["bodies"][0];
+    const json root = json::parse(r.out.substr(start));
+    EXPECT_EQ(root["analysis"]["integrator"]["type"],
+              e.free_surface_pressure == "robin" ? "generalized_alpha" : "newmark")
+        << tag;
+    if (e.free_surface_pressure == "robin") {
+      EXPECT_EQ(root["analysis"]["integrator"]["rho_inf"].get<double>(), 0.8) << tag;
+    }
+    const json b = root["bodies"][0];
     EXPECT_EQ(b["domain_detection"], e.detection) << tag;
     EXPECT_EQ(b["wall_model"], e.wall_model) << tag;
     EXPECT_EQ(b["wall_friction"], e.wall_friction) << tag;
@@ -264,6 +272,15 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   level_set["domain_detection"] = "level_set";
   level_set["scheme"]["volume_correction"] = "none";
   resolved("defaults_level_set", level_set, {"level_set", "constraints", "navier", "robin", "none", 0.0, 0.1});
+  json dirichlet = mono;
+  dirichlet["scheme"]["free_surface_pressure"] = "dirichlet";
+  resolved("defaults_dirichlet", dirichlet, {"advected", "constraints", "navier", "dirichlet", "particle", 0.3, 0.02});
+  // An integrator the case names is kept.
+  json c = case_of({mono});
+  c["analysis"]["integrator"] = {{"type", "newmark"}};
+  const Finished r = check("defaults_named_integrator", c);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out.substr(r.out.find('{')))["analysis"]["integrator"]["type"], "newmark");
 }
 
 }  // namespace

@@ -23,6 +23,9 @@
 ///    x_eval, v_eval, a_eval and t_eval (for Newmark these are x_{n+1}, v_{n+1}, a_{n+1}, t_{n+1}; for
 ///    generalized-alpha the intermediate points x_{n+1-af}, v_{n+1-af}, a_{n+1-am}, t_{n+1-af}).
 ///    The model assembles r = M a_eval + C v_eval + f_int(x_eval) - f_ext(t_eval).
+///  - Prescribed dofs (moving walls, a structure's ghost particles) are taken to the same point: the model writes
+///    their v and a at t_{n+1} into end_step()'s state of the trial x_{n+1} and calls evaluation() on it (under
+///    generalized-alpha a prescribed dof's rates written into kinematics()' point as they are are first order).
 ///  - coefficients() gives the derivatives of those quantities with respect to x_{n+1}:
 ///    d a_eval/dx = c_m, d v_eval/dx = c_c, d x_eval/dx = c_k, so the consistent tangent is
 ///    H = c_m M + c_c C + c_k K(x_eval) (system_assembly.hpp: combine_tangent()).
@@ -95,7 +98,7 @@ class TimeIntegrator {
   /// of its trial x_{n+1}, writes the prescribed v and a at t_{n+1} into those dofs and evaluates here, so that
   /// every dof is taken at the same level (t_{n+1-af} under generalized-alpha; the end state itself under
   /// Newmark). Writing the prescribed rates into kinematics()'s point instead puts those dofs at t_{n+1} and the
-  /// others at t_{n+1-af}: a coupled step then pumps energy at the interface.
+  /// others at t_{n+1-af}: first order (TimeIntegratorContract test), and the coupled flexible_tank blew up.
   virtual EvalPoint evaluation(const KinematicState& end) const = 0;
   virtual TangentCoefficients coefficients() const = 0;
   /// v_{n+1}, a_{n+1} from the converged x_{n+1}; writes the new state (t_{n+1} = t_n + dt).

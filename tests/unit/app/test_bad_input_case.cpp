@@ -257,7 +257,7 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   };
   json mono = fluid_body();
   mono["scheme"] = json::object();
-  resolved("defaults_monolithic", mono, {"advected", "constraints", "navier", "robin", "particle", 0.3, 0.02});
+  resolved("defaults_monolithic", mono, {"advected", "constraints", "navier", "robin", "particle", 0.3, 0.01});
   resolved("defaults_fractional", fluid_body(), {"alpha", "particles", "held", "", "surface", 0.0, 0.1});
   json alpha = mono;
   alpha["domain_detection"] = "alpha";
@@ -267,14 +267,14 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   resolved("defaults_fixed_mesh", fixed, {"alpha", "particles", "held", "dirichlet", "surface", 0.0, 0.1});
   json particles = mono;
   particles["wall_model"] = "particles";
-  resolved("defaults_wall_particles", particles, {"advected", "particles", "held", "robin", "particle", 0.3, 0.02});
+  resolved("defaults_wall_particles", particles, {"advected", "particles", "held", "robin", "particle", 0.3, 0.01});
   json level_set = mono;
   level_set["domain_detection"] = "level_set";
   level_set["scheme"]["volume_correction"] = "none";
   resolved("defaults_level_set", level_set, {"level_set", "constraints", "navier", "robin", "none", 0.0, 0.1});
   json dirichlet = mono;
   dirichlet["scheme"]["free_surface_pressure"] = "dirichlet";
-  resolved("defaults_dirichlet", dirichlet, {"advected", "constraints", "navier", "dirichlet", "particle", 0.3, 0.02});
+  resolved("defaults_dirichlet", dirichlet, {"advected", "constraints", "navier", "dirichlet", "particle", 0.3, 0.01});
   // An integrator the case names is kept.
   json c = case_of({mono});
   c["analysis"]["integrator"] = {{"type", "newmark"}};

@@ -228,7 +228,7 @@ double prescribed_dof_error(const std::string& which, int n, bool through_evalua
   const double M = 2 * m / 3, w = std::sqrt(k / M), zeta = c / (2 * M * w), wd = w * std::sqrt(1 - zeta * zeta);
   const std::complex<double> F = A * std::complex<double>(c * W, -(k + m * W * W / 3));  // f = Re(F e^{iWt})
   const std::complex<double> Xp = F / std::complex<double>(k - M * W * W, c * W);
-  const double P = -Xp.real(), Q = (-(-W * Xp.imag()) + zeta * w * P) / wd;
+  const double P = -Xp.real(), Q = (W * Xp.imag() + zeta * w * P) / wd;  // x1(0) = 0, x1'(0) = 0
   const double exact = (Xp * std::exp(std::complex<double>(0, W * t_end))).real() +
                        std::exp(-zeta * w * t_end) * (P * std::cos(wd * t_end) + Q * std::sin(wd * t_end));
   return std::abs(st.x[0] - exact);
@@ -251,7 +251,7 @@ TEST(TimeIntegratorContract, APrescribedDofIsTakenToTheEvaluationPointWithTheOth
     // A prescribed dof: second order through evaluation(). Under generalized-alpha its rates at t_{n+1}
     // among the free dof's at t_{n+1-af} are first order (the consistent mass couples a2 into dof 0's row).
     std::vector<double> err, err_raw;
-    for (int n : {160, 320, 640, 1280}) {  // 10 to 80 steps per period of the free dof
+    for (int n : {160, 320, 640, 1280}) {  // about 70 to 570 steps per period of the free dof (1.03 s)
       err.push_back(prescribed_dof_error(which, n, true));
       err_raw.push_back(prescribed_dof_error(which, n, false));
     }

@@ -25,7 +25,7 @@
 ///    The model assembles r = M a_eval + C v_eval + f_int(x_eval) - f_ext(t_eval).
 ///  - Prescribed dofs (moving walls, a structure's ghost particles) are taken to the same point: the model writes
 ///    their v and a at t_{n+1} into end_step()'s state of the trial x_{n+1} and calls evaluation() on it (under
-///    generalized-alpha a prescribed dof's rates written into kinematics()' point as they are are first order).
+///    generalized-alpha, rates written unchanged into kinematics()' point make the step first order).
 ///  - coefficients() gives the derivatives of those quantities with respect to x_{n+1}:
 ///    d a_eval/dx = c_m, d v_eval/dx = c_c, d x_eval/dx = c_k, so the consistent tangent is
 ///    H = c_m M + c_c C + c_k K(x_eval) (system_assembly.hpp: combine_tangent()).

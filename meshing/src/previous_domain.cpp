@@ -2,23 +2,13 @@
 /// Point location in the advected previous domain and distance to its boundary (previous_domain.hpp).
 #include <lagfsi/meshing/previous_domain.hpp>
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace lagfsi::meshing {
-
-namespace {
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-/// Distance from p to the segment [a, b].
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
-}
-}  // namespace
 
 int PreviousDomain::Grid::cx(double x) const {
   return std::clamp(static_cast<int>(std::floor((x - lo.x()) / cell)), 0, nx - 1);

@@ -94,14 +94,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.ctx.quiet = opt.quiet;
   c.ctx.base_dir = opt.case_file.parent_path();
   c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
-  // The integrator when the case names none: Newmark's trapezoidal rule, or what a body asks for (a fluid whose
-  // free-surface pressure is Robin: generalized-alpha; fluid_model.hpp).
-  Json preferred_integrator = nullptr;
-  if (const Json& bj = c.root.json().at("bodies"); bj.is_array())
-    for (const Json& body : bj)
-      if (body.is_object() && body.contains("type") && body.at("type") == "fluid")
-        if (Json p = fluid_preferred_integrator(body); p.is_object()) preferred_integrator = p;
-  c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings, preferred_integrator);
+  c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings, c.root.json().at("bodies"));
   c.ctx.gravity = c.root.vec2("gravity");
   Params out = c.root.at("output");
   out.validate({{"every", 1}, {"vtk", true}, {"checkpoint", Json::object()}});

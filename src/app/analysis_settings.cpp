@@ -3,18 +3,24 @@
 
 #include "input_checks.hpp"
 
+#include <lagfsi/fluid/fluid_model.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 namespace lagfsi {
 
-AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& default_integrator) {
+AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& bodies) {
+  Json default_integrator = {{"type", "newmark"}};
+  if (bodies.is_array())
+    for (const Json& body : bodies)
+      if (body.is_object() && body.contains("type") && body.at("type") == "fluid")
+        if (Json p = fluid_preferred_integrator(body); p.is_object()) default_integrator = p;
   a.validate({{"type", nullptr},
               {"dt", 0.0},
               {"end_time", 0.0},
               {"load_steps", 10},
               {"max_step_halvings", 4},
-              {"integrator", default_integrator.is_object() ? default_integrator : Json{{"type", "newmark"}}},
+              {"integrator", default_integrator},
               {"newton", Json::object()},
               {"linear_solver", Json{{"type", "cholmod"}}}});
   AnalysisSettings s;

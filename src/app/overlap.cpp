@@ -8,14 +8,14 @@
 // of the two regions' bounding box, which keeps the cancellation small.
 #include "overlap.hpp"
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 
 namespace lagfsi {
 
 namespace {
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double signed_area(const std::vector<Vec2>& p) {
   double s = 0;

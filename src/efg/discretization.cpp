@@ -2,6 +2,8 @@
 // (thesis §2.6-2.7, §4.4). See include/lagfsi/efg/discretization.hpp.
 #include <lagfsi/efg/discretization.hpp>
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -182,7 +184,6 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
 }
 
 bool Visibility::visible(const Vec2& a, const Vec2& b) const {
-  auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
   for (const auto& s : segments) {
     const Vec2 r = b - a, q = s[1] - s[0];
     const double den = cross(r, q);

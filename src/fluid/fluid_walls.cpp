@@ -2,6 +2,8 @@
 // motion, and keeping the fluid particles on their fluid side (or putting them on the wall).
 #include "fluid_walls.hpp"
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -102,7 +104,6 @@ namespace {
 // Whether the path from p to q (on a wall) crosses the segment c-d before it reaches q: then that segment stands
 // between p and the wall. A parallel segment (a collinear neighbour) is not in the way.
 bool path_blocked(const Vec2& p, const Vec2& q, const Vec2& c, const Vec2& d) {
-  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
   const Vec2 r = q - p, s = d - c;
   const double den = cross(r, s);
   if (std::abs(den) <= 1e-14 * r.norm() * s.norm()) return false;
@@ -450,7 +451,6 @@ void FluidWalls::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, 
   const std::vector<ParticleKind>& kind = cloud.kind();
   const std::vector<char> held =
       mesh.in_element_with(cloud.n(), [&](Index i) { return kind[i] == ParticleKind::Wall; });
-  const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
   Vec& x = cloud.x();
   Vec& vel = cloud.v();
   for (Index i = 0; i < cloud.n(); ++i) {

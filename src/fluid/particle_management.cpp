@@ -24,6 +24,8 @@
 //       both lie on or inside the advected domain, which they therefore do not change.
 //  3. what the remesh still changed is measured: the area and the kinetic energy of the same velocities on
 //     the new mesh against the old (log.csv remesh_dA, remesh_dKE; totals in summary.json).
+#include <lagfsi/geometry2d.hpp>
+
 #include "point_grid.hpp"
 #include "remesh_pipeline.hpp"
 
@@ -32,10 +34,6 @@
 #include <memory>
 
 namespace lagfsi::fluid {
-
-namespace {
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-}  // namespace
 
 RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
   // Boundary edges: used by one element, directed as in that element (counter-clockwise when it was made).
@@ -177,12 +175,8 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     const double r_close = s_.close_fraction * c_.h;
     const auto pressed = [&](Index f, Index g) {
       if ((pts[f] - pts[g]).norm() < r_close) return true;
-      for (Index q : ghosts_.face_neighbours(g)) {
-        const Vec2 d = pts[q] - pts[g];
-        const double dd = d.squaredNorm();
-        const double s = dd > 0 ? std::clamp((pts[f] - pts[g]).dot(d) / dd, 0.0, 1.0) : 0.0;
-        if ((pts[g] + s * d - pts[f]).norm() < r_close) return true;
-      }
+      for (Index q : ghosts_.face_neighbours(g))
+        if (segment_distance(pts[f], pts[g], pts[q]) < r_close) return true;
       return false;
     };
     for (const auto& t : mesh_.tri)

@@ -4,6 +4,7 @@
 /// function, time_function.hpp). A disc touches a segment when the distance d from its centre c to the
 /// segment's closest point p is below its radius: overlap r - d, normal n = (c - p)/d; the wall acts as a
 /// body of infinite mass and radius (m_eff = m_i, r_eff = r_i) moving with the wall's velocity.
+#include <lagfsi/geometry2d.hpp>  // closest_on_segment
 #include <lagfsi/params.hpp>
 #include <lagfsi/time_function.hpp>
 
@@ -29,15 +30,6 @@ struct Wall {
   Vec2 a(size_t s) const { return points[s] + offset; }
   Vec2 b(size_t s) const { return points[s + 1] + offset; }
 };
-
-/// Closest point of segment [a, b] to c.
-inline Vec2 closest_on_segment(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  double s = l2 > 0 ? (c - a).dot(ab) / l2 : 0.0;
-  s = s < 0 ? 0 : (s > 1 ? 1 : s);
-  return a + s * ab;
-}
 
 /// Reads the body's "walls" array: [{"name", "points": [[x, y], ...] (>= 2), "velocity": [vx, vy],
 /// "function": {time function}}].

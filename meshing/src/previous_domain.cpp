@@ -46,8 +46,14 @@ PreviousDomain::PreviousDomain(std::vector<std::array<Vec2, 3>> triangles, std::
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   std::vector<std::array<Vec2, 2>> boxes(triangles_.size());
   double size = 0;
+  // Each element's orientation (0: flat) and the tolerance of contains()' edge tests, -1e-12 |2 A|.
+  sign_.resize(triangles_.size());
+  tolerance_.resize(triangles_.size());
   for (std::size_t e = 0; e < triangles_.size(); ++e) {
     const auto& t = triangles_[e];
+    const double a2 = cross(t[1] - t[0], t[2] - t[0]);
+    sign_[e] = a2 > 0 ? 1.0 : a2 < 0 ? -1.0 : 0.0;
+    tolerance_[e] = -1e-12 * std::abs(a2);
     boxes[e] = {t[0].cwiseMin(t[1]).cwiseMin(t[2]), t[0].cwiseMax(t[1]).cwiseMax(t[2])};
     lo = lo.cwiseMin(boxes[e][0]);
     hi = hi.cwiseMax(boxes[e][1]);
@@ -71,10 +77,10 @@ bool PreviousDomain::contains(const Vec2& p) const {
     return false;
   const std::size_t c = static_cast<std::size_t>(g.cy(p.y())) * g.nx + g.cx(p.x());
   for (int k = g.start[c]; k < g.start[c + 1]; ++k) {
-    const auto& t = triangles_[static_cast<std::size_t>(g.items[static_cast<std::size_t>(k)])];
-    const double a2 = cross(t[1] - t[0], t[2] - t[0]);
-    if (a2 == 0) continue;
-    const double s = a2 > 0 ? 1.0 : -1.0, tol = -1e-12 * std::abs(a2);
+    const auto e = static_cast<std::size_t>(g.items[static_cast<std::size_t>(k)]);
+    const auto& t = triangles_[e];
+    const double s = sign_[e], tol = tolerance_[e];
+    if (s == 0) continue;
     if (s * cross(t[1] - t[0], p - t[0]) >= tol && s * cross(t[2] - t[1], p - t[1]) >= tol &&
         s * cross(t[0] - t[2], p - t[2]) >= tol)
       return true;

@@ -52,18 +52,17 @@ RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
   return b;
 }
 
-meshing::PreviousDomain RemeshPipeline::advected_domain() const {
+meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b) const {
   std::vector<std::array<Vec2, 3>> triangles;
   triangles.reserve(mesh_.tri.size());
   for (const auto& t : mesh_.tri) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
-  const BoundaryChains b = boundary_chains();
   std::vector<std::array<Vec2, 2>> boundary;
   for (Index i = 0; i < cloud_.n(); ++i)
     if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});
   return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
 }
 
-bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
+bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,
                                       std::vector<std::pair<Index, Index>>& boundary_edges,
                                       std::vector<std::pair<Index, Index>>* all_edges,
                                       const std::vector<char>& on_wall) {
@@ -73,7 +72,6 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   std::vector<double> lumped(np, 0.0);
   for (Index e = 0; e < static_cast<Index>(mesh_.tri.size()); ++e)
     for (Index i : mesh_.tri[e]) lumped[i] += std::abs(mesh_.element_area(cloud_.x(), e)) / 3.0;
-  const BoundaryChains chain = boundary_chains();
   const auto on_boundary = [&](Index i) { return chain.next[i] >= 0 || chain.prev[i] >= 0; };
 
   std::vector<char> drop(np, 0), touched(np, 0);
@@ -144,7 +142,8 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     // A fluid particle put on a wall's end where a structure stands (its ghost particle: the foot of an
     // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
     const double r = std::max(s_.close_fraction, 0.05) * c_.h;
-    PointGrid grid(std::max(r, 1e-300)), prescribed(std::max(r, 1e-300));
+    const auto n_hint = static_cast<std::size_t>(np);
+    PointGrid grid(std::max(r, 1e-300), n_hint), prescribed(std::max(r, 1e-300), n_hint);
     for (Index i = 0; i < np; ++i)
       if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
     for (Index i = 0; i < np; ++i) {
@@ -205,7 +204,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
     // two film particles 0.03 h apart at 3 m/s against each other, a sliver turned over at every step down to
     // dt/16). Merged too, as the alpha detection merges close pairs on the new mesh.
     const double r_meet = s_.close_fraction * c_.h;
-    PointGrid untouched(r_meet);
+    PointGrid untouched(r_meet, static_cast<std::size_t>(np));
     for (Index i = 0; i < np; ++i) {
       if (cloud_.kind(i) != ParticleKind::Fluid || touched[i]) continue;
       const Index j = untouched.find(pts[i], r_meet, pts);
@@ -232,7 +231,7 @@ bool RemeshPipeline::manage_particles(std::vector<std::uint8_t>& meshed,
   std::unique_ptr<PointGrid> taken;
   const double r_taken = std::max(s_.close_fraction, 0.05) * c_.h;
   if (!on_wall.empty()) {
-    taken = std::make_unique<PointGrid>(r_taken);
+    taken = std::make_unique<PointGrid>(r_taken, static_cast<std::size_t>(np));
     for (Index i = 0; i < np; ++i)
       if (!drop[i]) taken->add(pts[i], i);
   }

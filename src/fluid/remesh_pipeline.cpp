@@ -92,10 +92,11 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     if (removed) remesh_now();
     if (insert_particles()) remesh_now();
   } else {
-    meshing::PreviousDomain previous = advected_domain();
+    const BoundaryChains chain = boundary_chains();
+    meshing::PreviousDomain previous = advected_domain(chain);
     std::vector<std::uint8_t> meshed;
     std::vector<std::pair<Index, Index>> edges, all_edges;
-    manage_particles(meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr, on_wall);
+    manage_particles(chain, meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr, on_wall);
     for (Index& k : present)
       if (k >= 0) k = survivor_[k];
     previous.set_topology(std::move(meshed), std::move(edges));

@@ -98,20 +98,6 @@ class RemeshPipeline {
   double structure_margin() const {
     return s_.domain_margin * (domain_hi_ - domain_lo_).maxCoeff() / (1 + 2 * s_.domain_margin);
   }
-  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
-  /// (particle_management.cpp).
-  meshing::PreviousDomain advected_domain() const;
-  /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
-  /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long
-  /// free-surface edges are split at their midpoints and large elements get a particle at their centroid
-  /// (state interpolated on the mesh). Keeps the mesh consistent with the cloud. Returns true if it changed
-  /// it. `meshed` and `boundary_edges` receive the previous mesh's topology in the new numbering (the
-  /// particles it used, inserted ones included; its boundary edges, through merges and splits), and, when
-  /// `all_edges` is given, every edge of the previous mesh through merges (an edge of a removed particle goes;
-  /// a split boundary edge gives its two halves).
-  bool manage_particles(std::vector<std::uint8_t>& meshed, std::vector<std::pair<Index, Index>>& boundary_edges,
-                        std::vector<std::pair<Index, Index>>* all_edges = nullptr,
-                        const std::vector<char>& on_wall = {});
   /// The boundary of the mesh as chains: next[i] / prev[i] the particle after / before i along a boundary
   /// edge (directed as in its element), -1 if none; pinched where two boundary edges leave one particle (two
   /// surfaces touching at it).
@@ -120,6 +106,21 @@ class RemeshPipeline {
     std::vector<char> pinched;
   };
   BoundaryChains boundary_chains() const;
+  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
+  /// (particle_management.cpp); `chain`: its boundary_chains().
+  meshing::PreviousDomain advected_domain(const BoundaryChains& chain) const;
+  /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
+  /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long
+  /// free-surface edges are split at their midpoints and large elements get a particle at their centroid
+  /// (state interpolated on the mesh). Keeps the mesh consistent with the cloud. Returns true if it changed
+  /// it. `meshed` and `boundary_edges` receive the previous mesh's topology in the new numbering (the
+  /// particles it used, inserted ones included; its boundary edges, through merges and splits), and, when
+  /// `all_edges` is given, every edge of the previous mesh through merges (an edge of a removed particle goes;
+  /// a split boundary edge gives its two halves). `chain`: the mesh's boundary_chains().
+  bool manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,
+                        std::vector<std::pair<Index, Index>>& boundary_edges,
+                        std::vector<std::pair<Index, Index>>* all_edges = nullptr,
+                        const std::vector<char>& on_wall = {});
   /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
   /// particle go, the others are renumbered (renumber_).
   bool drop_particles(const std::vector<char>& drop);

@@ -1,6 +1,7 @@
 // Unit tests of lagfsi::meshing (mesh_polygon, mesh_rectangle_structured, elevate, arc_points) and of
 // boundary_edges on elevated meshes. Expected values are computed independently of the mesher
 // (shoelace areas, explicit barycentric positions, edge sets rebuilt from the connectivity).
+#include <lagfsi/geometry2d.hpp>
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/meshing/primitives.hpp>
 
@@ -20,14 +21,13 @@
 namespace {
 
 using lagfsi::BoundaryEdge;
+using lagfsi::cross;
 using lagfsi::Index;
 using lagfsi::TriMesh;
 using lagfsi::Vec2;
 using lagfsi::meshing::PolygonRegion;
 
 constexpr double kPi = std::numbers::pi;
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Signed area of the straight triangle of element e's vertices.
 double element_area(const TriMesh& m, Index e) {

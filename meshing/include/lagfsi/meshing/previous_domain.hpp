@@ -68,6 +68,7 @@ class PreviousDomain {
   std::vector<std::pair<Index, Index>> boundary_edges_;  // (min, max), sorted
   std::vector<std::pair<Index, Index>> edges_;           // (min, max), sorted, unique
   std::vector<std::array<Vec2, 3>> triangles_;
+  std::vector<double> sign_, tolerance_;  // per element: its orientation (0: flat) and contains()' tolerance
   std::vector<std::array<Vec2, 2>> boundary_;
   Grid tri_grid_, edge_grid_;
 };

@@ -85,7 +85,7 @@ int max_threads() {
 
 }  // namespace
 
-int app_main(int argc, char** argv) {
+int app_main(int argc, char** argv, const char* git_commit) {
   std::vector<std::string> args(argv + 1, argv + argc);
   // Every argument ends up in messages and in summary.json: it must be UTF-8.
   for (size_t i = 0; i < args.size(); ++i)
@@ -104,7 +104,7 @@ int app_main(int argc, char** argv) {
     return kOk;
   }
   if (cmd == "--version") {
-    std::cout << "lagfsi " << LAGFSI_VERSION << " (commit " << LAGFSI_GIT_COMMIT << ")\n"
+    std::cout << "lagfsi " << LAGFSI_VERSION << " (commit " << (git_commit != nullptr ? git_commit : "unknown") << ")\n"
               << "  Eigen " << EIGEN_WORLD_VERSION << "." << EIGEN_MAJOR_VERSION << "." << EIGEN_MINOR_VERSION
               << ", SuiteSparse " << LAGFSI_SUITESPARSE_VERSION << ", VTK " << LAGFSI_VTK_VERSION << ", CGAL "
               << LAGFSI_CGAL_VERSION << "\n";

@@ -238,9 +238,9 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
     const size_t start = r.out.find('{');
     ASSERT_NE(start, std::string::npos) << r.out;
     const json root = json::parse(r.out.substr(start));
-    const bool alpha_integrator = e.free_surface_pressure == "robin" && e.wall_model == "constraints";
-    EXPECT_EQ(root["analysis"]["integrator"]["type"], alpha_integrator ? "generalized_alpha" : "newmark") << tag;
-    if (alpha_integrator) {
+    const bool generalized_alpha = e.free_surface_pressure == "robin" && e.wall_model == "constraints";
+    EXPECT_EQ(root["analysis"]["integrator"]["type"], generalized_alpha ? "generalized_alpha" : "newmark") << tag;
+    if (generalized_alpha) {
       EXPECT_EQ(root["analysis"]["integrator"]["rho_inf"].get<double>(), 0.8) << tag;
     }
     const json b = root["bodies"][0];

@@ -394,11 +394,11 @@ Json fluid_preferred_integrator(const Json& body) {
   if (fluid::peek(scheme, "type", "monolithic_pspg") != "monolithic_pspg") return nullptr;
   const fluid::FluidDefaults d = fluid::fluid_defaults(body);
   const std::string surface = fluid::peek(scheme, "free_surface_pressure", d.free_surface_pressure);
-  // With wall particles the trapezoidal rule keeps more of the water: the fluid is held off the walls by the
-  // pressure at the evaluation point alone, and generalized-alpha's end positions, extrapolated from it, overshoot
-  // between wall particles in a splash (dam_break_tank, wall particles, advected, Robin, 1 s: water within 1.68 %
-  // and 292 particles put back from beyond a wall under generalized-alpha, 0.63 % and 68 under Newmark; the
-  // obstacle's 1.49 % and 569 against 1.33 % and 299; README, "Generalized-alpha with the package").
+  // With wall particles the trapezoidal rule keeps more of the water (dam_break_tank, wall particles, advected,
+  // Robin, 1 s: water within 1.68 % and 292 particles put back from beyond a wall under generalized-alpha, 0.63 %
+  // and 68 under Newmark; the obstacle's 1.49 % and 569 against 1.33 % and 299; README, "Generalized-alpha with the
+  // package"). Probably the fluid is held off the walls by the pressure at the evaluation point alone, and
+  // generalized-alpha's end positions, extrapolated from it, overshoot between wall particles in a splash.
   const std::string walls = fluid::peek(body, "wall_model", d.wall_model);
   return surface == "robin" && walls == "constraints" ? Json{{"type", "generalized_alpha"}, {"rho_inf", 0.8}}
                                                       : Json(nullptr);

@@ -142,8 +142,12 @@ bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<s
     // A fluid particle put on a wall's end where a structure stands (its ghost particle: the foot of an
     // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
     const double r = std::max(s_.close_fraction, 0.05) * c_.h;
-    const auto n_hint = static_cast<std::size_t>(np);
-    PointGrid grid(std::max(r, 1e-300), n_hint), prescribed(std::max(r, 1e-300), n_hint);
+    // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles, and the
+    // wall and ghost particles (none with walls as constraints but a structure's ghosts).
+    const auto n_fluid =
+        static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
+    PointGrid grid(std::max(r, 1e-300), n_fluid),
+        prescribed(std::max(r, 1e-300), static_cast<std::size_t>(np) - n_fluid);
     for (Index i = 0; i < np; ++i)
       if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
     for (Index i = 0; i < np; ++i) {

@@ -7,7 +7,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 case_name=${1:-dam_break_tank}
 bash "$root/scripts/setup.sh"
-bash "$root/scripts/build.sh"
+bash "$root/scripts/build.sh" lagfsi   # the executable alone: the tests are built by scripts/test.sh
 cd "$root"
 "$root/build/lagfsi" run "cases/$case_name/case.json" -o "out/$case_name"
 /usr/bin/python3 "cases/$case_name/plot.py" "out/$case_name"

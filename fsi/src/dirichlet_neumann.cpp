@@ -44,15 +44,31 @@ class DirichletNeumann final : public PhysicsModel {
   void finalize_step() override;
   void write_output(double) override {}
   std::unique_ptr<Probe> make_probe(Params p) override;
-  int coupling_iterations() const override { return last_iterations_; }
-  double coupling_residual() const override { return last_residual_; }
-  int coupling_restarts() const override { return restarts_; }
+  /// Iterations of the last step's loop (0: the bodies were apart) and its final relative interface residual.
+  int coupling_iterations() const { return last_iterations_; }
+  /// log.csv: the step's coupling iterations (fsi_iterations, shown in the progress line) and final relative
+  /// interface residual (fsi_residual); two couplings add their iterations and keep the larger residual.
+  std::vector<Metric> step_metrics() const override {
+    return {{"fsi_iterations", double(last_iterations_), Metric::Combine::sum, "fsi"},
+            {"fsi_residual", last_residual_, Metric::Combine::max}};
+  }
+  /// summary.json: the steps that iterated (coupled_steps), their iterations (total, mean, max), the largest
+  /// final interface residual and the loops restarted with the accelerator's memory cleared.
+  Json summary() const override {
+    return {{"coupled_steps", coupled_steps_},
+            {"restarts", restarts_},
+            {"iterations_total", iterations_total_},
+            {"iterations_mean", coupled_steps_ ? double(iterations_total_) / coupled_steps_ : 0.0},
+            {"iterations_max", iterations_max_},
+            {"residual_max", residual_max_}};
+  }
   bool can_checkpoint() const override { return true; }
   /// The loop's memory between steps: the last motion and step (the first guess), the forces of the last
   /// solve (the "forces" predictor, the probes), the accelerator's columns or Jacobian, the counters.
   void serialize(StateArchive& ar) override {
     ar.section("coupling " + name_);
     ar.io(t_new_, dt_, restarts_, last_motion_, dt_prev_, last_iterations_, last_residual_, node_forces_);
+    ar.io(coupled_steps_, iterations_total_, iterations_max_, residual_max_);
     ar.section("acceleration " + acceleration_->type());
     acceleration_->serialize(ar);
   }
@@ -89,6 +105,11 @@ class DirichletNeumann final : public PhysicsModel {
   bool force_predictor_ = false;  // first guess from the structure under the last interface forces
   int last_iterations_ = 0;
   double last_residual_ = 0;
+  // Over the run's accepted steps that iterated: their count, iterations, largest iterations and residual.
+  int coupled_steps_ = 0;
+  long iterations_total_ = 0;
+  int iterations_max_ = 0;
+  double residual_max_ = 0;
   Vec node_forces_;  // forces of the fluid on the interface nodes (last solve)
 };
 
@@ -251,6 +272,12 @@ void DirichletNeumann::finalize_step() {
   const Vec x_old = structure_->interface_positions_old(boundary_.nodes);
   last_motion_ = structure_->interface_positions(boundary_.nodes) - x_old;
   dt_prev_ = dt_;
+  if (last_iterations_ > 0) {
+    ++coupled_steps_;
+    iterations_total_ += last_iterations_;
+    iterations_max_ = std::max(iterations_max_, last_iterations_);
+    residual_max_ = std::max(residual_max_, last_residual_);
+  }
   structure_model_.finalize_step();
   fluid_model_.finalize_step();
 }

@@ -45,6 +45,17 @@ struct IterationReport {
   int inner_iterations = 0;  ///< a composite model (a coupling): the sub-solver iterations this call ran
 };
 
+/// A number a model reports after each step (PhysicsModel::step_metrics): a column of log.csv.
+struct Metric {
+  enum class Combine { sum, max };
+  std::string name;  ///< the column's name (an identifier)
+  double value = 0;
+  Combine combine = Combine::sum;  ///< two models with the same name: their sum or their maximum
+  /// Shown in the progress line as " label=value" when not empty and the value is not 0; its sum over the
+  /// run's steps goes to the final table as ", total label".
+  std::string progress_label = {};
+};
+
 /// One or more columns of probes.csv.
 class Probe {
  public:
@@ -70,23 +81,16 @@ class PhysicsModel {
 
   virtual Index num_nodes() const = 0;
   virtual Index num_elements() const = 0;
-  virtual double fluid_area() const { return 0.0; }
-  /// Fluid area of the step's mesh right after remeshing (before the step moved it); with fluid_area() of
-  /// the previous step it shows what remeshing added or removed.
-  virtual double fluid_area_remeshed() const { return 0.0; }
-  /// What the step's remeshing changed (a PFEM fluid): its area and the kinetic energy of the same velocities
-  /// on the new mesh, minus those of the last step's mesh (log.csv: remesh_dA, remesh_dKE).
-  virtual double remesh_area_change() const { return 0.0; }
-  virtual double remesh_kinetic_energy_change() const { return 0.0; }
-  /// The body's own numbers for summary.json (an object merged into its entry; empty: none).
+  /// Particles the model moves (PFEM, MPM, DEM); 0 for a mesh-only model. The progress line shows them.
+  virtual Index num_particles() const { return 0; }
+  /// The model's own numbers after an accepted step (after finalize_step): each one a column of log.csv,
+  /// the same name from two models combined as Metric::combine says. A model reports the same names at
+  /// every step (the columns are fixed by the first call, made after initialize()).
+  virtual std::vector<Metric> step_metrics() const { return {}; }
+  /// The model's own numbers for summary.json (an object merged into its entry; empty: none).
   virtual Json summary() const { return Json::object(); }
   PhaseTimes& times() { return times_; }
-  /// A coupling: iterations of its last step (0 when the step needed none) and its final interface
-  /// residual (relative); 0 for a single body.
-  virtual int coupling_iterations() const { return 0; }
-  virtual double coupling_residual() const { return 0.0; }
-  /// A coupling: steps whose loop was restarted so far (after a failed loop).
-  virtual int coupling_restarts() const { return 0; }
+  const PhaseTimes& times() const { return times_; }
 
   /// Checkpoints (`output.checkpoint`, `lagfsi run --restart`): whether serialize() is implemented.
   virtual bool can_checkpoint() const { return false; }

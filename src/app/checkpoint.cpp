@@ -88,8 +88,7 @@ void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, cons
   ar.io(nb);
   if (ar.loading()) tot.body_phases.resize(nb);
   for (PhaseTimes& p : tot.body_phases) serialize_phases(ar, p);
-  ar.io(tot.iterations, tot.retries, tot.max_iterations, tot.steps, tot.coupled_steps, tot.coupling_iterations,
-        tot.coupling_max, tot.coupling_residual_max, tot.wall_before);
+  ar.io(tot.iterations, tot.retries, tot.max_iterations, tot.steps, tot.labelled, tot.wall_before);
 }
 
 void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models,

@@ -37,11 +37,8 @@ struct RunTotals {
   int retries = 0;
   int max_iterations = 0;
   int steps = 0;
-  // Couplings: steps that iterated, their iterations, the largest final interface residual.
-  int coupled_steps = 0;
-  long coupling_iterations = 0;
-  int coupling_max = 0;
-  double coupling_residual_max = 0;
+  /// The models' labelled metrics (Metric::progress_label) summed over the steps, in the log's column order.
+  std::vector<double> labelled;
   double wall_before = 0;  // wall time of the runs before a restart
 };
 

@@ -66,10 +66,11 @@ std::string Progress::status_text(const StepStatus& s, bool with_bar, int width)
   std::snprintf(buf, sizeof buf, "%3.0f%% step %ld t=%.4g/%.4g dt=%.3g it=%d", 100 * f, s.step, s.t, s.t_end, s.dt,
                 s.iterations);
   std::string nums = buf;
-  if (s.fsi_passes > 0) {
-    std::snprintf(buf, sizeof buf, " fsi=%d", s.fsi_passes);
-    nums += buf;
-  }
+  for (const auto& [label, value] : s.shown)
+    if (value != 0) {
+      std::snprintf(buf, sizeof buf, " %s=%.6g", label.c_str(), value);
+      nums += buf;
+    }
   std::snprintf(buf, sizeof buf, s.particles > 0 ? " particles=%ld" : " nodes=%ld",
                 s.particles > 0 ? s.particles : s.nodes);
   nums += buf;
@@ -143,7 +144,8 @@ void Progress::table(const TimeTable& t) {
   std::fprintf(out_,
                "[%s] where the time went: %s wall, %ld steps (%d retried with a smaller dt), %ld Newton iterations",
                name_.c_str(), duration(t.wall).c_str(), t.steps, t.retries, t.iterations);
-  if (t.fsi_passes > 0) std::fprintf(out_, ", %ld FSI passes", t.fsi_passes);
+  for (const auto& [label, total] : t.totals)
+    if (total != 0) std::fprintf(out_, ", %.6g %s", total, label.c_str());
   std::fprintf(out_, "\n");
   const std::pair<const char*, double> rows[] = {
       {"remesh", p.remesh}, {"assembly", p.assembly}, {"factorization", p.factorization},

@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace lagfsi {
 
@@ -20,8 +22,10 @@ struct StepStatus {
   long step = 0;
   double t = 0, t_end = 1, dt = 0;
   int iterations = 0;  ///< Newton iterations of the step (inner ones for couplings)
-  int fsi_passes = 0;  ///< coupling iterations of the step
-  long particles = 0;  ///< fluid and MPM particles (0: none in the case)
+  /// The models' metrics that have a progress label (Metric::progress_label): label and value, shown when
+  /// the value is not 0 (e.g. fsi=3, a coupling's iterations).
+  std::vector<std::pair<std::string, double>> shown;
+  long particles = 0;  ///< particles of the models that move particles (0: none in the case)
   long nodes = 0;      ///< every body's nodes
   double wall = 0;     ///< seconds since the start of the run
 };
@@ -33,7 +37,8 @@ struct TimeTable {
   long steps = 0;
   int retries = 0;  ///< steps retried with a smaller dt
   long iterations = 0;
-  long fsi_passes = 0;
+  /// The labelled metrics summed over the run's steps, shown when not 0 (e.g. ", 412 fsi").
+  std::vector<std::pair<std::string, double>> totals;
 };
 
 class Progress {

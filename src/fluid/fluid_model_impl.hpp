@@ -32,8 +32,16 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::string type() const override { return "fluid"; }
   Index num_nodes() const override { return cloud_.n(); }
   Index num_elements() const override { return mesh_.num_elements(); }
-  double fluid_area() const override { return volume_.area_end(); }
-  double fluid_area_remeshed() const override { return volume_.area_remeshed(); }
+  Index num_particles() const override { return cloud_.n(); }
+  /// log.csv: the fluid area right after the step's remeshing (fluid_area_remeshed) and at the step's end
+  /// (fluid_area), and what the remeshing changed: its area and the kinetic energy of the same velocities
+  /// on the new mesh, minus those of the last step's mesh (remesh_dA, remesh_dKE).
+  std::vector<Metric> step_metrics() const override {
+    return {{"fluid_area_remeshed", volume_.area_remeshed()},
+            {"fluid_area", volume_.area_end()},
+            {"remesh_dA", remesh_.area_change()},
+            {"remesh_dKE", remesh_.kinetic_energy_change()}};
+  }
   /// The fluid area (initial mesh, now, of the fluid dropped outside the domain box, and the drift without
   /// the latter: the scheme's own), the particles put back inside a wall (keep_inside_walls), the particle
   /// counts and what remeshing changed over the run (RemeshPipeline::summary).
@@ -84,8 +92,6 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double total_energy() const {
     return kinetic_energy() + potential_energy() + energy_.dissipation() - energy_.boundary_work();
   }
-  double remesh_area_change() const override { return remesh_.area_change(); }
-  double remesh_kinetic_energy_change() const override { return remesh_.kinetic_energy_change(); }
 
  private:
   /// The particles, the walls and the initial state from the case (fluid_input.cpp).

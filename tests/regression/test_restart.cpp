@@ -31,17 +31,20 @@ std::vector<std::string> with_sets(std::vector<std::string> args, const std::vec
   return args;
 }
 
-/// log.csv without the wall-time columns (t_remesh .. t_step).
+/// log.csv without the wall-time columns (t_remesh .. t_step: those whose header starts with "t_").
 std::string log_without_times(const fs::path& f) {
   std::istringstream in(file_text(f));
   std::string line, out;
+  std::vector<bool> timed;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
     std::stringstream ss(line);
     std::string cell;
     while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (timed.empty())
+      for (const auto& c : cells) timed.push_back(c.rfind("t_", 0) == 0);
     for (size_t i = 0; i < cells.size(); ++i)
-      if (i < 11 || i > 16) out += cells[i] + ",";
+      if (i >= timed.size() || !timed[i]) out += cells[i] + ",";
     out += "\n";
   }
   return out;

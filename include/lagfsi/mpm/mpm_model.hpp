@@ -44,7 +44,8 @@ class MpmModel final : public PhysicsModel {
 
   std::string name() const override;
   std::string type() const override { return "mpm"; }
-  Index num_nodes() const override;     ///< the particles
+  Index num_nodes() const override;  ///< the particles
+  Index num_particles() const override { return num_nodes(); }
   Index num_elements() const override;  ///< the grid's cells
   void initialize() override;
   /// Starts a step; the first predict of a step saves the body's state, a second one before finalize_step (the

@@ -63,6 +63,7 @@ void FluidModel::serialize(StateArchive& ar) {
   cloud_.serialize(ar);
   mesh_.serialize(ar);
   walls_.serialize(ar);
+  boundaries_.serialize(ar);  // nothing without boundaries
   ghosts_.serialize(ar);
   remesh_.serialize(ar);
   volume_.serialize(ar);

@@ -68,9 +68,9 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, c
     boundary_work_ += 0.5 * (boundary_force_prev_.segment<2>(2 * i) + boundary_force.segment<2>(2 * i))
                                 .dot(x_new.segment<2>(2 * i) - x.segment<2>(2 * i));
   boundary_force_prev_ = boundary_force;
-  // Work of the walls through the constraints of the particles on them: the end-of-step force times the
-  // step's displacement (first order: the constrained particles change from step to step).
-  const auto& ks = walls_.constraints();
+  // Work of the walls and boundaries through the constraints of the particles on them: the end-of-step force
+  // times the step's displacement (first order: the constrained particles change from step to step).
+  const auto& ks = boundaries_.constraints();
   if (static_cast<size_t>(constraint_force.size()) == ks.size())
     for (size_t k = 0; k < ks.size(); ++k) {
       const double dx = walls_.component(x_new, ks[k].i, ks[k].c) - walls_.component(x, ks[k].i, ks[k].c);

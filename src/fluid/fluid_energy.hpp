@@ -3,6 +3,7 @@
 /// The fluid's energy balance for the probes: kinetic and potential energy of the present mesh, and the work
 /// of gravity and the viscous dissipation summed over the steps (account).
 #include <lagfsi/fluid/particle_cloud.hpp>
+#include "fluid_boundaries.hpp"
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
 #include "fluid_walls.hpp"
@@ -11,8 +12,9 @@ namespace lagfsi::fluid {
 
 class FluidEnergy {
  public:
-  FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh, const FluidWalls& walls)
-      : c_(c), cloud_(cloud), mesh_(mesh), walls_(walls) {}
+  FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh, const FluidWalls& walls,
+              const FluidBoundaries& boundaries)
+      : c_(c), cloud_(cloud), mesh_(mesh), walls_(walls), boundaries_(boundaries) {}
   double kinetic() const;
   /// Potential energy of gravity over the current mesh, -rho integral of g . x dA (exact on linear triangles:
   /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
@@ -43,6 +45,7 @@ class FluidEnergy {
   const ParticleCloud& cloud_;
   const FluidMesh& mesh_;
   const FluidWalls& walls_;
+  const FluidBoundaries& boundaries_;
   double gravity_work_ = 0, dissipation_ = 0, boundary_work_ = 0;
   Vec boundary_force_prev_;  // the boundary forces at the start of the step
   bool enabled_ = false;     // account() only for runs that probe it

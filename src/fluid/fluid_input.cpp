@@ -78,6 +78,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"regions", nullptr},
               {"particles", "structured"},
               {"walls", Json::array()},
+              {"boundaries", Json::array()},
               {"initial_velocity", Json::array({0.0, 0.0})},
               {"initial_pressure", Json{{"type", "zero"}}},
               {"initial_state", Json{{"type", "given"}}},
@@ -233,6 +234,7 @@ void FluidModel::build_particles(Params b) {
   std::vector<ParticleKind> kind;
   PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);  // the particles so far, for the proximity tests
   if (c_.remesh && !wall_constraints_) walls_.place_particles(walls, h, pts, kind, wall_grid);
+  boundaries_.read(b.at("boundaries"), {h, ctx_.base_dir});
   const Index n_wall = static_cast<Index>(pts.size());
 
   // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay

@@ -22,7 +22,8 @@ void mark_free_surface(RemeshPipeline& remesh, const FluidWalls& walls, Index n)
 }
 }  // namespace
 
-void FluidModel::set_dirichlet() {
+void FluidModel::set_dirichlet(double t_start) {
+  boundaries_.update(cloud_, t_start);
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
   std::vector<char>& fixed = step_.fixed;
@@ -33,7 +34,7 @@ void FluidModel::set_dirichlet() {
     const bool free_surface = mesh_.free[i] && fsp == FreeSurfacePressure::dirichlet;
     if (!mesh_.connected[i] || free_surface) fixed[3 * i + 2] = 1;
   }
-  for (const auto& k : walls_.constraints()) fixed[3 * k.i + k.c] = 1;
+  for (const auto& k : boundaries_.constraints()) fixed[3 * k.i + k.c] = 1;
   // Dry wall particles: a wall particle in no element with an interior (non-free-surface) fluid particle
   // is above or beside the free surface (a meniscus element between a surface particle and the wall);
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
@@ -81,7 +82,7 @@ void FluidModel::initialize() {
   // the free surface, as the solver will impose) and the initial velocity. An inconsistent a0 excites the
   // period-2 pressure oscillation of the trapezoidal rule on this index-2 system (a hydrostatic column
   // started with a0 = g alternates between 0 and twice the hydrostatic pressure).
-  set_dirichlet();
+  set_dirichlet(0.0);
   for (Index i = 0; i < np; ++i)
     if (step_.fixed[3 * i + 2]) p[i] = 0.0;
   // The element kernel's momentum rows with zero acceleration are the viscous, pressure and gravity
@@ -103,11 +104,11 @@ void FluidModel::initialize() {
     if (kind[i] != ParticleKind::Fluid) continue;
     s.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : c_.gravity;
   }
-  for (const auto& k : walls_.constraints()) {
+  for (const auto& k : boundaries_.constraints()) {
     walls_.set_component(s.a, k.i, k.c, 0.0);
     walls_.set_component(s.v, k.i, k.c, 0.0);
   }
-  walls_.set_wall_motion(0.0, s.v, s.a);
+  boundaries_.set_motion(0.0, s.v, s.a);
   times_.assembly += seconds_since(t0);
 }
 
@@ -152,7 +153,7 @@ void FluidModel::predict(double t_new, double dt) {
   t0 = Clock::now();
   solved_once_ = true;
   mesh_.flatten();
-  set_dirichlet();
+  set_dirichlet(t_new - dt);
   volume_.set_remeshed(mesh_.area(cloud_.x()));
   volume_.hand_owed_inward(step_.fixed);
   volume_.return_unpayable_through_bulk(step_.fixed);
@@ -170,8 +171,8 @@ void FluidModel::start_iterations() {
   Vec& x = step_.x;
   Vec& p = cloud_.p();
   p = step_.p_old;
-  x = s.x + step_.dt * s.v;                   // constant-velocity predictor
-  walls_.place(step_.t_new, cloud_.X0(), x);  // prescribed wall motion, particles on walls
+  x = s.x + step_.dt * s.v;                        // constant-velocity predictor
+  boundaries_.place(step_.t_new, cloud_.X0(), x);  // prescribed wall motion, particles on walls and boundaries
   ghosts_.place(x);
   for (Index i = 0; i < np; ++i)
     if (step_.fixed[3 * i + 2]) p[i] = 0.0;
@@ -194,6 +195,7 @@ void FluidModel::finalize_step() {
   } else if (c_.remesh) {
     walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
   }
+  boundaries_.after_step(cloud_, x_start, step_.t_new);
   volume_.set_end(mesh_.area(cloud_.x()));
   step_.p_scale = std::max(step_.p_scale, cloud_.p().cwiseAbs().maxCoeff());
 }
@@ -222,17 +224,19 @@ Json FluidModel::summary() const {
   Json remeshing = remesh_.summary();
   remeshing["domain_detection"] = c_.remesh ? detection : "none (fixed connectivity)";
   remeshing["volume_correction_energy"] = volume_.correction_energy();
-  return {{"fluid_area", volume_.summary()},
-          {"wall_model", !c_.remesh                  ? "constraints (fixed connectivity)"
-                         : walls_.constraint_model() ? "constraints"
-                                                     : "particles"},
-          {"wall_friction", walls_.navier() ? "navier" : "held"},
-          {"wall_crossings", walls_.crossings()},
-          {"wall_snaps", walls_.snaps()},
-          {"wall_releases", walls_.releases()},
-          {"inverted_elements_kept", scheme_->inverted_kept()},
-          {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
-          {"remeshing", remeshing}};
+  Json s = {{"fluid_area", volume_.summary()},
+            {"wall_model", !c_.remesh                  ? "constraints (fixed connectivity)"
+                           : walls_.constraint_model() ? "constraints"
+                                                       : "particles"},
+            {"wall_friction", walls_.navier() ? "navier" : "held"},
+            {"wall_crossings", walls_.crossings()},
+            {"wall_snaps", walls_.snaps()},
+            {"wall_releases", walls_.releases()},
+            {"inverted_elements_kept", scheme_->inverted_kept()},
+            {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
+            {"remeshing", remeshing}};
+  if (!boundaries_.empty()) s["boundaries"] = boundaries_.summary();
+  return s;
 }
 
 void FluidModel::write_output(double t) {

@@ -7,6 +7,7 @@
 /// (fluid_scheme.hpp: monolithic_pspg in pspg_scheme.cpp, fractional_step in fractional_step.cpp). The case
 /// is read by fluid_input.cpp, the probes are in fluid_probes.cpp.
 #include <lagfsi/fluid/particle_cloud.hpp>
+#include "fluid_boundaries.hpp"
 #include "fluid_common.hpp"
 #include "fluid_energy.hpp"
 #include "fluid_mesh.hpp"
@@ -98,21 +99,22 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   void build_particles(Params b);
   /// Dirichlet flags of the step (step_.fixed): wall positions, slip constraints, free-surface and
   /// unconnected pressures.
-  void set_dirichlet();
+  void set_dirichlet(double t_start);
   /// The step's first iterate (after remeshing, or again when a coupling re-solves the step): pressures
   /// of the last step, positions moved with the last velocities, walls and ghosts at their prescribed places.
   void start_iterations();
-  FluidParts parts() { return {c_, cloud_, mesh_, walls_, ghosts_, volume_, step_, times_}; }
+  FluidParts parts() { return {c_, cloud_, mesh_, walls_, boundaries_, ghosts_, volume_, step_, times_}; }
 
   FluidConstants c_;
   CaseContext ctx_;
   ParticleCloud cloud_;
   FluidMesh mesh_;
   FluidWalls walls_;
+  FluidBoundaries boundaries_{walls_};  // the walls and the case's other boundaries (fluid_boundaries.hpp)
   Ghosts ghosts_;
   VolumeCorrection volume_{c_, cloud_, mesh_};
   RemeshPipeline remesh_{c_, cloud_, mesh_, ghosts_};
-  FluidEnergy energy_{c_, cloud_, mesh_, walls_};
+  FluidEnergy energy_{c_, cloud_, mesh_, walls_, boundaries_};
   FluidStep step_;
   std::unique_ptr<FluidScheme> scheme_;
 

@@ -6,6 +6,7 @@
 /// patterns and linear solvers; the model calls, per step, begin_step (a new mesh), restart (the first
 /// iterate, again for each coupling pass), iterate until converged, and end_step.
 #include <lagfsi/fluid/particle_cloud.hpp>
+#include "fluid_boundaries.hpp"
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
 #include "fluid_walls.hpp"
@@ -44,6 +45,7 @@ struct FluidParts {
   ParticleCloud& cloud;
   FluidMesh& mesh;
   const FluidWalls& walls;
+  const FluidBoundaries& boundaries;  ///< the step's prescribed components: the walls' and the case's boundaries'
   Ghosts& ghosts;
   const VolumeCorrection& volume;
   FluidStep& step;

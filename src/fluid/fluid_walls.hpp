@@ -121,6 +121,7 @@ struct WallConstraint {
   int wall;
   int side = 0;
   bool tangential = false;  // the tangential component of a particle on a no-slip wall
+  int boundary = 0;         // whose: 0 the walls, b > 0 the case's fluid boundary b - 1 (fluid_boundaries.hpp)
 };
 
 class FluidWalls {

@@ -177,9 +177,9 @@ IterationReport FractionalStep::iterate() {
   for (const auto& w : f_.walls.all())  // moving walls: the prescribed velocity at the end of the step
     if (w.fn)
       for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
-  for (const auto& k : f_.walls.constraints()) {  // particles on walls: the wall's velocity component
+  for (const auto& k : f_.boundaries.constraints()) {  // particles on walls: the wall's velocity component
     vfixed[2 * k.i + k.c] = 1;
-    ustar[2 * k.i + k.c] = f_.walls.constraint_velocity(k, f_.step.t_new);
+    ustar[2 * k.i + k.c] = f_.boundaries.velocity(k, f_.step.t_new);
   }
   // No-slip walls with "navier" friction (fluid_walls.hpp): the force -k (u*_t - v_wall,t) on the free
   // tangential component of a particle on one, taken at u* (implicit: unconditionally stable). The walls
@@ -367,13 +367,13 @@ IterationReport FractionalStep::iterate() {
       boundary_force.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
                                          force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
   }
-  if (!f_.walls.constraints().empty()) {
+  if (!f_.boundaries.constraints().empty()) {
     // The same for the constrained components of the particles on walls (the energy balance, and whether the
     // wall pushes or pulls: FluidWalls::release_pulled).
-    const auto& ks = f_.walls.constraints();
+    const auto& ks = f_.boundaries.constraints();
     Vec& kf = f_.step.constraint_force;
     kf.resize(static_cast<Index>(ks.size()));
-    std::vector<char> on_wall = f_.walls.on_wall(np);
+    std::vector<char> on_wall = f_.boundaries.on_wall(np);
     const Vec Kw = viscous_rows([&](Index i) { return on_wall[i] != 0; });
     for (size_t k = 0; k < ks.size(); ++k) {
       const Index j = 2 * ks[k].i + ks[k].c;
@@ -382,7 +382,7 @@ IterationReport FractionalStep::iterate() {
   }
   for (Index i = 0; i < np; ++i)
     if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
-  for (const auto& k : f_.walls.constraints()) x_new[2 * k.i + k.c] = f_.walls.constraint_position(k, f_.step.t_new);
+  for (const auto& k : f_.boundaries.constraints()) x_new[2 * k.i + k.c] = f_.boundaries.position(k, f_.step.t_new);
   if (!x_new.allFinite() || !pres.allFinite() || !v_new_.allFinite())
     throw SolverError("body '" + f_.c.name +
                       "': non-finite solution of the fractional step at t = " + std::to_string(f_.step.t_new));

@@ -82,7 +82,7 @@ class PspgScheme final : public FluidScheme {
   IterationReport iterate() override;
   void end_step() override {
     integrator_->end_step(f_.step.x, f_.cloud.state());
-    f_.walls.set_wall_motion(f_.step.t_new, f_.cloud.v(), f_.cloud.a());
+    f_.boundaries.set_motion(f_.step.t_new, f_.cloud.v(), f_.cloud.a());
     f_.ghosts.set_rates(f_.cloud.v(), f_.cloud.a());
   }
   /// The mean of v_n and the integrator's own v_{n+1} at the step's x_{n+1} (end_step on a scratch state):
@@ -124,7 +124,7 @@ IterationReport PspgScheme::iterate() {
   integrator_->end_step(x_new, end);
   f_.ghosts.set_rates(end.v, end.a);
   EvalPoint ev = integrator_->evaluation(end);
-  f_.walls.set_wall_motion(ev.t, ev.v, ev.a);
+  f_.boundaries.set_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   const Vec2 g = f_.c.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
@@ -235,7 +235,7 @@ IterationReport PspgScheme::iterate() {
       for (int c = 0; c < 2; ++c) boundary_force[2 * i + c] = R[3 * i + c];
   }
   {
-    const auto& ks = f_.walls.constraints();
+    const auto& ks = f_.boundaries.constraints();
     step.constraint_force.resize(static_cast<Index>(ks.size()));
     for (size_t k = 0; k < ks.size(); ++k) step.constraint_force[static_cast<Index>(k)] = R[3 * ks[k].i + ks[k].c];
   }

@@ -1,0 +1,59 @@
+#pragma once
+/// @file fluid_boundary.hpp (private to src/fluid)
+/// A boundary condition of the fluid as a process with step hooks, in the spirit of Kratos' processes: a boundary
+/// chosen in the case file (/bodies/i/boundaries/j, by its "type"; fluid_boundaries.cpp keeps the registry) finds
+/// the fluid particles it holds at the start of every step, prescribes components of their motion, and may act
+/// on the particles after the step. The schemes see every boundary's prescribed components through
+/// FluidBoundaries (fluid_boundaries.hpp), the walls' first: a component prescribed as x_c(t) enters the
+/// monolithic scheme as a Dirichlet condition on the position, the fractional step's predictor as one on the
+/// velocity dx_c/dt.
+#include <lagfsi/fluid/particle_cloud.hpp>
+#include <lagfsi/params.hpp>
+#include <lagfsi/state_archive.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lagfsi::fluid {
+
+/// A prescribed component: component c (0: x, 1: y) of particle i, at `base` when the step started.
+struct BoundaryConstraint {
+  Index i;
+  int c;
+  double base;
+};
+
+/// What a boundary is built with.
+struct BoundaryContext {
+  double h = 0;                    ///< the particle spacing
+  std::filesystem::path base_dir;  ///< the case file's folder (tables of time functions)
+};
+
+class FluidBoundary {
+ public:
+  virtual ~FluidBoundary() = default;
+  /// At the start of a step (after remeshing; t the step's start, x the particles' positions): appends the
+  /// components it prescribes over the step. `taken` (per particle) marks those a wall already holds: a
+  /// boundary leaves them to the wall.
+  virtual void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
+                         std::vector<BoundaryConstraint>& out) = 0;
+  /// The prescribed position, velocity and acceleration of one of its components at time t.
+  virtual double position(const BoundaryConstraint& k, double t) const = 0;
+  virtual double velocity(const BoundaryConstraint& k, double t) const = 0;
+  virtual double acceleration(const BoundaryConstraint& k, double t) const = 0;
+  /// After the step converged (x_start: the positions at its start; t its end): acts on the particles
+  /// (injects, removes, puts back). None by default.
+  virtual void after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
+    (void)cloud;
+    (void)x_start;
+    (void)t;
+  }
+  /// Its numbers for summary.json (an object under the boundary's name; empty: none).
+  virtual Json summary() const { return Json::object(); }
+  /// Checkpoints: what it keeps from step to step.
+  virtual void serialize(StateArchive& ar) { (void)ar; }
+};
+
+}  // namespace lagfsi::fluid

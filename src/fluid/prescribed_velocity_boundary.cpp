@@ -1,0 +1,81 @@
+// A wall segment that prescribes the velocity of the fluid particles on it: a lid moving in its own plane (the
+// lid-driven cavity), a belt, a wall sliding along itself. Both components of every fluid particle within
+// `tolerance` h of the segment at the start of a step follow
+//   x(t) = x(t_n) + U (F(t) - F(t_n)),   v(t) = U f(t),   a(t) = U f'(t),
+// over the step, with U the case's "velocity" and f its time function ("function", F its integral; f = 1 without
+// one, or {}): an exact no-slip condition on a moving surface. A particle a wall already holds keeps the wall's
+// condition. The segment itself does not move.
+#include "fluid_boundary.hpp"
+
+#include <lagfsi/geometry2d.hpp>
+#include <lagfsi/time_function.hpp>
+
+#include <algorithm>
+
+namespace lagfsi::fluid {
+
+namespace {
+
+class PrescribedVelocity final : public FluidBoundary {
+ public:
+  PrescribedVelocity(Params p, const BoundaryContext& ctx) {
+    p.validate({{"type", "prescribed_velocity"},
+                {"name", ""},
+                {"segment", nullptr},
+                {"velocity", nullptr},
+                {"function", Json::object()},
+                {"tolerance", 1e-6}});
+    const std::vector<Vec2> s = p.points("segment");
+    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
+    a_ = s[0];
+    b_ = s[1];
+    if (!((b_ - a_).norm() > 1e-6 * ctx.h)) p.fail("segment", "the two points coincide");
+    u_ = p.vec2("velocity");
+    if (!p.json().at("function").empty()) fn_ = make_time_function(p.at("function"), ctx.base_dir);
+    tol_ = p.non_negative("tolerance") * ctx.h;
+  }
+
+  void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
+                 std::vector<BoundaryConstraint>& out) override {
+    t0_ = t;
+    held_ = 0;
+    const Vec& x = cloud.x();
+    for (Index i = 0; i < cloud.n(); ++i) {
+      if (!cloud.is_fluid(i) || taken[static_cast<size_t>(i)]) continue;
+      const Vec2 p = x.segment<2>(2 * i);
+      if (segment_distance(p, a_, b_) > tol_) continue;
+      out.push_back({i, 0, p.x()});
+      out.push_back({i, 1, p.y()});
+      ++held_;
+    }
+    held_max_ = std::max(held_max_, held_);
+  }
+  double position(const BoundaryConstraint& k, double t) const override {
+    return k.base + u_[k.c] * (integral(t) - integral(t0_));
+  }
+  double velocity(const BoundaryConstraint& k, double t) const override {
+    return u_[k.c] * (fn_ ? fn_->value(t) : 1.0);
+  }
+  double acceleration(const BoundaryConstraint& k, double t) const override {
+    if (!fn_) return 0.0;
+    const double d = 1e-4;  // central difference of f, as for the walls' motions
+    return u_[k.c] * (fn_->value(t + d) - fn_->value(t - d)) / (2 * d);
+  }
+  Json summary() const override { return {{"type", "prescribed_velocity"}, {"particles_held_max", held_max_}}; }
+  void serialize(StateArchive& ar) override { ar.io(t0_, held_, held_max_); }
+
+ private:
+  double integral(double t) const { return fn_ ? fn_->integral(t) : t; }
+  Vec2 a_, b_, u_;
+  std::shared_ptr<TimeFunction> fn_;
+  double tol_ = 0, t0_ = 0;
+  long held_ = 0, held_max_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FluidBoundary> make_prescribed_velocity_boundary(Params p, const BoundaryContext& ctx) {
+  return std::make_unique<PrescribedVelocity>(std::move(p), ctx);
+}
+
+}  // namespace lagfsi::fluid

@@ -15,7 +15,7 @@ writer of those values and of the README tables that show them.
       Runs the case at full size and at tier size and records the values (value, tier_value) and wall times
       in expected.json. Then regenerate the tables.
   claims.py tables [--check]
-      Rewrites the generated tables in the case READMEs and the summary in the top-level README from the
+      Rewrites the generated tables in the case READMEs and the summary in docs/results.md from the
       expected.json files; with --check, changes nothing and exits 1 when a file would change.
   claims.py list
       Lists the cases with an expected.json, their tier size and run count.
@@ -326,7 +326,7 @@ def summary_table(cases):
     for case in cases:
         e = load(case)
         heads = [headline_text(q) for q in e["quantities"] if q.get("headline")]
-        rows.append("| [%s](cases/%s) | %s | %s |" % (case, case, e.get("source", ""), "; ".join(heads)))
+        rows.append("| [%s](../cases/%s/README.md) | %s | %s |" % (case, case, e.get("source", ""), "; ".join(heads)))
     return "\n".join(rows)
 
 
@@ -347,10 +347,13 @@ def cmd_tables(args):
             if not args.check:
                 with open(path, "w") as f:
                     f.write(new)
-    path = os.path.join(ROOT, "README.md")
+    path = os.path.join(ROOT, "docs", "results.md")
     with open(path) as f:
         old = f.read()
     new = replace_block(old, SUMMARY_BEGIN, SUMMARY_END, summary_table(cases))
+    if new is None:
+        print("%s: no summary block (add the two marker lines where the table goes)" % path)
+        changed.append(path)
     if new is not None and new != old:
         changed.append(path)
         if not args.check:

@@ -1,6 +1,6 @@
 #pragma once
 /// @file model_registry.hpp
-/// The app layer's registry of body types (lagfsi::app, defined in src/app/analysis.cpp): a small explicit map
+/// The app layer's registry of body types (lagfsi::app, defined in src/app/case_builder.cpp): a small explicit map
 /// from a body's "type" string to its module's builder. A new model adds one line there and links its module
 /// into lagfsi::app (src/CMakeLists.txt); the core and the other modules do not know it.
 #include <lagfsi/case.hpp>

@@ -13,11 +13,11 @@ namespace lagfsi::fluid {
 
 namespace {
 
-// The defaults that depend on other keys (README, "The fluid's defaults"). With the monolithic scheme and remeshing
-// they are the conservative package of issue #16: the previous domain advected with the particles decides which
-// new triangles are fluid, rigid walls are constraints on the fluid particles on them, sliding against their
-// Navier friction, the free-surface pressure is held weakly (Robin) and each particle keeps its own area
-// (measured in cases/dam_break_tank, cases/dam_break_obstacle, cases/sloshing_free and the FSI cases). The
+// The defaults that depend on other keys (docs/fluid_settings.md, "How the defaults follow from each other"). With
+// the monolithic scheme and remeshing they are the conservative package of issue #16: the previous domain advected with
+// the particles decides which new triangles are fluid, rigid walls are constraints on the fluid particles on them,
+// sliding against their Navier friction, the free-surface pressure is held weakly (Robin) and each particle keeps its
+// own area (measured in cases/dam_break_tank, cases/dam_break_obstacle, cases/sloshing_free and the FSI cases). The
 // fractional step has no particle volumes (below), and a fixed mesh does not remesh: they, and a case that
 // chooses "alpha", keep the classic PFEM defaults: the alpha shape, wall particles, p = 0 on the free surface
 // and the surface correction. The peek reads a key only when it has the right type; the validation below
@@ -49,7 +49,8 @@ FluidDefaults fluid_defaults(const Json& body) {
   // level-set detections keep it where the topology does not change, and particle volumes return the rest.
   d.volume_correction = alpha ? "surface" : conservative ? "particle" : "none";
   // The "particle" correction returns each particle's area over a few steps (0.01 s: a tuned value, the best of
-  // 0.005-0.03 s on the three dam breaks under generalized-alpha; README); the global "source" over 0.1 s.
+  // 0.005-0.03 s on the three dam breaks under generalized-alpha; docs/decisions/0005-particle-volumes.md); the global
+  // "source" over 0.1 s.
   d.volume_relaxation_time = peek(scheme, "volume_correction", d.volume_correction) == "particle" ? 0.01 : 0.1;
   return d;
 }
@@ -398,9 +399,10 @@ Json fluid_preferred_integrator(const Json& body) {
   const std::string surface = fluid::peek(scheme, "free_surface_pressure", d.free_surface_pressure);
   // With wall particles the trapezoidal rule keeps more of the water (dam_break_tank, wall particles, advected,
   // Robin, 1 s: water within 1.68 % and 292 particles put back from beyond a wall under generalized-alpha, 0.63 %
-  // and 68 under Newmark; the obstacle's 1.49 % and 569 against 1.33 % and 299; README, "Generalized-alpha with the
-  // package"). Probably the fluid is held off the walls by the pressure at the evaluation point alone, and
-  // generalized-alpha's end positions, extrapolated from it, overshoot between wall particles in a splash.
+  // and 68 under Newmark; the obstacle's 1.49 % and 569 against 1.33 % and 299;
+  // docs/decisions/0006-generalized-alpha-default.md). Probably the fluid is held off the walls by the pressure at the
+  // evaluation point alone, and generalized-alpha's end positions, extrapolated from it, overshoot between wall
+  // particles in a splash.
   const std::string walls = fluid::peek(body, "wall_model", d.wall_model);
   return surface == "robin" && walls == "constraints" ? Json{{"type", "generalized_alpha"}, {"rho_inf", 0.8}}
                                                       : Json(nullptr);

@@ -39,7 +39,7 @@ std::unique_ptr<PhysicsModel> make_fluid_model(Params body, const CaseContext& c
 /// The analysis integrator a fluid body (its case-file object) asks for when the case names none: generalized-alpha
 /// (rho_inf = 0.8) for the monolithic scheme with the Robin free-surface pressure and the walls as constraints (the
 /// conservative package's, its default with remeshing), whose pressure alternates from one step to the next under
-/// the trapezoidal rule (README, "The fluid's defaults"); null otherwise (the analysis' Newmark; with wall particles
+/// the trapezoidal rule (docs/fluid_settings.md); null otherwise (the analysis' Newmark; with wall particles
 /// the trapezoidal rule lets less water through the walls). Reads what it needs leniently: a bad body is
 /// reported by make_fluid_model.
 Json fluid_preferred_integrator(const Json& body);

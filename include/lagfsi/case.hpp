@@ -10,6 +10,7 @@
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/params.hpp>
+#include <lagfsi/time_integrator.hpp>
 
 #include <filesystem>
 #include <functional>
@@ -27,10 +28,10 @@ struct NewtonSettings {
 };
 
 struct AnalysisSettings {
-  std::string type;     ///< "static" (load factor = time from 0 to 1) or "dynamic"
-  double dt = 0;        ///< time step (dynamic) or 1/load_steps (static)
-  double end_time = 0;  ///< 1 for static
-  Json integrator;      ///< {"type": "newmark"|"generalized_alpha"|"central_difference", ...}
+  std::string type;           ///< "static" (load factor = time from 0 to 1) or "dynamic"
+  double dt = 0;              ///< time step (dynamic) or 1/load_steps (static)
+  double end_time = 0;        ///< 1 for static
+  IntegratorSpec integrator;  ///< the implicit models' integrator (/analysis/integrator, read once)
   NewtonSettings newton;
   std::string linear_solver;  ///< linear_solver.hpp type
   int max_step_halvings = 4;  ///< retries of a failed step with dt/2, dt/4, ...

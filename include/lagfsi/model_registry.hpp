@@ -10,6 +10,7 @@
 #include <lagfsi/mpm/mpm_model.hpp>
 #include <lagfsi/solid/solid_model.hpp>
 
+#include <functional>
 #include <map>
 #include <string>
 
@@ -17,5 +18,11 @@ namespace lagfsi {
 
 /// "solid", "shell" (make_solid_model), "fluid", "mpm", "dem", "efg" (element-free Galerkin).
 const std::map<std::string, ModelBuilder>& model_registry();
+
+/// What a body type asks of the analysis' integrator when the case names none: the model's own function of its
+/// body's settings, giving an integrator object ({"type": ..., ...}) or null (no preference). The fluid asks for
+/// generalized-alpha with the Robin free-surface pressure and walls as constraints (fluid_preferred_integrator).
+using IntegratorPreference = std::function<Json(const Json& body)>;
+const std::map<std::string, IntegratorPreference>& integrator_preferences();
 
 }  // namespace lagfsi

@@ -119,11 +119,22 @@ class TimeIntegrator {
                                   Vec& f) const;
 };
 
-/// The integrator a case names: {"type": "newmark", "beta": 0.25, "gamma": 0.5} |
-/// {"type": "generalized_alpha", "rho_inf": 0.8} | {"type": "central_difference"} (missing parameters take these
-/// defaults). A bad type or parameter fails with InputError naming the file and JSON path. The one place that
-/// turns a name into an integrator: every model's input reading calls it (the analysis' integrator for the
-/// implicit models, {"type": "central_difference"} for the explicit MPM and the DEM).
+/// The analysis' integrator as the case names it, read once (read_integrator) and handed to every implicit model,
+/// which builds its own from it (make_time_integrator); explicit models take the central difference.
+struct IntegratorSpec {
+  std::string type = "newmark";     ///< "newmark" | "generalized_alpha" | "central_difference"
+  double beta = 0.25, gamma = 0.5;  ///< newmark
+  double rho_inf = 0.8;             ///< generalized_alpha
+  bool implicit() const { return type != "central_difference"; }
+};
+
+/// Reads an integrator: {"type": "newmark", "beta": 0.25, "gamma": 0.5} | {"type": "generalized_alpha", "rho_inf":
+/// 0.8} | {"type": "central_difference"} (missing parameters take these defaults). A bad type or parameter fails
+/// with InputError naming the file and JSON path.
+IntegratorSpec read_integrator(const Params& integrator);
+/// The integrator of a spec: the one place that turns a name into an integrator.
+std::unique_ptr<TimeIntegrator> make_time_integrator(const IntegratorSpec& spec);
+/// read_integrator, then make_time_integrator.
 std::unique_ptr<TimeIntegrator> make_time_integrator(const Params& integrator);
 /// The "type" names make_time_integrator() accepts.
 const std::vector<std::string>& time_integrator_types();

@@ -3,18 +3,12 @@
 
 #include "input_checks.hpp"
 
-#include <lagfsi/fluid/fluid_model.hpp>
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 namespace lagfsi {
 
-AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& bodies) {
-  Json default_integrator = {{"type", "newmark"}};
-  if (bodies.is_array())
-    for (const Json& body : bodies)
-      if (body.is_object() && body.contains("type") && body.at("type") == "fluid")
-        if (Json p = fluid_preferred_integrator(body); p.is_object()) default_integrator = p;
+AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& default_integrator) {
   a.validate({{"type", nullptr},
               {"dt", 0.0},
               {"end_time", 0.0},
@@ -49,8 +43,7 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, con
             "(use newmark or generalized_alpha)");
   }
   warnings = check_integrator_stability(it);
-  (void)make_time_integrator(it);  // the models build theirs with the same factory: its errors show here first
-  s.integrator = it.json();
+  s.integrator = read_integrator(it);
   Params nw = a.at("newton");
   nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});
   s.newton.max_iterations = nw.integer("max_iterations", 1);

@@ -9,9 +9,10 @@
 namespace lagfsi {
 
 /// Validates /analysis (defaults filled in) and reads it; `warnings` receives what was chosen on purpose (a
-/// conditionally stable integrator), for stderr and summary.json. `bodies` (the case's "bodies" array) gives the
-/// integrator when the case names none: Newmark's trapezoidal rule, or what a body asks for (a fluid whose
-/// free-surface pressure is Robin, with walls as constraints: generalized-alpha; fluid_preferred_integrator).
-AnalysisSettings read_analysis(Params analysis, std::vector<std::string>& warnings, const Json& bodies = nullptr);
+/// conditionally stable integrator), for stderr and summary.json. `default_integrator` is the integrator when the
+/// case names none: what the bodies ask for (integrator_preferences, model_registry.hpp), else Newmark's
+/// trapezoidal rule.
+AnalysisSettings read_analysis(Params analysis, std::vector<std::string>& warnings,
+                               const Json& default_integrator = Json{{"type", "newmark"}});
 
 }  // namespace lagfsi

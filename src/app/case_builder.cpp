@@ -37,7 +37,24 @@ const std::map<std::string, ModelBuilder>& model_registry() {
   return r;
 }
 
+const std::map<std::string, IntegratorPreference>& integrator_preferences() {
+  static const std::map<std::string, IntegratorPreference> r = {{"fluid", fluid_preferred_integrator}};
+  return r;
+}
+
 namespace {
+
+/// The integrator the bodies ask for when the case names none (the first body with a preference), else Newmark.
+Json default_integrator(const Json& bodies) {
+  if (bodies.is_array())
+    for (const Json& body : bodies) {
+      if (!body.is_object() || !body.contains("type") || !body.at("type").is_string()) continue;
+      const auto it = integrator_preferences().find(body.at("type").get<std::string>());
+      if (it == integrator_preferences().end()) continue;
+      if (Json p = it->second(body); p.is_object()) return p;
+    }
+  return Json{{"type", "newmark"}};
+}
 
 /// Registry of coupling types (fsi/): the "type" string of an entry of "couplings" to its builder, which
 /// gets the two bodies it couples.
@@ -58,7 +75,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.ctx.quiet = opt.quiet;
   c.ctx.base_dir = opt.case_file.parent_path();
   c.ctx.out_dir = opt.out_dir.empty() ? fs::path("out") / c.name : opt.out_dir;
-  c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings, c.root.json().at("bodies"));
+  c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings, default_integrator(c.root.json().at("bodies")));
   c.ctx.gravity = c.root.vec2("gravity");
   Params out = c.root.at("output");
   out.validate({{"every", 1}, {"vtk", true}, {"checkpoint", Json::object()}});

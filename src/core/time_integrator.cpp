@@ -159,21 +159,30 @@ const std::vector<std::string>& time_integrator_types() {
   return types;
 }
 
-std::unique_ptr<TimeIntegrator> make_time_integrator(const Params& p) {
-  const std::string type = p.choice("type", time_integrator_types());
+IntegratorSpec read_integrator(const Params& p) {
+  IntegratorSpec s;
+  s.type = p.choice("type", time_integrator_types());
   auto number = [&](const char* key, double fallback) { return p.has(key) ? p.number(key) : fallback; };
-  if (type == "newmark") {
-    const double beta = number("beta", 0.25), gamma = number("gamma", 0.5);
-    if (!(beta > 0.0)) p.fail("beta", "must be positive (beta = 0 is the explicit central_difference)");
-    if (!(gamma >= 0.0)) p.fail("gamma", "must not be negative");
-    return make_newmark(beta, gamma);
+  if (s.type == "newmark") {
+    s.beta = number("beta", 0.25);
+    s.gamma = number("gamma", 0.5);
+    if (!(s.beta > 0.0)) p.fail("beta", "must be positive (beta = 0 is the explicit central_difference)");
+    if (!(s.gamma >= 0.0)) p.fail("gamma", "must not be negative");
+  } else if (s.type == "generalized_alpha") {
+    s.rho_inf = number("rho_inf", 0.8);
+    if (!(s.rho_inf >= 0.0 && s.rho_inf <= 1.0)) p.fail("rho_inf", "must lie in [0, 1]");
   }
-  if (type == "generalized_alpha") {
-    const double rho = number("rho_inf", 0.8);
-    if (!(rho >= 0.0 && rho <= 1.0)) p.fail("rho_inf", "must lie in [0, 1]");
-    return make_generalized_alpha(rho);
-  }
+  return s;
+}
+
+std::unique_ptr<TimeIntegrator> make_time_integrator(const IntegratorSpec& s) {
+  if (s.type == "newmark") return make_newmark(s.beta, s.gamma);
+  if (s.type == "generalized_alpha") return make_generalized_alpha(s.rho_inf);
   return make_central_difference();
+}
+
+std::unique_ptr<TimeIntegrator> make_time_integrator(const Params& p) {
+  return make_time_integrator(read_integrator(p));
 }
 
 }  // namespace lagfsi

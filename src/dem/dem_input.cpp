@@ -146,7 +146,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
                       " s of the contact law (set allow_above_critical to force it)");
   const double steps = ctx.analysis.end_time / std::min(b.dt, ctx.analysis.dt);
   if (!(steps * n <= 2e13)) ts.fail("dt", "the run needs " + fmt(steps) + " steps of " + std::to_string(n) + " discs");
-  b.integrator = make_time_integrator(Params(Json{{"type", "central_difference"}}, ts.file(), ts.path()));
+  b.integrator = make_central_difference();
 
   Params nb = body.at("neighbour");
   nb.validate({{"skin", 0.0}, {"reorder", true}});

@@ -213,10 +213,10 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   remesh_.configure(rs);
 
   // The analysis' integrator (read for both schemes; the fractional step does not use it).
-  const Params it(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
-  if (pspg && it.string("type") == "central_difference")
-    it.fail("type", "the monolithic fluid scheme is implicit (use newmark or generalized_alpha)");
-  std::unique_ptr<TimeIntegrator> integrator = make_time_integrator(it);
+  if (pspg && !ctx.analysis.integrator.implicit())
+    throw InputError(ctx.case_file.string(), "/analysis/integrator/type",
+                     "the monolithic fluid scheme is implicit (use newmark or generalized_alpha)");
+  std::unique_ptr<TimeIntegrator> integrator = make_time_integrator(ctx.analysis.integrator);
   scheme_ = pspg ? make_pspg_scheme(parts(), ps, std::move(integrator)) : make_fractional_step(parts(), fs);
   build_particles(b);
 }

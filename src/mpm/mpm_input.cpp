@@ -179,13 +179,11 @@ void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
 /// could ask for billions of sub-steps cfl h / c (mpm_scheme.cpp) and the run would look hung: an error.
 std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& update, const MpmBody& B,
                                                 const CaseContext& ctx) {
-  std::unique_ptr<ExplicitScheme> scheme =
-      B.two_phase ? make_two_phase_scheme()
-                  : make_explicit_scheme(update == "usl"   ? StressUpdate::Usl
-                                         : update == "usf" ? StressUpdate::Usf
-                                                           : StressUpdate::Musl,
-                                         make_time_integrator(Params(Json{{"type", "central_difference"}}, b.file(),
-                                                                     b.child_path("time_integration"))));
+  std::unique_ptr<ExplicitScheme> scheme = B.two_phase ? make_two_phase_scheme()
+                                                       : make_explicit_scheme(update == "usl"   ? StressUpdate::Usl
+                                                                              : update == "usf" ? StressUpdate::Usf
+                                                                                                : StressUpdate::Musl,
+                                                                              make_central_difference());
   const Grid& grid = B.grid;
   const double c = scheme->wave_speed(B);
   const double substeps = ctx.analysis.end_time * c / (B.cfl * grid.h);
@@ -208,10 +206,9 @@ std::unique_ptr<MpmScheme> read_implicit_scheme(Params b, const MpmBody& B, cons
   const Damping& d = B.damping;
   if (B.material->plastic() || B.two_phase || d.local > 0 || d.stiffness > 0 || d.mass > 0)
     b.fail("time_integration", "implicit MPM bodies are linear elastic, single phase and undamped in this version");
-  Params ip(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator");
-  const std::string it = ip.string("type");
-  if (it == "central_difference") b.fail("time_integration", "an implicit MPM body needs newmark or generalized_alpha");
-  return make_implicit_scheme(make_time_integrator(ip), make_linear_solver("cholmod"));
+  if (!ctx.analysis.integrator.implicit())
+    b.fail("time_integration", "an implicit MPM body needs newmark or generalized_alpha");
+  return make_implicit_scheme(make_time_integrator(ctx.analysis.integrator), make_linear_solver("cholmod"));
 }
 
 }  // namespace

@@ -225,7 +225,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
 
   // Integrator and solver.
   if (!is_static_) {
-    integrator_ = make_time_integrator(Params(ctx.analysis.integrator, ctx.case_file.string(), "/analysis/integrator"));
+    integrator_ = make_time_integrator(ctx.analysis.integrator);
   }
   solver_type_ = ctx.analysis.linear_solver;
   solver_ = make_linear_solver(solver_type_);

@@ -28,7 +28,7 @@ CaseContext context(double dt) {
   c.analysis.type = "dynamic";
   c.analysis.dt = dt;
   c.analysis.end_time = 10 * dt;
-  c.analysis.integrator = Json{{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}};
+  c.analysis.integrator = IntegratorSpec{};  // Newmark, beta 1/4, gamma 1/2
   c.analysis.linear_solver = "umfpack";
   c.gravity = Vec2(0.0, -9.81);
   c.quiet = true;

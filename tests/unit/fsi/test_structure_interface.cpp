@@ -27,7 +27,7 @@ CaseContext context(const Json& integrator, double dt) {
   c.analysis.type = "dynamic";
   c.analysis.dt = dt;
   c.analysis.end_time = 10 * dt;
-  c.analysis.integrator = integrator;
+  c.analysis.integrator = read_integrator(Params(integrator, "test", "/analysis/integrator"));
   c.analysis.linear_solver = "umfpack";
   return c;
 }

@@ -23,6 +23,7 @@
 // slip length 0.1 h, at 0.954 s).
 #include <gtest/gtest.h>
 
+#include "fluid_boundaries.hpp"
 #include "fluid_energy.hpp"
 #include "fluid_scene.hpp"
 #include "fluid_walls.hpp"
@@ -41,7 +42,8 @@ using fluid_test::kH;
 struct Scene : fluid_test::FluidScene {
   Ghosts ghosts;
   FluidWalls walls;
-  FluidEnergy energy{c, cloud, mesh, walls};
+  FluidBoundaries boundaries{walls};
+  FluidEnergy energy{c, cloud, mesh, walls, boundaries};
   RemeshPipeline remesh{c, cloud, mesh, ghosts};
   Scene(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri) : FluidScene(pts, tri) {
     volume.start(mesh.area(cloud.x()));

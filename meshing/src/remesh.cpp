@@ -142,13 +142,12 @@ std::vector<DT::Vertex_handle> vertex_handles(const DT& dt, std::size_t n) {
 /// Puts the previous domain's boundary edges back into the triangulation where one Delaunay edge crosses them.
 /// Particles move within a step, and an edge of the old free surface may no longer be Delaunay in the new
 /// cloud: then no new face has it, the two faces across it straddle the old boundary, and whichever side
-/// their centroids fall on, the domain gains or loses a sliver of the area (issue #16: 2.4e-4 m^2 at once
-/// on the sloshing tank). Where exactly one edge (c, d) crosses the old edge (a, b), the quadrilateral a c b d
-/// is convex and flipping (c, d) into (a, b) restores the old boundary; the flipped faces are then classified
-/// as any other. An edge crossed by more than one Delaunay edge (the boundary folded within a step) is left
-/// out. The triangulation is no longer Delaunay at the flipped edges, which is what a constrained Delaunay
-/// triangulation with those constraints would give locally (Leyssens et al. 2024 keep the old boundary the
-/// same way).
+/// their centroids fall on, the domain gains or loses a sliver of the area. Where exactly one edge (c, d) crosses the
+/// old edge (a, b), the quadrilateral a c b d is convex and flipping (c, d) into (a, b) restores the old boundary; the
+/// flipped faces are then classified as any other. An edge crossed by more than one Delaunay edge (the boundary folded
+/// within a step) is left out. The triangulation is no longer Delaunay at the flipped edges, which is what a
+/// constrained Delaunay triangulation with those constraints would give locally (Leyssens et al. 2024 keep the old
+/// boundary the same way).
 void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t n, int& restored, int& lost) {
   const std::vector<DT::Vertex_handle> vh = vertex_handles(dt, n);
   for (const auto& [a, b] : previous.boundary_edges()) {
@@ -216,18 +215,28 @@ void check_triangles(const std::vector<std::array<Index, 3>>& triangles, std::si
                         " out of range [0, " + std::to_string(n) + ")");
 }
 
-}  // namespace
-
-RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
-                    const std::vector<double>& h, const RemeshSettings& settings) {
+/// remesh()'s input as its stages read it.
+struct RemeshInput {
+  const std::vector<Vec2>& points;
+  const std::vector<ParticleKind>& kind;
+  const std::vector<double>& h;
+  const RemeshSettings& settings;
+  const PreviousDomain* previous = nullptr;  // the advected or level-set detection's domain; nullptr: alpha
+  double tol2 = 0;                           // the duplicate tolerance squared (check_points)
   const char* where = "remesh";
-  const std::size_t n = points.size();
-  if (kind.size() != n || h.size() != n)
-    fail(where, "sizes do not match (points " + std::to_string(n) + ", kind " + std::to_string(kind.size()) + ", h " +
-                    std::to_string(h.size()) + ")");
+};
+
+/// Checks remesh()'s input (sizes, settings, coordinates, h and kind; std::invalid_argument otherwise) and
+/// sets `previous` and `tol2`.
+void check_remesh_input(RemeshInput& in) {
+  const char* where = in.where;
+  const RemeshSettings& settings = in.settings;
+  const std::size_t n = in.points.size();
+  if (in.kind.size() != n || in.h.size() != n)
+    fail(where, "sizes do not match (points " + std::to_string(n) + ", kind " + std::to_string(in.kind.size()) +
+                    ", h " + std::to_string(in.h.size()) + ")");
   const double alpha = settings.alpha;
   if (!(std::isfinite(alpha) && alpha > 0)) fail(where, "alpha must be finite and > 0");
-  const PreviousDomain* previous = nullptr;
   if (settings.detection != DomainDetection::Alpha) {
     if (settings.previous == nullptr || settings.previous->empty())
       fail(where, "the advected and level-set detections need the previous domain");
@@ -240,34 +249,197 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     if (!(std::isfinite(settings.keep_edges_angle) && settings.keep_edges_angle >= 0 &&
           settings.keep_edges_angle < std::numbers::pi / 2))
       fail(where, "keep_edges_angle must be in [0, pi/2)");
-    previous = settings.previous;
+    in.previous = settings.previous;
   }
-  const double tol2 = check_points(points, where);
+  in.tol2 = check_points(in.points, where);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!(std::isfinite(h[i]) && h[i] > 0)) fail(where, "h[" + std::to_string(i) + "] must be finite and > 0");
-    if (static_cast<std::uint8_t>(kind[i]) > static_cast<std::uint8_t>(ParticleKind::Ghost))
+    if (!(std::isfinite(in.h[i]) && in.h[i] > 0)) fail(where, "h[" + std::to_string(i) + "] must be finite and > 0");
+    if (static_cast<std::uint8_t>(in.kind[i]) > static_cast<std::uint8_t>(ParticleKind::Ghost))
       fail(where, "kind[" + std::to_string(i) + "] is not a valid ParticleKind");
   }
+}
 
+/// A Delaunay face (a, b, c), counter-clockwise, measured in double from the input coordinates.
+struct FaceGeometry {
+  Index a, b, c;
+  double lab2, lac2, lbc2;  // the squared edge lengths
+  double cr;                // 2 * area
+  double he;                // the element size h_e = (h_a + h_b + h_c) / 3
+  double lll;               // l_ab l_ac l_bc
+  int walls;                // its wall and ghost particles
+};
+
+/// The face's geometry; throws on a near-duplicate pair of its particles (closer than tol2).
+FaceGeometry face_geometry(const RemeshInput& in, const DT::Face_handle& f) {
+  const auto& points = in.points;
+  const auto& h = in.h;
+  const auto& kind = in.kind;
+  const Index a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+  const Vec2& pa = points[static_cast<std::size_t>(a)];
+  const Vec2& pb = points[static_cast<std::size_t>(b)];
+  const Vec2& pc = points[static_cast<std::size_t>(c)];
+  const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y();  // a -> b
+  const double vx = pc.x() - pa.x(), vy = pc.y() - pa.y();  // a -> c
+  const double wx = pc.x() - pb.x(), wy = pc.y() - pb.y();  // b -> c
+  const double lab2 = ux * ux + uy * uy, lac2 = vx * vx + vy * vy, lbc2 = wx * wx + wy * wy;
+  if (std::min({lab2, lac2, lbc2}) < in.tol2) {
+    if (lab2 < in.tol2) throw_near_duplicate(a, b, points, in.where);
+    if (lac2 < in.tol2) throw_near_duplicate(a, c, points, in.where);
+    throw_near_duplicate(b, c, points, in.where);
+  }
+  const double cr = ux * vy - uy * vx;  // 2 * area
+  const double he =
+      (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] + h[static_cast<std::size_t>(c)]) * (1.0 / 3.0);
+  const double lll = std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2);
+  const int walls = (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid) +
+                    (kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid) +
+                    (kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid);
+  return {a, b, c, lab2, lac2, lbc2, cr, he, lll, walls};
+}
+
+/// Whether an element outside the advected domain (centroid `centroid`) joins the domain.
+bool accept_contact(const RemeshInput& in, const FaceGeometry& g, const Vec2& centroid) {
+  const RemeshSettings& settings = in.settings;
+  const PreviousDomain* previous = in.previous;
+  const auto& points = in.points;
+  const auto& kind = in.kind;
+  const auto [a, b, c, lab2, lac2, lbc2, cr, he, lll, walls] = g;
+  // Outside the advected domain: a new contact (surfaces meeting, a surface reaching a wall), never
+  // an element leaning on two boundary particles (the meniscus element of a dry wall), nor the fill of
+  // a dent of one surface (an element with two edges on the previous boundary: consecutive surface
+  // particles), nor an element reaching a dry wall or ghost particle (one the previous mesh did not
+  // use) from fluid particles all farther than wetting_distance h_e from it (a dry wall is wetted by
+  // fluid that reaches it, not by a surface particle passing at a spacing's distance).
+  const double band = settings.level_set_band * he;
+  const int on_boundary =
+      previous->is_boundary_edge(a, b) + previous->is_boundary_edge(b, c) + previous->is_boundary_edge(c, a);
+  bool reaches = true;
+  const Index ids[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k) {
+    const auto w = static_cast<std::size_t>(ids[k]);
+    if (kind[w] == ParticleKind::Fluid || previous->meshed(ids[k])) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int m = 0; m < 3; ++m) {
+      const auto f = static_cast<std::size_t>(ids[m]);
+      if (kind[f] == ParticleKind::Fluid) nearest = std::min(nearest, (points[f] - points[w]).norm());
+    }
+    reaches = reaches && nearest <= settings.wetting_distance * he;
+  }
+  // Two fluid surfaces meeting: the gap the element closes is its smallest height, 2A / l_max
+  // (contact_gap). A surface reaching a wall or ghost particle is wetting_distance's concern.
+  const bool gap_ok = walls > 0 || !(settings.contact_gap > 0) ||
+                      cr <= settings.contact_gap * he * std::sqrt(std::max({lab2, lac2, lbc2}));
+  return gap_ok && walls <= 1 && on_boundary < 2 && reaches &&
+         (settings.detection == DomainDetection::LevelSet ? previous->boundary_distance(centroid, band) < band
+                                                          : lll <= 2.0 * cr * settings.alpha * he);
+}
+
+/// The domain detection's verdict on a face (before the removal of wall/ghost-only elements).
+enum class Verdict : std::uint8_t { RemovedAlpha, Separated, Accepted, AddedOutside };
+
+/// The alpha test (or, with the previous domain, the separation test inside it and accept_contact outside).
+Verdict detect(const RemeshInput& in, const FaceGeometry& g) {
+  const auto& points = in.points;
+  // Flat to round-off (three particles on one inclined wall, collinear up to the last bits of their
+  // coordinates): never fluid, and not a separation either (it would be counted as one at each step).
+  if (!(g.cr > 1e-12 * std::max({g.lab2, g.lac2, g.lbc2}))) return Verdict::RemovedAlpha;
+  // R = l_ab l_ac l_bc / (4 A) <= alpha h_e  <=>  l_ab l_ac l_bc <= 2 cr alpha h_e (for cr > 0)
+  if (in.previous == nullptr)
+    return g.lll > 2.0 * g.cr * in.settings.alpha * g.he ? Verdict::RemovedAlpha : Verdict::Accepted;
+  const Vec2& pa = points[static_cast<std::size_t>(g.a)];
+  const Vec2& pb = points[static_cast<std::size_t>(g.b)];
+  const Vec2& pc = points[static_cast<std::size_t>(g.c)];
+  const Vec2 centroid = (pa + pb + pc) * (1.0 / 3.0);
+  if (in.previous->contains(centroid))
+    return g.lll > 2.0 * g.cr * in.settings.separation_alpha * g.he ? Verdict::Separated : Verdict::Accepted;
+  return accept_contact(in, g, centroid) ? Verdict::AddedOutside : Verdict::RemovedAlpha;
+}
+
+/// Pass 1: each finite face is kept (info 1, appended to result.triangles) or not (info 0); the kept area
+/// (twice it, Neumaier-compensated) and the counts of result. An element failing both the alpha test and the
+/// wall/ghost-only test counts as removed by the alpha test.
+void keep_faces(const RemeshInput& in, DT& dt, RemeshResult& result) {
+  result.triangles.reserve(dt.number_of_faces());
+  std::uint8_t* connected = result.connected.data();
+  double area2 = 0.0, area2_comp = 0.0;  // twice the kept area, Neumaier-compensated sum
+  int removed_alpha = 0, removed_boundary = 0, added = 0, separated = 0;
+  for (auto f : dt.finite_face_handles()) {
+    const FaceGeometry g = face_geometry(in, f);
+    const Index a = g.a, b = g.b, c = g.c;
+    f->info() = 0;
+    const Verdict verdict = detect(in, g);
+    if (verdict == Verdict::RemovedAlpha) {
+      ++removed_alpha;
+      continue;
+    }
+    if (verdict == Verdict::Separated) {
+      ++separated;
+      result.separated.push_back({a, b, c});
+      continue;
+    }
+    if (verdict == Verdict::AddedOutside) {
+      ++added;
+      result.added_elements.push_back(static_cast<Index>(result.triangles.size()));
+    }
+    if (g.walls == 3) {
+      ++removed_boundary;
+      continue;
+    }
+    f->info() = 1;
+    result.triangles.push_back({a, b, c});
+    connected[a] = connected[b] = connected[c] = 1;
+    const double cr = g.cr;
+    const double t = area2 + cr;
+    area2_comp += std::abs(area2) >= cr ? (area2 - t) + cr : (cr - t) + area2;
+    area2 = t;
+  }
+  result.area = 0.5 * (area2 + area2_comp);
+  result.removed_alpha = removed_alpha;
+  result.removed_boundary_only = removed_boundary;
+  result.added_outside = added;
+  result.separated_inside = separated;
+}
+
+/// Pass 2: an edge of a kept face is used by exactly one kept element iff the face across it (possibly
+/// infinite) is not kept; its fluid particles are free surface. Every face's flag has been set (keep_faces,
+/// and the infinite faces cleared before).
+void mark_free_surface(const RemeshInput& in, const DT& dt, RemeshResult& result) {
+  std::uint8_t* fs = result.free_surface.data();
+  for (auto f : dt.all_face_handles()) {
+    if (!f->info()) continue;
+    for (int i = 0; i < 3; ++i) {
+      if (f->neighbor(i)->info()) continue;
+      const Index p = f->vertex(DT::ccw(i))->info(), q = f->vertex(DT::cw(i))->info();
+      if (in.kind[static_cast<std::size_t>(p)] == ParticleKind::Fluid) fs[p] = 1;
+      if (in.kind[static_cast<std::size_t>(q)] == ParticleKind::Fluid) fs[q] = 1;
+    }
+  }
+}
+
+}  // namespace
+
+RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                    const std::vector<double>& h, const RemeshSettings& settings) {
+  RemeshInput in{.points = points, .kind = kind, .h = h, .settings = settings};
+  check_remesh_input(in);
+  const std::size_t n = points.size();
   RemeshResult result;
   result.free_surface.assign(n, 0);
   result.connected.assign(n, 0);
   if (n < 3) return result;
 
   DT dt;
-  build(dt, points, where);
+  build(dt, points, in.where);
   if (dt.dimension() < 2) {
-    check_edges_1d(dt, points, tol2, where);
+    check_edges_1d(dt, points, in.tol2, in.where);
     return result;
   }
-
-  int restored = 0, lost = 0, kept_edges = 0;
-  if (previous != nullptr) {
-    restore_boundary_edges(dt, *previous, n, restored, lost);
-    if (settings.keep_edges_angle > 0 && !previous->edges().empty())
-      kept_edges = keep_previous_edges(dt, *previous, n, points, settings.keep_edges_angle);
+  // The previous domain's boundary edges, and with keep_edges_angle its interior ones, flipped back in.
+  if (in.previous != nullptr) {
+    restore_boundary_edges(dt, *in.previous, n, result.restored_edges, result.lost_edges);
+    if (settings.keep_edges_angle > 0 && !in.previous->edges().empty())
+      result.kept_edges = keep_previous_edges(dt, *in.previous, n, points, settings.keep_edges_angle);
   }
-
   // The free-surface pass reads the flag of every neighbour, including the infinite faces.
   {
     auto fc = dt.incident_faces(dt.infinite_vertex());
@@ -275,128 +447,8 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
     do fc->info() = 0;
     while (++fc != done);
   }
-
-  result.triangles.reserve(dt.number_of_faces());
-  std::uint8_t* connected = result.connected.data();
-  double area2 = 0.0, area2_comp = 0.0;  // twice the kept area, Neumaier-compensated sum
-  int removed_alpha = 0, removed_boundary = 0, added = 0, separated = 0;
-
-  // Pass 1: the alpha test, in double from the input coordinates (CGAL's faces are counter-clockwise).
-  // An element failing both tests counts as removed by the alpha test.
-  for (auto f : dt.finite_face_handles()) {
-    const Index a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
-    const Vec2& pa = points[static_cast<std::size_t>(a)];
-    const Vec2& pb = points[static_cast<std::size_t>(b)];
-    const Vec2& pc = points[static_cast<std::size_t>(c)];
-    const double ux = pb.x() - pa.x(), uy = pb.y() - pa.y();  // a -> b
-    const double vx = pc.x() - pa.x(), vy = pc.y() - pa.y();  // a -> c
-    const double wx = pc.x() - pb.x(), wy = pc.y() - pb.y();  // b -> c
-    const double lab2 = ux * ux + uy * uy, lac2 = vx * vx + vy * vy, lbc2 = wx * wx + wy * wy;
-    if (std::min({lab2, lac2, lbc2}) < tol2) {
-      if (lab2 < tol2) throw_near_duplicate(a, b, points, where);
-      if (lac2 < tol2) throw_near_duplicate(a, c, points, where);
-      throw_near_duplicate(b, c, points, where);
-    }
-    const double cr = ux * vy - uy * vx;  // 2 * area
-    f->info() = 0;
-    // R = l_ab l_ac l_bc / (4 A) <= alpha h_e  <=>  l_ab l_ac l_bc <= 2 cr alpha h_e (for cr > 0)
-    const double he =
-        (h[static_cast<std::size_t>(a)] + h[static_cast<std::size_t>(b)] + h[static_cast<std::size_t>(c)]) *
-        (1.0 / 3.0);
-    const double lll = std::sqrt(lab2) * std::sqrt(lac2) * std::sqrt(lbc2);
-    const int walls = (kind[static_cast<std::size_t>(a)] != ParticleKind::Fluid) +
-                      (kind[static_cast<std::size_t>(b)] != ParticleKind::Fluid) +
-                      (kind[static_cast<std::size_t>(c)] != ParticleKind::Fluid);
-    // Flat to round-off (three particles on one inclined wall, collinear up to the last bits of their
-    // coordinates): never fluid, and not a separation either (it would be counted as one at each step).
-    if (!(cr > 1e-12 * std::max({lab2, lac2, lbc2}))) {
-      ++removed_alpha;
-      continue;
-    }
-    if (previous == nullptr) {
-      if (lll > 2.0 * cr * alpha * he) {
-        ++removed_alpha;
-        continue;
-      }
-    } else {
-      const Vec2 centroid = (pa + pb + pc) * (1.0 / 3.0);
-      if (previous->contains(centroid)) {
-        if (lll > 2.0 * cr * settings.separation_alpha * he) {
-          ++separated;
-          result.separated.push_back({a, b, c});
-          continue;
-        }
-      } else {
-        // Outside the advected domain: a new contact (surfaces meeting, a surface reaching a wall), never
-        // an element leaning on two boundary particles (the meniscus element of a dry wall), nor the fill of
-        // a dent of one surface (an element with two edges on the previous boundary: consecutive surface
-        // particles), nor an element reaching a dry wall or ghost particle (one the previous mesh did not
-        // use) from fluid particles all farther than wetting_distance h_e from it (a dry wall is wetted by
-        // fluid that reaches it, not by a surface particle passing at a spacing's distance).
-        const double band = settings.level_set_band * he;
-        const int on_boundary =
-            previous->is_boundary_edge(a, b) + previous->is_boundary_edge(b, c) + previous->is_boundary_edge(c, a);
-        bool reaches = true;
-        const Index ids[3] = {a, b, c};
-        for (int k = 0; k < 3; ++k) {
-          const auto w = static_cast<std::size_t>(ids[k]);
-          if (kind[w] == ParticleKind::Fluid || previous->meshed(ids[k])) continue;
-          double nearest = std::numeric_limits<double>::infinity();
-          for (int m = 0; m < 3; ++m) {
-            const auto f = static_cast<std::size_t>(ids[m]);
-            if (kind[f] == ParticleKind::Fluid) nearest = std::min(nearest, (points[f] - points[w]).norm());
-          }
-          reaches = reaches && nearest <= settings.wetting_distance * he;
-        }
-        // Two fluid surfaces meeting: the gap the element closes is its smallest height, 2A / l_max
-        // (contact_gap). A surface reaching a wall or ghost particle is wetting_distance's concern.
-        const bool gap_ok = walls > 0 || !(settings.contact_gap > 0) ||
-                            cr <= settings.contact_gap * he * std::sqrt(std::max({lab2, lac2, lbc2}));
-        const bool accept =
-            gap_ok && walls <= 1 && on_boundary < 2 && reaches &&
-            (settings.detection == DomainDetection::LevelSet ? previous->boundary_distance(centroid, band) < band
-                                                             : lll <= 2.0 * cr * alpha * he);
-        if (!accept) {
-          ++removed_alpha;
-          continue;
-        }
-        ++added;
-        result.added_elements.push_back(static_cast<Index>(result.triangles.size()));
-      }
-    }
-    if (walls == 3) {
-      ++removed_boundary;
-      continue;
-    }
-    f->info() = 1;
-    result.triangles.push_back({a, b, c});
-    connected[a] = connected[b] = connected[c] = 1;
-    const double t = area2 + cr;
-    area2_comp += std::abs(area2) >= cr ? (area2 - t) + cr : (cr - t) + area2;
-    area2 = t;
-  }
-
-  // Pass 2: an edge of a kept face is used by exactly one kept element iff the face across it (possibly
-  // infinite) is not kept. Every face's flag has been set above.
-  std::uint8_t* fs = result.free_surface.data();
-  for (auto f : dt.all_face_handles()) {
-    if (!f->info()) continue;
-    for (int i = 0; i < 3; ++i) {
-      if (f->neighbor(i)->info()) continue;
-      const Index p = f->vertex(DT::ccw(i))->info(), q = f->vertex(DT::cw(i))->info();
-      if (kind[static_cast<std::size_t>(p)] == ParticleKind::Fluid) fs[p] = 1;
-      if (kind[static_cast<std::size_t>(q)] == ParticleKind::Fluid) fs[q] = 1;
-    }
-  }
-
-  result.area = 0.5 * (area2 + area2_comp);
-  result.removed_alpha = removed_alpha;
-  result.removed_boundary_only = removed_boundary;
-  result.added_outside = added;
-  result.separated_inside = separated;
-  result.restored_edges = restored;
-  result.lost_edges = lost;
-  result.kept_edges = kept_edges;
+  keep_faces(in, dt, result);
+  mark_free_surface(in, dt, result);
   return result;
 }
 

@@ -62,258 +62,340 @@ meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b)
   return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
 }
 
-bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,
-                                      std::vector<std::pair<Index, Index>>& boundary_edges,
-                                      std::vector<std::pair<Index, Index>>* all_edges,
-                                      const std::vector<char>& on_wall) {
-  const Index np = cloud_.n();
-  std::vector<Vec2> pts(np);
-  for (Index i = 0; i < np; ++i) pts[i] = cloud_.pos(i);
-  std::vector<double> lumped(np, 0.0);
-  for (Index e = 0; e < static_cast<Index>(mesh_.tri.size()); ++e)
-    for (Index i : mesh_.tri[e]) lumped[i] += std::abs(mesh_.element_area(cloud_.x(), e)) / 3.0;
-  const auto on_boundary = [&](Index i) { return chain.next[i] >= 0 || chain.prev[i] >= 0; };
-
-  std::vector<char> drop(np, 0), touched(np, 0);
-  std::vector<Index> alias(np);  // a merged particle's survivor (itself otherwise)
-  for (Index i = 0; i < np; ++i) alias[i] = i;
-  std::vector<Index> heir(np, -1);  // a particle removed at a wall: the wall particle that stands for it
-  // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
-  const auto walled = [&](Index i) { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); };
-  const auto merge = [&](Index i, Index j) {
-    // A particle on a wall ("wall_model": "constraints") survives where it is, the more constrained one of
-    // two (a corner's particle keeps the corner); two on one wall meet at their centre of mass, on it.
-    if (walled(j) > walled(i)) std::swap(i, j);
-    const double wi = lumped[i], wj = lumped[j], w = wi + wj;
-    const double si = w > 0 ? wi / w : 0.5, sj = 1.0 - si;
-    Vec2 x = si * pts[i] + sj * pts[j];
-    const bool bi = on_boundary(i), bj = on_boundary(j);
-    if (walled(i) > walled(j) || walled(i) == 2) {
-      x = pts[i];
-    } else if (walled(i) == 1) {
-      // both on a wall: their centre of mass, on the wall when it is one wall
-    } else if (bi && !bj) {
-      x = pts[i];
-    } else if (bj && !bi) {
-      x = pts[j];
-    } else if (bi && bj) {
-      // Along the boundary p -> a -> b -> q: m on the perpendicular of q - p through the midpoint, where the
-      // polygon p-m-q has the area of p-a-b-q (cross(m, q - p) = cross(p, a) + cross(a, b) + cross(b, q)).
-      Index a = -1, c = -1;
-      if (chain.next[i] == j) a = i, c = j;
-      if (chain.next[j] == i) a = j, c = i;
-      x = 0.5 * (pts[i] + pts[j]);
-      if (a >= 0 && !chain.pinched[a] && !chain.pinched[c]) {
-        const Index p = chain.prev[a], q = chain.next[c];
-        if (p >= 0 && q >= 0 && p != c && q != a && p != q) {
-          const Vec2 d = pts[q] - pts[p];
-          const double dn = d.norm();
-          if (dn > 1e-12 * c_.h) {
-            const double target = cross(pts[p], pts[a]) + cross(pts[a], pts[c]) + cross(pts[c], pts[q]);
-            const double s = (target - cross(x, d)) / (-dn);
-            if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * c_.h) x += s * Vec2(-d.y(), d.x()) / dn;
-          }
-        }
-      }
-    }
-    cloud_.x().segment<2>(2 * i) = x;
-    cloud_.v().segment<2>(2 * i) = si * cloud_.v().segment<2>(2 * i) + sj * cloud_.v().segment<2>(2 * j);
-    cloud_.a().segment<2>(2 * i) = si * cloud_.a().segment<2>(2 * i) + sj * cloud_.a().segment<2>(2 * j);
-    cloud_.p()[i] = si * cloud_.p()[i] + sj * cloud_.p()[j];
-    cloud_.owed()[i] += cloud_.owed()[j];
-    drop[j] = touched[i] = touched[j] = 1;
-    alias[j] = i;
-    lumped[i] = w;  // a survivor merged again (a third particle on a corner) weighs the pair
-    ++merged_;
-  };
-  // A fluid particle f removed at a wall or ghost particle g: g stands for it, and takes its share of the area
-  // and what it was owed.
-  const auto leave_to = [&](Index f, Index g) {
-    drop[f] = touched[f] = 1;
-    heir[f] = g;
-    cloud_.owed()[g] += cloud_.owed()[f];
-    ++wall_removed_;
-  };
-  if (!on_wall.empty()) {
-    // Walls as constraints: a particle put on a wall (FluidWalls::snap_to_walls) may land on or next to a
-    // particle already there that the previous mesh does not connect it to (a drop sliding into a corner
-    // lands on the corner's particle): such pairs are merged too. Both may be out of the mesh (no mass):
-    // the merge then takes the mean state.
-    // A fluid particle put on a wall's end where a structure stands (its ghost particle: the foot of an
-    // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
-    const double r = std::max(s_.close_fraction, 0.05) * c_.h;
-    // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles, and the
-    // wall and ghost particles (none with walls as constraints but a structure's ghosts).
-    const auto n_fluid =
-        static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
-    PointGrid grid(std::max(r, 1e-300), n_fluid),
-        prescribed(std::max(r, 1e-300), static_cast<std::size_t>(np) - n_fluid);
-    for (Index i = 0; i < np; ++i)
-      if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
-    for (Index i = 0; i < np; ++i) {
-      if (cloud_.kind(i) != ParticleKind::Fluid) continue;
-      if (const Index g = prescribed.find(pts[i], r, pts); g >= 0) {
-        leave_to(i, g);
-        continue;
-      }
-      // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
-      // particle; it was left beside it, and the triangulation failed on the duplicate point).
-      const Index j = grid.find(pts[i], r, pts);
-      if (j >= 0 && !drop[j] && (walled(i) > 0 || walled(j) > 0)) {
-        merge(j, i);
-        if (drop[j]) grid.add(pts[i], i);  // i survived (the more constrained): the later find returns it
-      } else {
-        grid.add(pts[i], i);
-      }
-    }
-  }
-  if (s_.close_fraction > 0) {
-    // A fluid particle pressed against a wall particle: inside the fluid it goes (the wall stands for it;
-    // the domain does not change); on the free surface (where the surface meets the wall) it is merged with
-    // its fluid neighbour along the surface, which keeps the boundary's area. Against a structure's face the
-    // distance is to the face's segments, not only to its ghost particles: the Delaunay mesh does not keep
-    // a face segment as an edge, and a surface particle drifting onto the face midway between two ghosts
-    // (1.6 mm from each at h = 3.3 mm) was joined to them by two triangles that stay valid as it crosses,
-    // and went into the plate (flexible_tank under generalized-alpha, rho_inf = 0.8 and 0.9, at 0.57 s).
-    const double r_close = s_.close_fraction * c_.h;
-    const auto pressed = [&](Index f, Index g) {
-      if ((pts[f] - pts[g]).norm() < r_close) return true;
-      for (Index q : ghosts_.face_neighbours(g))
-        if (segment_distance(pts[f], pts[g], pts[q]) < r_close) return true;
-      return false;
-    };
-    for (const auto& t : mesh_.tri)
-      for (int k = 0; k < 3; ++k) {
-        const Index a = t[k], c = t[(k + 1) % 3];
-        const bool fa = cloud_.kind(a) == ParticleKind::Fluid, fc = cloud_.kind(c) == ParticleKind::Fluid;
-        if (fa == fc) continue;
-        const Index f = fa ? a : c;
-        if (touched[f] || !pressed(f, f == a ? c : a)) continue;
-        Index partner = -1;
-        if (on_boundary(f))
-          for (Index q : {chain.next[f], chain.prev[f]})
-            if (partner < 0 && q >= 0 && cloud_.kind(q) == ParticleKind::Fluid && !touched[q]) partner = q;
-        if (partner >= 0) {
-          merge(partner, f);
-          ++wall_removed_;
-        } else {
-          leave_to(f, f == a ? c : a);
-        }
-      }
-    for (const auto& [i, j] : meshing::close_fluid_pairs(pts, cloud_.kind(), cloud_.h(), mesh_.tri, s_.close_fraction))
-      if (!touched[i] && !touched[j]) merge(i, j);
-    // Two surfaces that meet (a film landing on the pool, two jets crossing, two drops): a pair closer than
-    // close_fraction h that the previous mesh does not connect. Its edges do not see the pair; the new
-    // triangulation joins it by a sliver whose particles pass each other within the step (dam_break_obstacle:
-    // two film particles 0.03 h apart at 3 m/s against each other, a sliver turned over at every step down to
-    // dt/16). Merged too, as the alpha detection merges close pairs on the new mesh.
-    const double r_meet = s_.close_fraction * c_.h;
-    PointGrid untouched(r_meet, static_cast<std::size_t>(np));
-    for (Index i = 0; i < np; ++i) {
-      if (cloud_.kind(i) != ParticleKind::Fluid || touched[i]) continue;
-      const Index j = untouched.find(pts[i], r_meet, pts);
-      if (j >= 0 && !touched[j]) {
-        merge(j, i);
-        ++merged_meeting_;
-      } else {
-        untouched.add(pts[i], i);
-      }
-    }
-  }
-
-  // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
-  // its elements are gone).
+/// What the stages of manage_particles share: the cloud at the start (positions and lumped masses; a merge
+/// moves its survivor in the cloud, not in `pts`), what becomes of each particle, the particles to insert and
+/// the previous mesh's edges through these changes.
+struct RemeshPipeline::Management {
+  /// A particle to insert: its state interpolated on the advected mesh.
   struct NewParticle {
     Vec2 x, v, a;
     double p, h;
   };
-  std::vector<NewParticle> fresh;
-  std::vector<Index> split_at(np, -1);  // boundary edge from a (to chain.next[a]) split by new particle k
-  // Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
-  // or landed) may sit on a boundary edge between two others: no new particle within close_fraction h of an
-  // existing one.
-  std::unique_ptr<PointGrid> taken;
-  const double r_taken = std::max(s_.close_fraction, 0.05) * c_.h;
-  if (!on_wall.empty()) {
+
+  Management(const BoundaryChains& chain, const std::vector<char>& on_wall) : chain(chain), on_wall(on_wall) {}
+
+  const BoundaryChains& chain;
+  const std::vector<char>& on_wall;
+  Index np = 0;                                   // particles at the start
+  std::vector<Vec2> pts;                          // their positions at the start
+  std::vector<double> lumped;                     // their masses: the lumped areas sum_e A_e / 3
+  std::vector<char> drop, touched;                // removed; merged or removed (its elements are gone)
+  std::vector<Index> alias;                       // a merged particle's survivor (itself otherwise)
+  std::vector<Index> heir;                        // a particle removed at a wall: the wall particle that stands for it
+  std::vector<NewParticle> fresh;                 // the particles to insert, numbered np, np + 1, ...
+  std::vector<Index> split_at;                    // boundary edge from a (to chain.next[a]) split by new particle k
+  std::unique_ptr<PointGrid> taken;               // the occupied spots (walls as constraints: occupy_spots)
+  std::vector<Vec2> taken_pts;                    // their positions
+  double r_taken = 0;                             // no new particle closer than this to an occupied spot
+  std::vector<std::uint8_t> used;                 // the particles the previous mesh used (new ones: 0)
+  std::vector<std::pair<Index, Index>> edges;     // its boundary edges through merges and splits
+  std::vector<std::pair<Index, Index>> interior;  // its other edges through merges (when all_edges is asked)
+
+  /// The number of a particle's components constrained by a wall (0 without walls as constraints).
+  int walled(Index i) const { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); }
+  bool on_boundary(Index i) const { return chain.next[i] >= 0 || chain.prev[i] >= 0; }
+
+  /// The weighted mean sum_k w_k (state of ids[k]) of the particles' states, at their starting positions.
+  NewParticle between(const ParticleCloud& cloud, const std::vector<Index>& ids, const std::vector<double>& w) const {
+    NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
+    for (size_t k = 0; k < ids.size(); ++k) {
+      q.x += w[k] * pts[ids[k]];
+      q.v += w[k] * cloud.v().segment<2>(2 * ids[k]);
+      q.a += w[k] * cloud.a().segment<2>(2 * ids[k]);
+      q.p += w[k] * cloud.p()[ids[k]];
+      q.h += w[k] * cloud.h(ids[k]);
+    }
+    return q;
+  }
+
+  /// Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
+  /// or landed) may sit on a boundary edge between two others: no new particle within r (max(close_fraction, 0.05) h)
+  /// of an existing one. The particles that stay occupy their spots.
+  void occupy_spots(double r) {
+    r_taken = r;
     taken = std::make_unique<PointGrid>(r_taken, static_cast<std::size_t>(np));
     for (Index i = 0; i < np; ++i)
       if (!drop[i]) taken->add(pts[i], i);
+    taken_pts = pts;
   }
-  std::vector<Vec2> taken_pts = taken ? pts : std::vector<Vec2>();
-  const auto free_spot = [&](const Vec2& x) {
+  /// True when x is free (always without occupy_spots); a free spot is then occupied.
+  bool free_spot(const Vec2& x) {
     if (!taken) return true;
     if (taken->find(x, r_taken, taken_pts) >= 0) return false;
     taken->add(x, static_cast<Index>(taken_pts.size()));
     taken_pts.push_back(x);
     return true;
-  };
-  const auto between = [&](const std::vector<Index>& ids, const std::vector<double>& w) {
-    NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
-    for (size_t k = 0; k < ids.size(); ++k) {
-      q.x += w[k] * pts[ids[k]];
-      q.v += w[k] * cloud_.v().segment<2>(2 * ids[k]);
-      q.a += w[k] * cloud_.a().segment<2>(2 * ids[k]);
-      q.p += w[k] * cloud_.p()[ids[k]];
-      q.h += w[k] * cloud_.h(ids[k]);
-    }
-    return q;
-  };
-  if (s_.split_factor > 0)
-    for (Index a = 0; a < np; ++a) {
-      const Index c = chain.next[a];
-      if (c < 0 || touched[a] || touched[c]) continue;
-      if (cloud_.kind(a) != ParticleKind::Fluid && cloud_.kind(c) != ParticleKind::Fluid) continue;
-      const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
-      if ((pts[a] - pts[c]).norm() > s_.split_factor * he) {
-        const NewParticle q = between({a, c}, {0.5, 0.5});
-        if (!free_spot(q.x)) continue;
-        split_at[a] = np + static_cast<Index>(fresh.size());
-        fresh.push_back(q);
-        ++split_;
+  }
+};
+
+bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,
+                                      std::vector<std::pair<Index, Index>>& boundary_edges,
+                                      std::vector<std::pair<Index, Index>>* all_edges,
+                                      const std::vector<char>& on_wall) {
+  Management m = start_management(chain, on_wall);
+  // 1. Close pairs: merged. Pair (i, j): i survives with the pair's mass-weighted state; j goes.
+  if (!on_wall.empty()) merge_onto_walls(m);
+  if (s_.close_fraction > 0) {
+    merge_pressed_against_walls(m);
+    merge_close_pairs(m);
+  }
+  // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
+  // its elements are gone).
+  if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05) * c_.h);
+  if (s_.split_factor > 0) split_long_edges(m);
+  if (s_.insert_factor > 0) insert_in_large_elements(m);
+  // 3. The previous mesh's topology through the changes, then the changes made to the cloud.
+  carry_topology(m, all_edges != nullptr);
+  return apply_management(m, meshed, boundary_edges, all_edges);
+}
+
+RemeshPipeline::Management RemeshPipeline::start_management(const BoundaryChains& chain,
+                                                            const std::vector<char>& on_wall) const {
+  // The positions and the lumped masses of the advected mesh; no particle touched yet.
+  Management m(chain, on_wall);
+  const Index np = m.np = cloud_.n();
+  m.pts.resize(np);
+  for (Index i = 0; i < np; ++i) m.pts[i] = cloud_.pos(i);
+  m.lumped.assign(np, 0.0);
+  for (Index e = 0; e < static_cast<Index>(mesh_.tri.size()); ++e)
+    for (Index i : mesh_.tri[e]) m.lumped[i] += std::abs(mesh_.element_area(cloud_.x(), e)) / 3.0;
+  m.drop.assign(np, 0);
+  m.touched.assign(np, 0);
+  m.alias.resize(np);
+  for (Index i = 0; i < np; ++i) m.alias[i] = i;
+  m.heir.assign(np, -1);
+  m.split_at.assign(np, -1);
+  return m;
+}
+
+void RemeshPipeline::merge_pair(Management& m, Index i, Index j) {
+  const std::vector<Vec2>& pts = m.pts;
+  const BoundaryChains& chain = m.chain;
+  // A particle on a wall ("wall_model": "constraints") survives where it is, the more constrained one of
+  // two (a corner's particle keeps the corner); two on one wall meet at their centre of mass, on it.
+  if (m.walled(j) > m.walled(i)) std::swap(i, j);
+  const double wi = m.lumped[i], wj = m.lumped[j], w = wi + wj;
+  const double si = w > 0 ? wi / w : 0.5, sj = 1.0 - si;
+  Vec2 x = si * pts[i] + sj * pts[j];
+  const bool bi = m.on_boundary(i), bj = m.on_boundary(j);
+  if (m.walled(i) > m.walled(j) || m.walled(i) == 2) {
+    x = pts[i];
+  } else if (m.walled(i) == 1) {
+    // both on a wall: their centre of mass, on the wall when it is one wall
+  } else if (bi && !bj) {
+    x = pts[i];
+  } else if (bj && !bi) {
+    x = pts[j];
+  } else if (bi && bj) {
+    // Along the boundary p -> a -> b -> q: m on the perpendicular of q - p through the midpoint, where the
+    // polygon p-m-q has the area of p-a-b-q (cross(m, q - p) = cross(p, a) + cross(a, b) + cross(b, q)).
+    Index a = -1, c = -1;
+    if (chain.next[i] == j) a = i, c = j;
+    if (chain.next[j] == i) a = j, c = i;
+    x = 0.5 * (pts[i] + pts[j]);
+    if (a >= 0 && !chain.pinched[a] && !chain.pinched[c]) {
+      const Index p = chain.prev[a], q = chain.next[c];
+      if (p >= 0 && q >= 0 && p != c && q != a && p != q) {
+        const Vec2 d = pts[q] - pts[p];
+        const double dn = d.norm();
+        if (dn > 1e-12 * c_.h) {
+          const double target = cross(pts[p], pts[a]) + cross(pts[a], pts[c]) + cross(pts[c], pts[q]);
+          const double s = (target - cross(x, d)) / (-dn);
+          if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * c_.h) x += s * Vec2(-d.y(), d.x()) / dn;
+        }
       }
     }
-  if (s_.insert_factor > 0)
-    for (Index e : meshing::oversized_elements(pts, cloud_.h(), mesh_.tri, s_.insert_factor)) {
-      const auto& t = mesh_.tri[e];
-      if (touched[t[0]] || touched[t[1]] || touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
-      const NewParticle q = between({t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3});
-      if (!free_spot(q.x)) continue;
-      fresh.push_back(q);
-      ++inserted_;
+  }
+  cloud_.x().segment<2>(2 * i) = x;
+  cloud_.v().segment<2>(2 * i) = si * cloud_.v().segment<2>(2 * i) + sj * cloud_.v().segment<2>(2 * j);
+  cloud_.a().segment<2>(2 * i) = si * cloud_.a().segment<2>(2 * i) + sj * cloud_.a().segment<2>(2 * j);
+  cloud_.p()[i] = si * cloud_.p()[i] + sj * cloud_.p()[j];
+  cloud_.owed()[i] += cloud_.owed()[j];
+  m.drop[j] = m.touched[i] = m.touched[j] = 1;
+  m.alias[j] = i;
+  m.lumped[i] = w;  // a survivor merged again (a third particle on a corner) weighs the pair
+  ++merged_;
+}
+
+void RemeshPipeline::leave_to_wall(Management& m, Index f, Index g) {
+  // A fluid particle f removed at a wall or ghost particle g: g stands for it, and takes its share of the area
+  // and what it was owed.
+  m.drop[f] = m.touched[f] = 1;
+  m.heir[f] = g;
+  cloud_.owed()[g] += cloud_.owed()[f];
+  ++wall_removed_;
+}
+
+void RemeshPipeline::merge_onto_walls(Management& m) {
+  // Walls as constraints: a particle put on a wall (FluidWalls::snap_to_walls) may land on or next to a
+  // particle already there that the previous mesh does not connect it to (a drop sliding into a corner
+  // lands on the corner's particle): such pairs are merged too. Both may be out of the mesh (no mass):
+  // the merge then takes the mean state.
+  // A fluid particle put on a wall's end where a structure stands (its ghost particle: the foot of an
+  // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
+  const Index np = m.np;
+  const std::vector<Vec2>& pts = m.pts;
+  const double r = std::max(s_.close_fraction, 0.05) * c_.h;
+  // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles, and the
+  // wall and ghost particles (none with walls as constraints but a structure's ghosts).
+  const auto n_fluid =
+      static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
+  PointGrid grid(std::max(r, 1e-300), n_fluid), prescribed(std::max(r, 1e-300), static_cast<std::size_t>(np) - n_fluid);
+  for (Index i = 0; i < np; ++i)
+    if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
+  for (Index i = 0; i < np; ++i) {
+    if (cloud_.kind(i) != ParticleKind::Fluid) continue;
+    if (const Index g = prescribed.find(pts[i], r, pts); g >= 0) {
+      leave_to_wall(m, i, g);
+      continue;
     }
+    // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
+    // particle; it was left beside it, and the triangulation failed on the duplicate point).
+    const Index j = grid.find(pts[i], r, pts);
+    if (j >= 0 && !m.drop[j] && (m.walled(i) > 0 || m.walled(j) > 0)) {
+      merge_pair(m, j, i);
+      if (m.drop[j]) grid.add(pts[i], i);  // i survived (the more constrained): the later find returns it
+    } else {
+      grid.add(pts[i], i);
+    }
+  }
+}
+
+void RemeshPipeline::merge_pressed_against_walls(Management& m) {
+  // A fluid particle pressed against a wall particle: inside the fluid it goes (the wall stands for it;
+  // the domain does not change); on the free surface (where the surface meets the wall) it is merged with
+  // its fluid neighbour along the surface, which keeps the boundary's area. Against a structure's face the
+  // distance is to the face's segments, not only to its ghost particles: the Delaunay mesh does not keep
+  // a face segment as an edge, and a surface particle drifting onto the face midway between two ghosts (each
+  // half a spacing away) was joined to them by two triangles that stay valid as it crosses, and went into the
+  // structure (the plate of cases/flexible_tank).
+  const std::vector<Vec2>& pts = m.pts;
+  const double r_close = s_.close_fraction * c_.h;
+  const auto pressed = [&](Index f, Index g) {
+    if ((pts[f] - pts[g]).norm() < r_close) return true;
+    for (Index q : ghosts_.face_neighbours(g))
+      if (segment_distance(pts[f], pts[g], pts[q]) < r_close) return true;
+    return false;
+  };
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], c = t[(k + 1) % 3];
+      const bool fa = cloud_.kind(a) == ParticleKind::Fluid, fc = cloud_.kind(c) == ParticleKind::Fluid;
+      if (fa == fc) continue;
+      const Index f = fa ? a : c;
+      if (m.touched[f] || !pressed(f, f == a ? c : a)) continue;
+      Index partner = -1;
+      if (m.on_boundary(f))
+        for (Index q : {m.chain.next[f], m.chain.prev[f]})
+          if (partner < 0 && q >= 0 && cloud_.kind(q) == ParticleKind::Fluid && !m.touched[q]) partner = q;
+      if (partner >= 0) {
+        merge_pair(m, partner, f);
+        ++wall_removed_;
+      } else {
+        leave_to_wall(m, f, f == a ? c : a);
+      }
+    }
+}
+
+void RemeshPipeline::merge_close_pairs(Management& m) {
+  // The fluid pairs of the advected mesh closer than close_fraction h (meshing::close_fluid_pairs).
+  for (const auto& [i, j] : meshing::close_fluid_pairs(m.pts, cloud_.kind(), cloud_.h(), mesh_.tri, s_.close_fraction))
+    if (!m.touched[i] && !m.touched[j]) merge_pair(m, i, j);
+  // Two surfaces that meet (a film landing on the pool, two jets crossing, two drops): a pair closer than
+  // close_fraction h that the previous mesh does not connect. Its edges do not see the pair; the new
+  // triangulation joins it by a sliver whose particles pass each other within the step (cases/dam_break_obstacle:
+  // two film particles running into each other, a sliver turned over at every step). Merged too, as the alpha
+  // detection merges close pairs on the new mesh.
+  const double r_meet = s_.close_fraction * c_.h;
+  PointGrid untouched(r_meet, static_cast<std::size_t>(m.np));
+  for (Index i = 0; i < m.np; ++i) {
+    if (cloud_.kind(i) != ParticleKind::Fluid || m.touched[i]) continue;
+    const Index j = untouched.find(m.pts[i], r_meet, m.pts);
+    if (j >= 0 && !m.touched[j]) {
+      merge_pair(m, j, i);
+      ++merged_meeting_;
+    } else {
+      untouched.add(m.pts[i], i);
+    }
+  }
+}
+
+void RemeshPipeline::split_long_edges(Management& m) {
+  // A boundary edge with a fluid end longer than split_edge_factor h_e (h_e the mean of its ends' h) gets a
+  // particle at its midpoint, with the mean state of its ends.
+  for (Index a = 0; a < m.np; ++a) {
+    const Index c = m.chain.next[a];
+    if (c < 0 || m.touched[a] || m.touched[c]) continue;
+    if (cloud_.kind(a) != ParticleKind::Fluid && cloud_.kind(c) != ParticleKind::Fluid) continue;
+    const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
+    if ((m.pts[a] - m.pts[c]).norm() > s_.split_factor * he) {
+      const Management::NewParticle q = m.between(cloud_, {a, c}, {0.5, 0.5});
+      if (!m.free_spot(q.x)) continue;
+      m.split_at[a] = m.np + static_cast<Index>(m.fresh.size());
+      m.fresh.push_back(q);
+      ++split_;
+    }
+  }
+}
+
+void RemeshPipeline::insert_in_large_elements(Management& m) {
+  // An element larger than insert_area_factor h_e^2 (meshing::oversized_elements) gets a particle at its
+  // centroid, with the P1 interpolation of the state there.
+  for (Index e : meshing::oversized_elements(m.pts, cloud_.h(), mesh_.tri, s_.insert_factor)) {
+    const auto& t = mesh_.tri[e];
+    if (m.touched[t[0]] || m.touched[t[1]] || m.touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
+    const Management::NewParticle q = m.between(cloud_, {t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3});
+    if (!m.free_spot(q.x)) continue;
+    m.fresh.push_back(q);
+    ++inserted_;
+  }
+}
+
+void RemeshPipeline::carry_topology(Management& m, bool all_edges) const {
+  const Index np = m.np;
+  std::vector<Index>& alias = m.alias;
+  const std::vector<char>& drop = m.drop;
   // A merged particle's final survivor (a survivor may have been merged again at a corner).
   for (Index i = 0; i < np; ++i)
     while (alias[alias[i]] != alias[i]) alias[i] = alias[alias[i]];
   // The previous mesh's topology through the changes: boundary edges follow merges (to the survivor) and
   // splits (two halves); those of a removed particle go.
-  std::vector<std::uint8_t> used(np + fresh.size(), 0);
+  m.used.assign(np + m.fresh.size(), 0);
   for (const auto& t : mesh_.tri)
-    for (Index i : t) used[i] = 1;
-  std::vector<std::pair<Index, Index>> edges;
+    for (Index i : t) m.used[i] = 1;
   for (Index a = 0; a < np; ++a) {
-    const Index c = chain.next[a];
+    const Index c = m.chain.next[a];
     if (c < 0 || (drop[a] && alias[a] == a) || (drop[c] && alias[c] == c)) continue;
     const Index a2 = alias[a], c2 = alias[c];
     if (a2 == c2) continue;
-    if (split_at[a] >= 0) {
-      edges.emplace_back(a2, split_at[a]);
-      edges.emplace_back(split_at[a], c2);
+    if (m.split_at[a] >= 0) {
+      m.edges.emplace_back(a2, m.split_at[a]);
+      m.edges.emplace_back(m.split_at[a], c2);
     } else {
-      edges.emplace_back(a2, c2);
+      m.edges.emplace_back(a2, c2);
     }
   }
-  std::vector<std::pair<Index, Index>> interior;
-  if (all_edges != nullptr) {
+  if (all_edges) {
     // Every edge of the previous mesh through the merges (boundary edges, with their splits, are in `edges`).
     for (const auto& t : mesh_.tri)
       for (int k = 0; k < 3; ++k) {
         const Index a = t[k], c = t[(k + 1) % 3];
         if ((drop[a] && alias[a] == a) || (drop[c] && alias[c] == c)) continue;
         const Index a2 = alias[a], c2 = alias[c];
-        if (a2 != c2 && chain.next[a] != c && chain.next[c] != a) interior.emplace_back(a2, c2);
+        if (a2 != c2 && m.chain.next[a] != c && m.chain.next[c] != a) m.interior.emplace_back(a2, c2);
       }
   }
-  for (const auto& q : fresh) append_particle(q.x, q.v, q.a, q.p, q.h);
+}
+
+bool RemeshPipeline::apply_management(Management& m, std::vector<std::uint8_t>& meshed,
+                                      std::vector<std::pair<Index, Index>>& boundary_edges,
+                                      std::vector<std::pair<Index, Index>>* all_edges) {
+  // The new particles are appended, the removed ones dropped (drop_particles renumbers the rest); survivor_,
+  // `meshed` and the edges are then given in the new numbering.
+  const Index np = m.np;
+  const std::vector<Index>& alias = m.alias;
+  std::vector<char>& drop = m.drop;
+  for (const auto& q : m.fresh) append_particle(q.x, q.v, q.a, q.p, q.h);
   drop.resize(static_cast<size_t>(cloud_.n()), 0);
   const bool dropped = drop_particles(drop);
   const auto to_new = [&](Index i) { return dropped ? renumber_[i] : i; };
@@ -321,22 +403,22 @@ bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<s
   for (Index i = 0; i < np; ++i)
     if (!(drop[i] && alias[i] == i))
       survivor_[i] = to_new(alias[i]);
-    else if (heir[i] >= 0)
-      survivor_[i] = to_new(heir[i]);
+    else if (m.heir[i] >= 0)
+      survivor_[i] = to_new(m.heir[i]);
   meshed.assign(static_cast<size_t>(cloud_.n()), 0);
-  for (Index i = 0; i < static_cast<Index>(used.size()); ++i) {
+  for (Index i = 0; i < static_cast<Index>(m.used.size()); ++i) {
     const Index k = to_new(i);
-    if (k >= 0) meshed[k] = used[i] || cloud_.kind(k) == ParticleKind::Fluid;
+    if (k >= 0) meshed[k] = m.used[i] || cloud_.kind(k) == ParticleKind::Fluid;
   }
   boundary_edges.clear();
-  for (const auto& [a, c] : edges)
+  for (const auto& [a, c] : m.edges)
     if (to_new(a) >= 0 && to_new(c) >= 0) boundary_edges.emplace_back(to_new(a), to_new(c));
   if (all_edges != nullptr) {
     *all_edges = boundary_edges;
-    for (const auto& [a, c] : interior)
+    for (const auto& [a, c] : m.interior)
       if (to_new(a) >= 0 && to_new(c) >= 0) all_edges->emplace_back(to_new(a), to_new(c));
   }
-  return dropped || !fresh.empty();
+  return dropped || !m.fresh.empty();
 }
 
 }  // namespace lagfsi::fluid

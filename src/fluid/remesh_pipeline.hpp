@@ -121,6 +121,22 @@ class RemeshPipeline {
                         std::vector<std::pair<Index, Index>>& boundary_edges,
                         std::vector<std::pair<Index, Index>>* all_edges = nullptr,
                         const std::vector<char>& on_wall = {});
+  /// manage_particles' stages (particle_management.cpp), in order; Management: what they share.
+  struct Management;
+  Management start_management(const BoundaryChains& chain, const std::vector<char>& on_wall) const;
+  void merge_onto_walls(Management& m);
+  void merge_pressed_against_walls(Management& m);
+  void merge_close_pairs(Management& m);
+  void split_long_edges(Management& m);
+  void insert_in_large_elements(Management& m);
+  void carry_topology(Management& m, bool all_edges) const;
+  bool apply_management(Management& m, std::vector<std::uint8_t>& meshed,
+                        std::vector<std::pair<Index, Index>>& boundary_edges,
+                        std::vector<std::pair<Index, Index>>* all_edges);
+  /// Merges the pair (i, j) into one particle with the pair's mass-weighted state; leave_to_wall removes the
+  /// fluid particle f, which the wall or ghost particle g then stands for.
+  void merge_pair(Management& m, Index i, Index j);
+  void leave_to_wall(Management& m, Index f, Index g);
   /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
   /// particle go, the others are renumbered (renumber_).
   bool drop_particles(const std::vector<char>& drop);

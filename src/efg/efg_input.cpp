@@ -6,6 +6,8 @@
 #include <lagfsi/error.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 namespace lagfsi::efg {
@@ -351,6 +353,22 @@ void EfgModel::read_control(Params b) {
       c.fail("increment", "required for this control (initial load factor or displacement increment)");
     inc = ctx_.analysis.dt;  // load control by default follows the driver's load factor (time)
   }
+  // The body's size (the diagonal of its nodes' bounding box): the scale of a displacement that no step of a
+  // geometrically linear analysis may reach (check_runaway()).
+  Vec2 lo = mesh_.nodes.front(), hi = lo;
+  for (const Vec2& p : mesh_.nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  body_size_ = (hi - lo).norm();
+  if (t == ControlType::displacement && std::abs(inc) >= body_size_) {
+    char m[256];
+    std::snprintf(m, sizeof m,
+                  "a displacement increment of %.6g, not less than the body's size %.6g (a geometrically linear "
+                  "analysis): give a fraction of the expected displacement",
+                  std::abs(inc), body_size_);
+    c.fail("increment", m);
+  }
   if (t == ControlType::displacement) {
     Json sel = {{"type", "point"}, {"at", c.json()["at"]}};
     Params sp(sel, c.file(), c.path());
@@ -362,6 +380,7 @@ void EfgModel::read_control(Params b) {
   const ComplexRoots cr =
       PathFollowing::parse_complex_roots(c.choice("complex_roots", {"real_part", "normal_plane", "cut_back"}));
   control_ = PathFollowing(t, inc, control_dof_, cr);
+  control_.locate(c.path());
 }
 
 }  // namespace lagfsi::efg

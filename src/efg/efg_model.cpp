@@ -3,8 +3,10 @@
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace lagfsi::efg {
@@ -44,6 +46,7 @@ IterationReport EfgModel::solve_iteration() {
   times_.assembly += since(t0);
   if (!std::isfinite(rep.residual)) throw SolverError("body '" + name_ + "': non-finite residual");
   if (iter_ > 0 && rep.residual <= ctx_.analysis.newton.residual_tolerance * rep.residual_ref) {
+    check_runaway();
     rep.converged = true;
     return rep;
   }
@@ -82,6 +85,51 @@ void EfgModel::finalize_step() {
   fint0_ = fint_;
   lambda_peak_ = std::max(lambda_peak_, lambda0_);
   ++steps_;
+}
+
+namespace {
+/// Largest nodal displacement component of U = f(x) (node_eval: each node's support and MLS values).
+double max_nodal_displacement(const std::vector<std::vector<std::pair<Index, double>>>& node_eval, const Vec& x) {
+  double umax = 0;
+  for (const auto& support : node_eval) {
+    double ux = 0, uy = 0;
+    for (const auto& [j, v] : support) {
+      ux += v * x[2 * j];
+      uy += v * x[2 * j + 1];
+    }
+    umax = std::max({umax, std::abs(ux), std::abs(uy)});
+  }
+  return umax;
+}
+}  // namespace
+
+void EfgModel::check_runaway() const {
+  const double u = max_nodal_displacement(node_eval_, x_);
+  if (u <= body_size_) return;
+  const double du = max_nodal_displacement(node_eval_, dx_step_);
+  const std::string& at = control_.where();
+  char m[560];
+  if (du <= body_size_) {
+    // The path itself has walked that far (a residual-strength plateau), one ordinary step at a time.
+    std::snprintf(m, sizeof m,
+                  "%s: the path reached a displacement of %.3g at load factor %.6g, more than the body's size %.6g: "
+                  "beyond what a geometrically linear analysis describes; end the run before (fewer load steps)",
+                  at.c_str(), u, lambda_, body_size_);
+  } else if (control_.type() == ControlType::load) {
+    std::snprintf(m, sizeof m,
+                  "%s: load control past the limit point: the step to load factor %.6g found equilibrium only at a "
+                  "displacement of %.3g, %.3g times the body's size %.6g (the load exceeds what the body carries; "
+                  "the damage laws' residual stiffness holds it); follow the path past the limit point with "
+                  "displacement, generalized_displacement or arc_length control",
+                  at.c_str(), lambda_, du, du / body_size_, body_size_);
+  } else {
+    std::snprintf(m, sizeof m,
+                  "%s/increment: runaway step: the step to load factor %.6g moved the body by %.3g, %.3g times its "
+                  "size %.6g (a geometrically linear analysis): the increment is far too large for this path; give "
+                  "a smaller one",
+                  at.c_str(), lambda_, du, du / body_size_, body_size_);
+  }
+  throw SolverError(m);
 }
 
 Vec EfgModel::nodal_displacements() const {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace lagfsi::efg {
@@ -25,16 +26,34 @@ ComplexRoots PathFollowing::parse_complex_roots(const std::string& name) {
   throw std::invalid_argument("unknown complex_roots remedy '" + name + "'");
 }
 
+void PathFollowing::fail(const std::string& reason) const {
+  throw SolverError(where_.empty() ? reason : where_ + ": " + reason);
+}
+
 double PathFollowing::predictor(const Vec& dUP, double scale) {
   scale_ = scale;
   dUP1_cur_ = dUP;
+  dlambda_step_ = step_predictor(dUP, scale);
+  return dlambda_step_;
+}
+
+double PathFollowing::step_predictor(const Vec& dUP, double scale) {
   switch (type_) {
-    case ControlType::load:
+    case ControlType::load: {
+      if (steps_ > 0 && dUP1_prev_.size() == dUP.size() && dUP1_prev_.dot(dUP) <= 0) {
+        char m[320];
+        std::snprintf(m, sizeof m,
+                      "load control cannot pass the limit point at load factor %.6g (the tangent response to the "
+                      "load turned against the last step's: the stiffness is no longer positive definite); "
+                      "follow the path past it with displacement, generalized_displacement or arc_length control",
+                      lambda_);
+        fail(m);
+      }
       return inc_ * scale;
+    }
     case ControlType::displacement: {
       const double d = dUP[dof_];
-      if (std::abs(d) < 1e-300)
-        throw SolverError("displacement control: the controlled dof does not respond to the load");
+      if (std::abs(d) < 1e-300) fail("displacement control: the controlled dof does not respond to the load");
       return inc_ * scale / d;
     }
     case ControlType::generalized_displacement: {
@@ -44,17 +63,17 @@ double PathFollowing::predictor(const Vec& dUP, double scale) {
         return inc_ * scale;
       }
       const double den = dUP1_prev_.dot(dUP);
-      if (std::abs(den) < 1e-300) throw SolverError("generalized displacement control: GSP undefined");
+      if (std::abs(den) < 1e-300) fail("generalized displacement control: GSP undefined");
       const double gsp = dUP1_first_.squaredNorm() / den;
       sign_cur_ = sign_ * (gsp < 0 ? -1.0 : 1.0);
       return sign_cur_ * inc_ * scale * std::sqrt(std::abs(gsp));
     }
     case ControlType::arc_length: {
       const double n = dUP.norm();
-      if (!(n > 0)) throw SolverError("arc length: zero tangent response");
-      if (dl_ == 0) dl_ = inc_ * n;
-      double s = 1;
-      if (DU_prev_.size() == dUP.size() && DU_prev_.dot(dUP) < 0) s = -1;
+      if (!(n > 0)) fail("arc length: zero tangent response");
+      if (dl_ == 0) dl_ = std::abs(inc_) * n;
+      double s = inc_ < 0 ? -1 : 1;  // the first step: the direction the increment's sign asks for
+      if (DU_prev_.size() == dUP.size()) s = DU_prev_.dot(dUP) < 0 ? -1 : 1;
       return s * dl_ * scale / n;
     }
   }
@@ -62,6 +81,12 @@ double PathFollowing::predictor(const Vec& dUP, double scale) {
 }
 
 double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
+  const double dl = step_corrector(dUP, dUQ, DU);
+  dlambda_step_ += dl;
+  return dl;
+}
+
+double PathFollowing::step_corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
   switch (type_) {
     case ControlType::load:
       return 0.0;
@@ -79,14 +104,13 @@ double PathFollowing::corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU) {
       if (disc < 0) {
         switch (complex_roots_) {
           case ComplexRoots::cut_back:
-            throw SolverError("arc length: the constraint has no real root (step too long)");
+            fail("arc length: the constraint has no real root (step too long)");
           case ComplexRoots::real_part:
             ++stats_.complex_root_iterations;
             return -b / (2 * a);
           case ComplexRoots::normal_plane: {
             const double den = DU.dot(dUP);
-            if (std::abs(den) < 1e-300)
-              throw SolverError("arc length: complex roots and a normal plane parallel to dUP");
+            if (std::abs(den) < 1e-300) fail("arc length: complex roots and a normal plane parallel to dUP");
             ++stats_.complex_root_iterations;
             return -DU.dot(dUQ) / den;
           }
@@ -110,6 +134,8 @@ void PathFollowing::commit(const Vec& DU) {
   dUP1_prev_ = dUP1_cur_;
   DU_prev_ = DU;
   sign_ = sign_cur_;
+  lambda_ += dlambda_step_;
+  dlambda_step_ = 0;
   ++steps_;
 }
 

@@ -19,6 +19,12 @@
 /// lambda, which the path-following control owns (path_following.hpp); one driver step = one load step (a failed
 /// step is retried by the driver with a shorter increment; the material history is committed only at
 /// finalize_step). Each Newton iteration assembles K (tangent or secant operator) and the internal force.
+/// Runaway steps: the damage laws keep a floor of stiffness (damage <= 1 - 1e-9, a smeared crack's residual
+/// strength and shear modulus), so a load beyond the body's capacity still finds an "equilibrium", at
+/// displacements 1e5-1e8 times the body's size. The analysis is geometrically linear: a converged step whose
+/// nodal displacement exceeds the body's size (the diagonal of its bounding box) is refused with a SolverError
+/// naming the control (load control: past the limit point; the others: the increment is far too large), so the
+/// driver cuts the step back and, failing that, the run stops with that message.
 ///
 /// Shape functions, derivatives and supports are computed once per Gauss point and cached (thesis §4.4).
 #include <lagfsi/case.hpp>
@@ -95,6 +101,9 @@ class EfgModel final : public PhysicsModel {
   void factorize();
   Vec solve(const Vec& rhs, bool with_prescribed);
   Vec to_control(const Vec& dx) const;  ///< U or V form vector of the control
+  // path following (efg_model.cpp)
+  /// Throws SolverError when the converged iterate x_ lies at a displacement beyond the body's size.
+  void check_runaway() const;
 
   std::string name_;
   CaseContext ctx_;
@@ -104,6 +113,7 @@ class EfgModel final : public PhysicsModel {
   Visibility vis_;
   NodeSearch search_;
   double rho_max_ = 0, thickness_ = 1;
+  double body_size_ = 1;  // diagonal of the nodes' bounding box
   int gauss_ = 2;
   bool consistent_ = false;  // integration-consistent derivative correction (integration.hpp)
   std::unique_ptr<Material> material_;

@@ -30,6 +30,15 @@
 ///     - "cut_back": no remedy (the behaviour before this option): SolverError, the driver halves the step
 ///       (Crisfield 1981), and the run stops after max_step_halvings.
 ///    The steps where no complex root occurs are the same, bit for bit, with every option.
+/// The sign of the increment is the direction of the first step along the reference load P (negative: the path
+/// starts with lambda < 0, P reversed; displacement control: the controlled component decreases); the later steps
+/// follow the path from there as with a positive increment (arc length: Dl = |increment| |dUP_1^1|, the sign of the
+/// first predictor that of the increment).
+/// Limit points. Load control cannot pass one: beyond it the load exceeds what the body carries. The predictor
+/// refuses a step whose tangent response to the load has turned against the last step's, dUP_1^{i-1} . dUP_1^i <= 0
+/// (the sign of Bergan's current stiffness parameter, the sign change of GSP that generalized displacement control
+/// follows: the tangent stiffness is no longer positive definite along the path), with a SolverError that names
+/// the limit point and the controls that pass it.
 /// The vectors given are those of the control space: nodal displacements U = f(V) ("U form", Algorithm 1) or the
 /// MLS parameters V ("V form", parameter control, Algorithm 6); the model maps them. A step cut back by the
 /// driver scales the step's increment (dlambda, du or Dl) by `scale`.
@@ -55,6 +64,11 @@ class PathFollowing {
   PathFollowing(ControlType type, double increment, Index dof, ComplexRoots complex_roots = ComplexRoots::real_part)
       : type_(type), complex_roots_(complex_roots), inc_(increment), dof_(dof) {}
   ControlType type() const { return type_; }
+  /// The JSON path of the control in the case file: the prefix of the messages of its errors.
+  void locate(std::string json_path) { where_ = std::move(json_path); }
+  const std::string& where() const { return where_; }
+  /// The load factor of the last committed step (the sum of the committed steps' increments).
+  double load_factor() const { return lambda_; }
   const ArcLengthStats& stats() const { return stats_; }
   /// Load-factor increment of the first iteration of a step from the tangent response dUP.
   double predictor(const Vec& dUP, double scale);
@@ -63,10 +77,15 @@ class PathFollowing {
   double corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU);
   /// The step converged with increment DU.
   void commit(const Vec& DU);
+  /// A SolverError "<json path>: <reason>".
+  [[noreturn]] void fail(const std::string& reason) const;
   static ControlType parse(const std::string& name);
   static ComplexRoots parse_complex_roots(const std::string& name);
 
  private:
+  double step_predictor(const Vec& dUP, double scale);
+  double step_corrector(const Vec& dUP, const Vec& dUQ, const Vec& DU);
+
   ControlType type_ = ControlType::load;
   ComplexRoots complex_roots_ = ComplexRoots::real_part;
   double inc_ = 0.1;
@@ -77,7 +96,9 @@ class PathFollowing {
   Vec dUP1_prev_, dUP1_cur_;  // dUP_1 of the last committed step, of this step
   Vec DU_prev_;               // increment of the last committed step (arc length)
   double sign_ = 1, sign_cur_ = 1;
-  double dl_ = 0;  // arc length
+  double dl_ = 0;                         // arc length (> 0)
+  double lambda_ = 0, dlambda_step_ = 0;  // committed load factor; the step's increment so far
+  std::string where_;
   ArcLengthStats stats_;
 };
 

@@ -57,7 +57,7 @@ const char* kRunHelp =
     "Checkpoints: \"output\": {\"checkpoint\": {\"every_steps\": N, \"every_minutes\": M, \"keep\": 2}} in the\n"
     "case writes OUTDIR/checkpoint.bin every N steps and/or M minutes of wall time (atomically; keep 2 also\n"
     "keeps the one before as checkpoint.prev.bin), and when a signal ends the run. Solids, shells, fluids,\n"
-    "MPM bodies and their couplings can be checkpointed (DEM and EFG bodies not yet).\n\n"
+    "MPM, DEM and EFG bodies and their couplings can be checkpointed.\n\n"
     "Ctrl-C (SIGINT) or SIGTERM ends the current step, writes the output (and a checkpoint) and exits with\n"
     "130 (143); a second Ctrl-C stops at once.\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure, 4 internal error, 5 output not written,\n"

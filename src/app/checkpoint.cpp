@@ -183,7 +183,7 @@ void check_checkpointable(const std::vector<PhysicsModel*>& models, const Params
     if (!m->can_checkpoint()) {
       const std::string why =
           "body '" + m->name() + "' (" + m->type() +
-          ") cannot be checkpointed in this version (solids, shells, fluids, MPM and DEM bodies and "
+          ") cannot be checkpointed in this version (solids, shells, fluids, MPM, DEM and EFG bodies and "
           "their couplings can)";
       if (restart) throw InputError(case_file.string(), "", "--restart: " + why);
       output.fail("checkpoint", why);

@@ -70,6 +70,9 @@ class EfgModel final : public PhysicsModel {
   Index num_nodes() const override { return mesh_.num_nodes(); }
   Index num_elements() const override { return mesh_.num_cells(); }
   Json summary() const override;
+  bool can_checkpoint() const override { return true; }
+  /// The committed state, the material history, the control's memory and the output series (efg_checkpoint.cpp).
+  void serialize(StateArchive& ar) override;
 
   // Read access for probes and tests.
   double load_factor() const { return lambda0_; }

@@ -42,6 +42,7 @@
 /// The vectors given are those of the control space: nodal displacements U = f(V) ("U form", Algorithm 1) or the
 /// MLS parameters V ("V form", parameter control, Algorithm 6); the model maps them. A step cut back by the
 /// driver scales the step's increment (dlambda, du or Dl) by `scale`.
+#include <lagfsi/state_archive.hpp>
 #include <lagfsi/types.hpp>
 
 #include <string>
@@ -79,6 +80,8 @@ class PathFollowing {
   void commit(const Vec& DU);
   /// A SolverError "<json path>: <reason>".
   [[noreturn]] void fail(const std::string& reason) const;
+  /// Checkpoints: the parameters and everything the next step reads of the earlier ones (efg_checkpoint.cpp).
+  void serialize(StateArchive& ar);
   static ControlType parse(const std::string& name);
   static ComplexRoots parse_complex_roots(const std::string& name);
 

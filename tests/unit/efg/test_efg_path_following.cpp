@@ -1,7 +1,8 @@
 // EFG path following, the control's own rules: load control refuses a step past a limit point (the tangent
 // response to the load turned against the last step's) with a message that names the control's JSON path; a
 // negative arc length is a direction (the first step against the reference load, the later ones along the path from
-// there, mirroring a positive one).
+// there, mirroring a positive one); the control's memory written to a checkpoint and read back gives the same next
+// steps.
 #include <lagfsi/efg/path_following.hpp>
 #include <lagfsi/error.hpp>
 
@@ -63,4 +64,21 @@ TEST(EfgPathFollowing, NegativeArcLengthStartsAgainstTheLoadAndMirrorsAPositiveO
   EXPECT_LT(neg.load_factor(), 0.0);
   EXPECT_EQ(pos.stats().steps_off_constraint, 0);
   EXPECT_EQ(neg.stats().steps_off_constraint, 0);
+}
+
+TEST(EfgPathFollowing, ACheckpointedControlTakesTheSameNextStep) {
+  for (ControlType t : {ControlType::generalized_displacement, ControlType::arc_length}) {
+    PathFollowing a(t, 0.1, -1);
+    for (const Vec& d : {v2(1.0, 0.5), v2(2.0, 0.8), v2(-4.0, -1.0)}) a.commit(a.predictor(d, 1.0) * d);
+    StateArchive out;
+    a.serialize(out);
+    PathFollowing b(t, 0.1, -1);
+    StateArchive in(out.data());
+    b.serialize(in);
+    EXPECT_TRUE(in.at_end());
+    const Vec d = v2(-3.0, -0.5);
+    EXPECT_EQ(b.predictor(d, 0.5), a.predictor(d, 0.5));
+    EXPECT_EQ(b.corrector(d, v2(0.01, 0.0), 0.1 * d), a.corrector(d, v2(0.01, 0.0), 0.1 * d));
+    EXPECT_EQ(b.load_factor(), a.load_factor());
+  }
 }

@@ -50,6 +50,17 @@ IterationReport EfgModel::solve_iteration() {
     rep.converged = true;
     return rep;
   }
+  if (control_.type() == ControlType::load && iter_ + 1 >= ctx_.analysis.newton.max_iterations) {
+    // The last iteration the driver allows, not converged: its correction would never be checked. Under load
+    // control a load step that finds no equilibrium is the mark of a limit point passed.
+    char m[480];
+    std::snprintf(m, sizeof m,
+                  "%s: load control found no equilibrium at load factor %.6g in %d iterations (relative residual "
+                  "%.3g): the load is past the body's limit point (or the step too long); follow the path past the "
+                  "limit point with displacement, generalized_displacement or arc_length control",
+                  control_.where().c_str(), lambda_, iter_ + 1, rep.residual / rep.residual_ref);
+    throw SolverError(m);
+  }
   t0 = Clock::now();
   factorize();
   times_.factorization += since(t0);

@@ -70,13 +70,16 @@ TEST(EfgCases, LPanelCoarse) {
 
 TEST(EfgCases, LPanelPathFollowingMethodsAgreeAndLoadControlFailsAtTheLimit) {
   // Coarse L-panel: arc length (V form) and displacement control of node A (U form) pass the limit point with the
-  // peak of generalized displacement control; load control cannot pass it: the step is cut back, then the run fails.
-  auto peak_of = [](const std::string& tag, const std::vector<std::string>& extra, int* code) {
+  // peak of generalized displacement control; load control cannot pass it: the step is cut back, then the run fails
+  // with a message naming the control.
+  std::string err;  // the last run's stderr
+  auto peak_of = [&err](const std::string& tag, const std::vector<std::string>& extra, int* code) {
     std::vector<std::string> sets = {"bodies.0.domain.divisions=[10,10]", "bodies.0.efg.gauss=3",
                                      "analysis.load_steps=60", "output.vtk=false"};
     sets.insert(sets.end(), extra.begin(), extra.end());
     const RunResult r = run_case_file("cases/efg_L_panel/case.json", tag, sets);
     *code = r.exit_code;
+    err = r.stderr_text;
     const Csv c = read_csv(r.out_dir / "probes.csv");
     const auto& load = c["load"];
     std::printf("%s: peak %.1f N, last %.1f N, exit %d\n", tag.c_str(), *std::max_element(load.begin(), load.end()),
@@ -101,6 +104,8 @@ TEST(EfgCases, LPanelPathFollowingMethodsAgreeAndLoadControlFailsAtTheLimit) {
   const auto lc = peak_of("efg_lp_load", {"bodies.0.control.type=load", "bodies.0.control.increment=0.02"}, &code);
   EXPECT_EQ(code, 3);  // solver error after the step halvings
   EXPECT_NEAR(lc.second / cdg.first, 1.0, 0.02);
+  // The message names the control and the reason (the tangent operator: no equilibrium beyond the peak).
+  EXPECT_NE(err.find("case.json: /bodies/0/control: load control found no equilibrium"), std::string::npos) << err;
 }
 
 TEST(EfgCases, LPanelDisplacementControlUAndVFormsObeyTheLinearIdentity) {

@@ -1,7 +1,7 @@
 // EFG path following on a whole body: a run that cannot follow its path stops with one line naming the control's
 // JSON path and a solver-failure exit code, never a "completed" run over an absurd state. The Mazars plate in
 // tension (peak lambda = 2.0; its damage keeps a residual stress and the clamp D <= 1 - 1e-9 a residual stiffness,
-// so a load above the peak still finds an "equilibrium", at displacements 1e5 times the plate's size): load control
+// so a load above the peak still finds an "equilibrium", far beyond the plate's size): load control
 // driven past the peak; an initial load factor so large that the first step lands on that residual stiffness; a
 // displacement-control increment as large as the body, refused at input.
 #include "case_runner.hpp"

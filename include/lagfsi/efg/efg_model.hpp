@@ -20,11 +20,13 @@
 /// step is retried by the driver with a shorter increment; the material history is committed only at
 /// finalize_step). Each Newton iteration assembles K (tangent or secant operator) and the internal force.
 /// Runaway steps: the damage laws keep a floor of stiffness (damage <= 1 - 1e-9, a smeared crack's residual
-/// strength and shear modulus), so a load beyond the body's capacity still finds an "equilibrium", at
-/// displacements 1e5-1e8 times the body's size. The analysis is geometrically linear: a converged step whose
-/// nodal displacement exceeds the body's size (the diagonal of its bounding box) is refused with a SolverError
-/// naming the control (load control: past the limit point; the others: the increment is far too large), so the
-/// driver cuts the step back and, failing that, the run stops with that message.
+/// strength and shear modulus), so a load beyond the body's capacity still finds an "equilibrium", at strains of
+/// order sigma / (1e-9 E0), displacements orders of magnitude beyond the body's size. The analysis is geometrically
+/// linear: a converged step whose nodal displacement exceeds the body's size (the diagonal of its bounding box) is
+/// refused with a SolverError naming the control (load control: past the limit point; the others: the increment is far
+/// too large), so the driver cuts the step back and, failing that, the run stops with that message. Under load control
+/// a step that does not converge in the iterations allowed (the tangent operator's way of failing past the peak) is
+/// reported the same way, at the control's path.
 ///
 /// Shape functions, derivatives and supports are computed once per Gauss point and cached (thesis §4.4).
 #include <lagfsi/case.hpp>

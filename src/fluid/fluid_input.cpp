@@ -11,10 +11,8 @@
 
 namespace lagfsi::fluid {
 
-namespace {
-
 // The defaults that depend on other keys (docs/fluid_settings.md, "How the defaults follow from each other"). With
-// the monolithic scheme and remeshing they are the conservative package of issue #16: the previous domain advected with
+// the monolithic scheme and remeshing they are conservative: the previous domain advected with
 // the particles decides which new triangles are fluid, rigid walls are constraints on the fluid particles on them,
 // sliding against their Navier friction, the free-surface pressure is held weakly (Robin) and each particle keeps its
 // own area (measured in cases/dam_break_tank, cases/dam_break_obstacle, cases/sloshing_free and the FSI cases). The
@@ -26,6 +24,8 @@ struct FluidDefaults {
   std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
   double contact_gap = 0.0, volume_relaxation_time = 0.1;
 };
+
+namespace {
 
 std::string peek(const Json& o, const char* key, const std::string& fallback) {
   return o.is_object() && o.contains(key) && o.at(key).is_string() ? o.at(key).get<std::string>() : fallback;
@@ -59,6 +59,22 @@ FluidDefaults fluid_defaults(const Json& body) {
 
 FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   const FluidDefaults d = fluid_defaults(b.json());
+  RemeshPipeline::Settings rs;
+  read_body_keys(b, d, rs);
+  PspgSettings ps;
+  FractionalStepSettings fs;
+  const bool pspg = read_scheme(b.at("scheme"), d, rs, ps, fs);
+
+  // The analysis' integrator (read for both schemes; the fractional step does not use it).
+  if (pspg && !ctx.analysis.integrator.implicit())
+    throw InputError(ctx.case_file.string(), "/analysis/integrator/type",
+                     "the monolithic fluid scheme is implicit (use newmark or generalized_alpha)");
+  std::unique_ptr<TimeIntegrator> integrator = make_time_integrator(ctx.analysis.integrator);
+  scheme_ = pspg ? make_pspg_scheme(parts(), ps, std::move(integrator)) : make_fractional_step(parts(), fs);
+  build_particles(b);
+}
+
+void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs) {
   b.validate({{"name", nullptr},
               {"type", "fluid"},
               {"density", nullptr},
@@ -85,13 +101,12 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
               {"initial_state", Json{{"type", "given"}}},
               {"scheme", Json::object()}});
   c_.name = b.identifier("name");
-  c_.gravity = ctx.gravity;
-  c_.analysis_dt = ctx.analysis.dt;
-  if (ctx.analysis.type != "dynamic") b.fail("type", "a fluid needs a dynamic analysis");
+  c_.gravity = ctx_.gravity;
+  c_.analysis_dt = ctx_.analysis.dt;
+  if (ctx_.analysis.type != "dynamic") b.fail("type", "a fluid needs a dynamic analysis");
   c_.rho = b.positive("density");
   c_.mu = b.non_negative("viscosity");
   c_.h = b.positive("spacing");
-  RemeshPipeline::Settings rs;
   rs.alpha = b.positive("alpha");
   if (rs.alpha < 1.0 || rs.alpha > 5.0) b.fail("alpha", "must lie in [1, 5] (the literature uses 1.0-1.5)");
   c_.remesh = b.boolean("remesh");
@@ -127,13 +142,15 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
            "\"navier\" is for \"wall_model\": \"constraints\" (wall particles hold the fluid by the mesh)");
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
+  if (navier) walls_.set_navier_friction(c_.mu, slip_length);
+}
 
-  Params s = b.at("scheme");
+bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::Settings& rs, PspgSettings& ps,
+                             FractionalStepSettings& fs) {
   if (!s.json().is_object()) s.fail("must be an object");
   const std::string scheme =
       s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   const bool pspg = scheme == "monolithic_pspg";
-  if (navier) walls_.set_navier_friction(c_.mu, slip_length);
   // Keys common to both schemes (particles, mass conservation), then each scheme's own.
   Json keys = {{"type", scheme},
                {"volume_correction", d.volume_correction},
@@ -155,8 +172,6 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
     keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}, {"inverted_elements", "retry"}});
   }
   s.validate(keys);
-  PspgSettings ps;
-  FractionalStepSettings fs;
   if (pspg) {
     Params tau = s.at("tau");
     if (!tau.json().is_object() || !tau.has("type")) tau.fail("type", "required key is missing");
@@ -212,13 +227,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   if (rs.close_fraction >= 0.9) s.fail("remove_close_fraction", "must be below 0.9");
   remesh_.configure(rs);
 
-  // The analysis' integrator (read for both schemes; the fractional step does not use it).
-  if (pspg && !ctx.analysis.integrator.implicit())
-    throw InputError(ctx.case_file.string(), "/analysis/integrator/type",
-                     "the monolithic fluid scheme is implicit (use newmark or generalized_alpha)");
-  std::unique_ptr<TimeIntegrator> integrator = make_time_integrator(ctx.analysis.integrator);
-  scheme_ = pspg ? make_pspg_scheme(parts(), ps, std::move(integrator)) : make_fractional_step(parts(), fs);
-  build_particles(b);
+  return pspg;
 }
 
 void FluidModel::build_particles(Params b) {
@@ -318,10 +327,22 @@ void FluidModel::build_particles(Params b) {
   }
   if (pts.size() == static_cast<size_t>(n_wall)) regions.fail("the regions contain no fluid particle");
 
-  const Index np = static_cast<Index>(pts.size());
   if (c_.remesh) remesh_.set_domain(wall_lo, wall_hi, pts);
   walls_.set_fluid_sides(pts, kind);
   cloud_.assign(pts, kind, h);
+  set_initial_state(b, pts, kind);
+
+  if (!c_.remesh) {
+    // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them.
+    mesh_.tri.clear();
+    for (size_t e = 0; e + 2 < fixed_conn.size(); e += 3)
+      mesh_.tri.push_back({fixed_conn[e], fixed_conn[e + 1], fixed_conn[e + 2]});
+    walls_.constrain_fixed_mesh(b, pts, h, scheme_->wall_frames());
+  }
+}
+
+void FluidModel::set_initial_state(Params b, const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind) {
+  const Index np = static_cast<Index>(pts.size());
   Vec& v = cloud_.v();
   Vec& p = cloud_.p();
   const Vec2 v0 = b.vec2("initial_velocity");
@@ -377,14 +398,6 @@ void FluidModel::build_particles(Params b) {
     }
   } else {
     is.validate({{"type", "given"}});
-  }
-
-  if (!c_.remesh) {
-    // Fixed connectivity: the initial mesh for the whole run; walls constrain the fluid nodes on them.
-    mesh_.tri.clear();
-    for (size_t e = 0; e + 2 < fixed_conn.size(); e += 3)
-      mesh_.tri.push_back({fixed_conn[e], fixed_conn[e + 1], fixed_conn[e + 2]});
-    walls_.constrain_fixed_mesh(b, pts, h, scheme_->wall_frames());
   }
 }
 

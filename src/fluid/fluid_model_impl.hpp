@@ -26,6 +26,8 @@
 
 namespace lagfsi::fluid {
 
+struct FluidDefaults;  // the defaults that follow from other keys (fluid_input.cpp)
+
 class FluidModel final : public PhysicsModel, public InterfaceFluid {
  public:
   FluidModel(Params body, const CaseContext& ctx);
@@ -95,6 +97,15 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   }
 
  private:
+  /// The body's own keys (fluid_input.cpp): its constants, the domain detection's settings into rs and how the
+  /// walls hold the fluid; d the defaults that follow from other keys (fluid_defaults).
+  void read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs);
+  /// /bodies/i/scheme: the scheme's settings (ps or fs), the volume correction and the particle management's
+  /// settings into rs; returns whether it is the monolithic scheme.
+  bool read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::Settings& rs, PspgSettings& ps,
+                   FractionalStepSettings& fs);
+  /// The particles' initial velocities and pressures (initial_velocity, initial_pressure, initial_state).
+  void set_initial_state(Params b, const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind);
   /// The particles, the walls and the initial state from the case (fluid_input.cpp).
   void build_particles(Params b);
   /// Dirichlet flags of the step (step_.fixed): wall positions, slip constraints, free-surface and

@@ -64,6 +64,47 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   b.validate(defaults);
   name_ = b.identifier("name");
 
+  read_body(b);
+
+  Params damp = b.at("damping");
+  damp.validate({{"mass", 0.0}, {"stiffness", 0.0}});
+  damp_mass_ = damp.non_negative("mass");
+  damp_stiff_ = damp.non_negative("stiffness");
+
+  const auto& stations = body_->stations();
+  {
+    Vec2 lo = stations[0], hi = lo;
+    for (const auto& p : stations) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    length_ = (hi - lo).norm();
+  }
+  const Index nd = body_->num_dofs();
+
+  read_boundary_conditions(b);
+
+  read_loads(b);
+
+  // Integrator and solver.
+  if (!is_static_) {
+    integrator_ = make_time_integrator(ctx.analysis.integrator);
+  }
+  solver_type_ = ctx.analysis.linear_solver;
+  solver_ = make_linear_solver(solver_type_);
+
+  state_.t = 0;
+  state_.x = body_->reference_positions();
+  state_.v = Vec::Zero(nd);
+  const Vec2 v0 = b.vec2("initial_velocity");
+  for (Index n = 0; n < body_->num_nodes(); ++n) state_.v.segment<2>(2 * n) = v0;
+  for (const auto& p : prescribed_) state_.v[p.dof] = 0.0;
+  state_.a = Vec::Zero(nd);
+  H_ = body_->pattern();
+}
+
+void SolidModel::read_body(Params b) {
+  const bool shell = type_ == "shell";
   Params mat = b.at("material");
   mat.validate(
       {{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}, {"hypothesis", "plane_strain"}});
@@ -104,23 +145,12 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
       b.fail("mesh", e.what());
     }
   }
+}
 
-  Params damp = b.at("damping");
-  damp.validate({{"mass", 0.0}, {"stiffness", 0.0}});
-  damp_mass_ = damp.non_negative("mass");
-  damp_stiff_ = damp.non_negative("stiffness");
-
+void SolidModel::read_boundary_conditions(Params b) {
+  const bool shell = type_ == "shell";
   const auto& stations = body_->stations();
-  {
-    Vec2 lo = stations[0], hi = lo;
-    for (const auto& p : stations) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    length_ = (hi - lo).norm();
-  }
   const Index nd = body_->num_dofs();
-
   // Boundary conditions: fixed / prescribed displacement / prescribed velocity of the stations'
   // translations; a shell's rotation (its generalised vector) is held by them too unless "rotation" is
   // "free" ("pinned" is "fixed" with a free rotation).
@@ -146,7 +176,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
     std::shared_ptr<TimeFunction> fn;
     if (t == "prescribed_displacement" || t == "prescribed_velocity") {
       value = bc.vec2("value");
-      fn = make_time_function(bc.at("function"), ctx.base_dir);
+      fn = make_time_function(bc.at("function"), ctx_.base_dir);
     }
     auto hold = [&](Index dof, double amplitude, const std::shared_ptr<TimeFunction>& f) {
       if (fixed_mask_[dof]) return;  // first condition wins
@@ -172,7 +202,11 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
         "a static analysis needs boundary conditions that hold the body (at least 3 fixed components; "
         "this body has " +
         std::to_string(held) + ")");
+}
 
+void SolidModel::read_loads(Params b) {
+  const auto& stations = body_->stations();
+  const Index nd = body_->num_dofs();
   // Loads: point loads (value split equally over the selected stations), tractions and pressures on
   // boundary edges (all of whose points are selected), body forces.
   Params loads = b.at("loads");
@@ -196,7 +230,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
     if (t != "body_force") ldef["select"] = nullptr;
     if (t == "pressure") ldef["follower"] = true;
     l.validate(ldef);
-    Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx.base_dir)), {}};
+    Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx_.base_dir)), {}};
     if (t == "pressure") {
       // Pressure p pushes on the boundary: the force is -p n ds (n outward).
       const double p = l.number("value");
@@ -220,24 +254,8 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
     }
     loads_.push_back(std::move(load));
   }
-  if (b.boolean("gravity") && ctx.gravity.squaredNorm() > 0)
-    loads_.push_back({body_->body_force(body_->density() * ctx.gravity), constant_function(1.0), {}});
-
-  // Integrator and solver.
-  if (!is_static_) {
-    integrator_ = make_time_integrator(ctx.analysis.integrator);
-  }
-  solver_type_ = ctx.analysis.linear_solver;
-  solver_ = make_linear_solver(solver_type_);
-
-  state_.t = 0;
-  state_.x = body_->reference_positions();
-  state_.v = Vec::Zero(nd);
-  const Vec2 v0 = b.vec2("initial_velocity");
-  for (Index n = 0; n < body_->num_nodes(); ++n) state_.v.segment<2>(2 * n) = v0;
-  for (const auto& p : prescribed_) state_.v[p.dof] = 0.0;
-  state_.a = Vec::Zero(nd);
-  H_ = body_->pattern();
+  if (b.boolean("gravity") && ctx_.gravity.squaredNorm() > 0)
+    loads_.push_back({body_->body_force(body_->density() * ctx_.gravity), constant_function(1.0), {}});
 }
 
 }  // namespace lagfsi::solid

@@ -89,6 +89,12 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   double initial_energy() const { return energy0_; }
 
  private:
+  /// Input stages of the constructor: the material and the solid or shell body, the boundary conditions (which
+  /// components are held or prescribed), the loads (point loads, tractions, pressures, body forces, gravity).
+  void read_body(Params b);
+  void read_boundary_conditions(Params b);
+  void read_loads(Params b);
+
   /// The surface edges all of whose points a selection (select_nodes syntax, on the points' reference
   /// positions) picks; possibly none.
   std::vector<std::vector<Index>> selected_surface_edges(Params select) const;

@@ -56,6 +56,10 @@ struct Metric {
   std::string progress_label = {};
 };
 
+/// The keys of a probe's KeyTable: those of every probe (name, type, body) then the type's own. With one type
+/// "type" defaults to it; with several (one table for types that take the same keys) it is listed as required.
+std::vector<KeyDecl> probe_keys(const std::vector<std::string>& types, std::vector<KeyDecl> own);
+
 /// One or more columns of probes.csv.
 class Probe {
  public:

@@ -7,6 +7,10 @@
 /// defaults object; keys not in the defaults are errors that list the valid keys; a value whose JSON type
 /// differs from the default's is an error; missing keys take the default. A default of `null` marks a
 /// required key (no default), so the defaults object documents every key in one place.
+///
+/// Each kind of object is declared once, as a KeyTable (its keys, defaults and one-line descriptions) next to
+/// the code that reads it: the same declaration validates the object, fills the defaults that `lagfsi check`
+/// prints, and generates the case-file reference (`lagfsi keys`, docs/case_file_reference.md).
 #include <lagfsi/error.hpp>
 #include <lagfsi/types.hpp>
 
@@ -20,6 +24,50 @@
 namespace lagfsi {
 
 using Json = nlohmann::json;
+
+/// One key of a case-file object: its name, its default (null: required) and a one-line description (SI
+/// units, allowed values). A `derived` key's default is computed from other keys when the object is read
+/// (Params::validate(const KeyTable&, const Json&)); `default_value` then only gives the JSON type, and the
+/// description states the rule.
+struct KeyDecl {
+  std::string name;
+  Json default_value;
+  std::string doc;
+  bool derived = false;
+};
+
+/// Marks a KeyDecl whose default depends on other keys: {"key", 0.0, "... (default: ...)", kDerived}.
+inline constexpr bool kDerived = true;
+
+/// The declaration of one kind of case-file object: a section (its JSON path, "*" for any array element, and
+/// which variant in parentheses, e.g. "/bodies/* (type fluid)" or "/probes/* (fluid body, type pressure)"; a
+/// section without a leading "/" is an object used in several places, e.g. "time function (type ramp)"), a
+/// one-line description, and its keys. A table is constructed at namespace scope next to the code that reads
+/// it; it registers itself in key_tables() for the reference.
+class KeyTable {
+ public:
+  KeyTable(std::string section, std::string summary, std::vector<KeyDecl> keys);
+  ~KeyTable();
+  KeyTable(const KeyTable&) = delete;
+  KeyTable& operator=(const KeyTable&) = delete;
+
+  const std::string& section() const { return section_; }
+  const std::string& summary() const { return summary_; }
+  const std::vector<KeyDecl>& keys() const { return keys_; }
+  /// The defaults object: every key with its default (null for required keys).
+  Json defaults() const;
+
+ private:
+  std::string section_, summary_;
+  std::vector<KeyDecl> keys_;
+};
+
+/// Every KeyTable of the program, in the reference's order (top level, analysis, output, bodies by type,
+/// couplings, probes by body type, then the objects used in several places).
+std::vector<const KeyTable*> key_tables();
+
+/// The case-file reference in Markdown: one section per KeyTable with a table | key | default | description |.
+std::string key_reference_markdown();
 
 class Params {
  public:
@@ -38,6 +86,11 @@ class Params {
   /// Keys of `defaults` whose value is null are required. Number defaults accept integer or float
   /// values; object and array defaults are not descended into (validate children separately).
   void validate(const Json& defaults);
+  /// The same with the defaults declared by `table`.
+  void validate(const KeyTable& table);
+  /// The same, with the defaults of `runtime_defaults` (keys of `table`, typically its derived keys)
+  /// replacing the declared ones: for defaults computed from other keys when the object is read.
+  void validate(const KeyTable& table, const Json& runtime_defaults);
 
   bool has(const std::string& key) const;
   Params at(const std::string& key) const;  ///< child object (error if absent)

@@ -16,6 +16,18 @@ std::string fmt(double x, int prec = 6) {
 }
 }  // namespace
 
+std::vector<KeyDecl> probe_keys(const std::vector<std::string>& types, std::vector<KeyDecl> own) {
+  std::string names;
+  for (size_t i = 0; i < types.size(); ++i)
+    names += (i == 0 ? "`" : i + 1 == types.size() ? " or `" : ", `") + types[i] + "`";
+  std::vector<KeyDecl> keys = {
+      {"name", nullptr, "Column name in probes.csv (1-64 letters, digits, '_', '-', '.', '+')."},
+      {"type", types.size() == 1 ? Json(types[0]) : Json(nullptr), names + "."},
+      {"body", nullptr, "Name of the body (or coupling) probed."}};
+  for (auto& k : own) keys.push_back(std::move(k));
+  return keys;
+}
+
 void PhysicsModel::serialize(StateArchive&) {
   throw std::logic_error("body '" + name() + "' (" + type() + "): checkpoints are not implemented for this type");
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 namespace lagfsi {
@@ -156,6 +157,18 @@ void Params::validate(const Json& defaults) {
     if (d.is_null()) fail(k, "required key is missing");
     (*node_)[k] = d;
   }
+}
+
+void Params::validate(const KeyTable& table) { validate(table.defaults()); }
+
+void Params::validate(const KeyTable& table, const Json& runtime_defaults) {
+  Json defaults = table.defaults();
+  for (const auto& [k, v] : runtime_defaults.items()) {
+    // A default for a key the table does not declare would silently widen the valid keys: a program error.
+    if (!defaults.contains(k)) throw std::logic_error("key '" + k + "' is not declared in '" + table.section() + "'");
+    defaults[k] = v;
+  }
+  validate(defaults);
 }
 
 bool Params::has(const std::string& key) const {

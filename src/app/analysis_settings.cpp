@@ -8,15 +8,60 @@
 
 namespace lagfsi {
 
+namespace {
+
+const KeyTable kAnalysisKeys(
+    "/analysis", "How time (or load) advances: a static or a dynamic analysis and its solver settings.",
+    {{"type", nullptr, "`static` (load steps, no inertia) or `dynamic` (time steps)."},
+     {"dt", 0.0, "Time step (s) of a dynamic analysis; must be positive there."},
+     {"end_time", 0.0, "End time (s) of a dynamic analysis; must be positive there."},
+     {"load_steps", 10, "Number of load steps of a static analysis (the loads' functions see t = k / load_steps)."},
+     {"max_step_halvings", 4, "How many times a step that fails (Newton, inverted elements) is retried at half dt."},
+     {"integrator", Json::object(),
+      "Time integrator (see /analysis/integrator); default: {\"type\": \"newmark\"}, or generalized_alpha with "
+      "rho_inf 0.8 when a fluid body has the Robin free-surface pressure with walls as constraints.",
+      kDerived},
+     {"newton", Json::object(), "Newton iteration settings (see /analysis/newton)."},
+     {"linear_solver", Json{{"type", "cholmod"}},
+      "Sparse linear solver of the solids (see /analysis/linear_solver)."}});
+
+const KeyTable kNewmarkKeys(
+    "/analysis/integrator (type newmark)", "Newmark's method (beta = 1/4, gamma = 1/2: the trapezoidal rule).",
+    {{"type", "newmark", "`newmark`."},
+     {"beta", 0.25, "Newmark's beta (> 0); unconditionally stable when beta >= gamma / 2."},
+     {"gamma", 0.5, "Newmark's gamma (>= 0); unconditionally stable when gamma >= 1/2."},
+     {"allow_conditionally_stable", false,
+      "Run a conditionally stable choice (beta < gamma / 2) with a warning instead of an error."}});
+
+const KeyTable kGeneralizedAlphaKeys("/analysis/integrator (type generalized_alpha)",
+                                     "The generalized-alpha method (Chung and Hulbert), second order, with "
+                                     "numerical damping of the high frequencies.",
+                                     {{"type", "generalized_alpha", "`generalized_alpha`."},
+                                      {"rho_inf", 0.8,
+                                       "Spectral radius at infinite frequency, in [0, 1] (1: no damping, 0: "
+                                       "the most)."}});
+
+const KeyTable kCentralDifferenceKeys("/analysis/integrator (type central_difference)",
+                                      "The explicit central difference: needs a lumped-mass explicit model, "
+                                      "and is rejected in this version (the solids are implicit).",
+                                      {{"type", "central_difference", "`central_difference`."}});
+
+const KeyTable kNewtonKeys(
+    "/analysis/newton", "Newton iterations of the implicit solids (each step or load step).",
+    {{"max_iterations", 25, "Iterations before the step fails (and is retried at half dt)."},
+     {"residual_tolerance", 1e-6,
+      "Relative residual (to the step's reference) below which, with a small update, a step has converged."},
+     {"position_tolerance", 1e-9,
+      "Largest position update, relative to the body's size, for a step to have converged."}});
+
+const KeyTable kLinearSolverKeys("/analysis/linear_solver", "The sparse linear solver of the solids' Newton steps.",
+                                 {{"type", "cholmod",
+                                   "One of cholmod, cholmod_supernodal, umfpack, klu, eigen_lu, eigen_ldlt."}});
+
+}  // namespace
+
 AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& default_integrator) {
-  a.validate({{"type", nullptr},
-              {"dt", 0.0},
-              {"end_time", 0.0},
-              {"load_steps", 10},
-              {"max_step_halvings", 4},
-              {"integrator", default_integrator},
-              {"newton", Json::object()},
-              {"linear_solver", Json{{"type", "cholmod"}}}});
+  a.validate(kAnalysisKeys, {{"integrator", default_integrator}});
   AnalysisSettings s;
   s.type = a.choice("type", {"static", "dynamic"});
   if (s.type == "static") {
@@ -33,11 +78,11 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, con
   if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
   const std::string itype = it.choice("type", time_integrator_types());
   if (itype == "newmark") {
-    it.validate({{"type", "newmark"}, {"beta", 0.25}, {"gamma", 0.5}, {"allow_conditionally_stable", false}});
+    it.validate(kNewmarkKeys);
   } else if (itype == "generalized_alpha") {
-    it.validate({{"type", "generalized_alpha"}, {"rho_inf", 0.8}});
+    it.validate(kGeneralizedAlphaKeys);
   } else {
-    it.validate({{"type", "central_difference"}});
+    it.validate(kCentralDifferenceKeys);
     it.fail("type",
             "central_difference needs a lumped-mass explicit model; solids in this version are implicit "
             "(use newmark or generalized_alpha)");
@@ -45,12 +90,12 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, con
   warnings = check_integrator_stability(it);
   s.integrator = read_integrator(it);
   Params nw = a.at("newton");
-  nw.validate({{"max_iterations", 25}, {"residual_tolerance", 1e-6}, {"position_tolerance", 1e-9}});
+  nw.validate(kNewtonKeys);
   s.newton.max_iterations = nw.integer("max_iterations", 1);
   s.newton.residual_tolerance = nw.positive("residual_tolerance");
   s.newton.position_tolerance = nw.positive("position_tolerance");
   Params ls = a.at("linear_solver");
-  ls.validate({{"type", "cholmod"}});
+  ls.validate(kLinearSolverKeys);
   s.linear_solver = ls.choice("type", linear_solver_types());
   return s;
 }

@@ -2,6 +2,7 @@
 
 #include <lagfsi/analysis.hpp>
 #include <lagfsi/app.hpp>
+#include <lagfsi/params.hpp>
 #include <lagfsi/text.hpp>
 
 #include <Eigen/Core>
@@ -20,6 +21,7 @@ const char* kUsageText =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
     "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n"
     "       lagfsi check CASE.json [--set key.path=value ...]\n"
+    "       lagfsi keys\n"
     "       lagfsi --version | --help | COMMAND --help\n";
 
 const char* kHelp =
@@ -28,7 +30,9 @@ const char* kHelp =
     "  run CASE.json     run a case; writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu,\n"
     "                    probes.csv, log.csv, summary.json} (OUTDIR defaults to out/<case name>)\n"
     "  check CASE.json   validate a case (meshes and models are built) and print it with every\n"
-    "                    default filled in; runs nothing\n\n"
+    "                    default filled in; runs nothing\n"
+    "  keys              print the case-file reference (every key, its default and description) as\n"
+    "                    Markdown (docs/case_file_reference.md is this output)\n\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 3 solver failure (divergence), 4 internal error,\n"
     "            5 the output cannot be written (disk full, permissions), 130 / 143 interrupted\n"
     "            (SIGINT / SIGTERM: the step ends, the output is written, summary.json says \"interrupted\")\n";
@@ -71,6 +75,13 @@ const char* kCheckHelp =
     "  --set key.path=value    override a case value, as for run\n\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 5 stdout cannot be written\n";
 
+const char* kKeysHelp =
+    "usage: lagfsi keys\n\n"
+    "Prints the case-file reference as Markdown: one section per kind of object, each a table of its keys,\n"
+    "their defaults and one-line descriptions, generated from the declarations the validation uses\n"
+    "(docs/case_file_reference.md is this output).\n\n"
+    "exit codes: 0 ok, 1 usage, 5 stdout cannot be written\n";
+
 /// One line on stderr: "lagfsi: error: <what>".
 int usage_error(const std::string& what) {
   std::cerr << "lagfsi: error: " << what << "\n";
@@ -91,7 +102,7 @@ int app_main(int argc, char** argv, const char* git_commit) {
   for (size_t i = 0; i < args.size(); ++i)
     if (!valid_utf8(args[i]))
       return usage_error("argument " + std::to_string(i + 1) + " is not UTF-8 text ('" + echo(args[i]) + "')");
-  if (args.empty()) return usage_error("no command (run, check; see lagfsi --help)");
+  if (args.empty()) return usage_error("no command (run, check, keys; see lagfsi --help)");
   const std::string cmd = args[0];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
     const std::string topic = args.size() > 1 ? args[1] : "";
@@ -99,6 +110,8 @@ int app_main(int argc, char** argv, const char* git_commit) {
       std::cout << kRunHelp;
     else if (topic == "check")
       std::cout << kCheckHelp;
+    else if (topic == "keys")
+      std::cout << kKeysHelp;
     else
       std::cout << kUsageText << "\n" << kHelp;
     return kOk;
@@ -110,8 +123,19 @@ int app_main(int argc, char** argv, const char* git_commit) {
               << LAGFSI_CGAL_VERSION << "\n";
     return kOk;
   }
+  if (cmd == "keys") {
+    if (args.size() > 1) {
+      if (args[1] == "--help" || args[1] == "-h") {
+        std::cout << kKeysHelp;
+        return kOk;
+      }
+      return usage_error("keys takes no argument (got '" + echo(args[1]) + "'; see lagfsi keys --help)");
+    }
+    std::cout << key_reference_markdown() << std::flush;
+    return std::cout ? kOk : kOutputError;
+  }
   if (cmd != "run" && cmd != "check")
-    return usage_error("unknown command '" + echo(cmd) + "' (run, check; see lagfsi --help)");
+    return usage_error("unknown command '" + echo(cmd) + "' (run, check, keys; see lagfsi --help)");
   // --help anywhere after the command: that command's help, whatever else the line holds.
   for (size_t i = 1; i < args.size(); ++i)
     if (args[i] == "--help" || args[i] == "-h") {

@@ -15,17 +15,30 @@ namespace lagfsi {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+const KeyTable kCaseKeys(
+    "/", "The case file: a JSON object (comments allowed) with these top-level keys.",
+    {{"name", "", "Case name (output folder out/<name>); default (empty): the case file's name without .json."},
+     {"description", "", "Free text describing the case (not used by the program)."},
+     {"analysis", nullptr, "Static or dynamic analysis and its solver settings (see /analysis)."},
+     {"gravity", Json::array({0.0, 0.0}), "Acceleration of gravity [gx, gy] (m/s^2), e.g. [0, -9.81]."},
+     {"bodies", nullptr,
+      "The bodies (at least one), each an object whose `type` is solid, shell, fluid, mpm, dem or efg (see "
+      "/bodies/*)."},
+     {"couplings", Json::array(), "Fluid-structure couplings between two bodies (see /couplings/*)."},
+     {"probes", Json::array(), "Quantities sampled at every step into probes.csv (see /probes/*)."},
+     {"output", Json::object(), "What is written and how often (see /output)."}});
+
+const KeyTable kOutputKeys("/output", "What a run writes besides probes.csv, log.csv and summary.json.",
+                           {{"every", 1, "Write the ParaView output every this many steps."},
+                            {"vtk", true, "Write the ParaView series (<body>.pvd and <body>/*.vtu)."},
+                            {"checkpoint", Json::object(), "Checkpoint settings (see /output/checkpoint)."}});
+
+}  // namespace
+
 const Json& case_defaults() {
-  static const Json d = {
-      {"name", ""},
-      {"description", ""},
-      {"analysis", nullptr},
-      {"gravity", Json::array({0.0, 0.0})},
-      {"bodies", nullptr},
-      {"couplings", Json::array()},
-      {"probes", Json::array()},
-      {"output", Json::object()},
-  };
+  static const Json d = kCaseKeys.defaults();
   return d;
 }
 
@@ -69,7 +82,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   Case c;
   c.root = Params::load(opt.case_file);
   for (const auto& o : opt.overrides) apply_override(c.root.json(), o);
-  c.root.validate(case_defaults());
+  c.root.validate(kCaseKeys);
   c.name = c.root.string("name").empty() ? opt.case_file.stem().string() : c.root.identifier("name");
   c.ctx.case_file = opt.case_file;
   c.ctx.quiet = opt.quiet;
@@ -78,7 +91,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
   c.ctx.analysis = read_analysis(c.root.at("analysis"), c.warnings, default_integrator(c.root.json().at("bodies")));
   c.ctx.gravity = c.root.vec2("gravity");
   Params out = c.root.at("output");
-  out.validate({{"every", 1}, {"vtk", true}, {"checkpoint", Json::object()}});
+  out.validate(kOutputKeys);
   c.output_every = out.integer("every", 1);
   c.vtk = out.boolean("vtk");
   c.checkpoint = read_checkpoint_settings(out.at("checkpoint"));

@@ -53,11 +53,18 @@ int write_all(int fd, const std::string& s) {
   return 0;
 }
 
+const KeyTable kCheckpointKeys(
+    "/output/checkpoint",
+    "Checkpoints for `lagfsi run --restart`: OUTDIR/checkpoint.bin, written atomically, and when a signal ends a run.",
+    {{"every_steps", 0, "Write a checkpoint every this many steps (0: not by steps)."},
+     {"every_minutes", 0.0, "Write a checkpoint every this many minutes of wall time (0: not by time)."},
+     {"keep", 2, "1: the last checkpoint only; 2: also the one before, as checkpoint.prev.bin."}});
+
 }  // namespace
 
 CheckpointSettings read_checkpoint_settings(Params p) {
   if (!p.json().is_object()) p.fail("expected an object, e.g. {\"every_steps\": 100} or {\"every_minutes\": 10}");
-  p.validate({{"every_steps", 0}, {"every_minutes", 0.0}, {"keep", 2}});
+  p.validate(kCheckpointKeys);
   CheckpointSettings s;
   s.every_steps = p.integer("every_steps", 0);
   s.every_minutes = p.non_negative("every_minutes");

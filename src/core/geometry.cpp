@@ -8,6 +8,58 @@ namespace lagfsi {
 
 namespace {
 
+const KeyTable kMeshKeys("mesh (triangles of a geometry)", "How a body's geometry is meshed into triangles.",
+                         {{"size", nullptr, "Target element size (m)."},
+                          {"order", 1, "Element order: 1, 2 or 3 (straight-sided triangles of 3, 6 or 10 nodes)."},
+                          {"type", "unstructured",
+                           "`unstructured` (Delaunay) or `structured` (a grid of triangles; rectangles only)."},
+                          {"divisions", Json::array(), "Structured mesh: cells [nx, ny] (default []: from the size)."},
+                          {"pattern", "crossed", "Structured mesh: how each cell is split: crossed, right or left."}});
+
+const KeyTable kRectangleKeys("geometry (type rectangle)", "An axis-aligned rectangle.",
+                              {{"type", "rectangle", "`rectangle`."},
+                               {"origin", Json::array({0.0, 0.0}), "Lower-left corner [x, y] (m)."},
+                               {"size", nullptr, "Width and height [w, h] (m), positive."}});
+
+const KeyTable kPolygonKeys("geometry (type polygon)", "A polygon, possibly with holes.",
+                            {{"type", "polygon", "`polygon`."},
+                             {"points", nullptr, "Outline [[x, y], ...] (m), in order, not closed."},
+                             {"holes", Json::array(), "Holes, each an outline [[x, y], ...] (m)."}});
+
+const KeyTable kCircleCutKeys("geometry (type circle_cut)",
+                              "A polygon minus a disc that cuts it (e.g. a flag clamped on a cylinder).",
+                              {{"type", "circle_cut", "`circle_cut`."},
+                               {"points", nullptr, "Outline of the polygon [[x, y], ...] (m)."},
+                               {"centre", nullptr, "Centre of the disc [x, y] (m)."},
+                               {"radius", nullptr, "Radius of the disc (m)."}});
+
+const char* const kSelectionTolerance =
+    "Distance (m) within which a node is selected; default: 1e-6 times the diagonal of the nodes' bounding box.";
+
+const KeyTable kSelectPointKeys("selection (type point)", "The node nearest to a point.",
+                                {{"type", "point", "`point`."},
+                                 {"at", nullptr, "The point [x, y] (m)."},
+                                 {"tolerance", 0.0, kSelectionTolerance, kDerived}});
+
+const KeyTable kSelectSegmentKeys("selection (type segment)", "The nodes on a segment.",
+                                  {{"type", "segment", "`segment`."},
+                                   {"from", nullptr, "One end [x, y] (m)."},
+                                   {"to", nullptr, "The other end [x, y] (m)."},
+                                   {"tolerance", 0.0, kSelectionTolerance, kDerived}});
+
+const KeyTable kSelectBoxKeys("selection (type box)", "The nodes in an axis-aligned box (its edges included).",
+                              {{"type", "box", "`box`."},
+                               {"min", nullptr, "Lower-left corner [x, y] (m)."},
+                               {"max", nullptr, "Upper-right corner [x, y] (m)."}});
+
+const KeyTable kSelectCircleKeys("selection (type circle)", "The nodes on a circle.",
+                                 {{"type", "circle", "`circle`."},
+                                  {"centre", nullptr, "Centre [x, y] (m)."},
+                                  {"radius", nullptr, "Radius (m)."},
+                                  {"tolerance", 0.0, kSelectionTolerance, kDerived}});
+
+const KeyTable kSelectAllKeys("selection (type all)", "Every node.", {{"type", "all", "`all`."}});
+
 double bbox_diagonal(const std::vector<Vec2>& pts) {
   if (pts.empty()) return 1.0;
   Vec2 lo = pts[0], hi = pts[0];
@@ -88,11 +140,7 @@ std::vector<Vec2> circle_cut_outline(Params g, double h) {
 TriMesh build_mesh(Params g, Params m) {
   if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
   const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});
-  m.validate({{"size", nullptr},
-              {"order", 1},
-              {"type", "unstructured"},
-              {"divisions", Json::array()},
-              {"pattern", "crossed"}});
+  m.validate(kMeshKeys);
   const double h = m.positive("size");
   const int order = m.integer("order", 1);
   if (order > 3) m.fail("order", "must be 1, 2 or 3");
@@ -107,7 +155,7 @@ TriMesh build_mesh(Params g, Params m) {
   TriMesh linear;
   try {
     if (type == "rectangle") {
-      g.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      g.validate(kRectangleKeys);
       const Vec2 o = g.vec2("origin"), s = g.vec2("size");
       if (!(s.x() > 0 && s.y() > 0)) g.fail("size", "width and height must be positive");
       if (mtype == "structured") {
@@ -133,7 +181,7 @@ TriMesh build_mesh(Params g, Params m) {
     } else {
       if (mtype == "structured") m.fail("type", "a structured mesh needs a rectangle geometry");
       if (type == "polygon") {
-        g.validate({{"type", "polygon"}, {"points", nullptr}, {"holes", Json::array()}});
+        g.validate(kPolygonKeys);
         meshing::PolygonRegion r;
         r.outer = g.points("points");
         const Params holes = g.at("holes");
@@ -143,7 +191,7 @@ TriMesh build_mesh(Params g, Params m) {
         }
         linear = meshing::mesh_polygon(r, h, max_elements);
       } else {
-        g.validate({{"type", "circle_cut"}, {"points", nullptr}, {"centre", nullptr}, {"radius", nullptr}});
+        g.validate(kCircleCutKeys);
         meshing::PolygonRegion r;
         r.outer = circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
         linear = meshing::mesh_polygon(r, h, max_elements);
@@ -161,7 +209,7 @@ std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
   const double L = bbox_diagonal(nodes);
   std::vector<Index> out;
   if (type == "point") {
-    s.validate({{"type", "point"}, {"at", nullptr}, {"tolerance", 1e-6 * L}});
+    s.validate(kSelectPointKeys, {{"tolerance", 1e-6 * L}});
     const Vec2 p = s.vec2("at");
     const double tol = s.positive("tolerance");
     Index best = -1;
@@ -178,7 +226,7 @@ std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
              "no node within " + std::to_string(tol) + " of the point (nearest at " + std::to_string(dbest) + ")");
     out.push_back(best);
   } else if (type == "segment") {
-    s.validate({{"type", "segment"}, {"from", nullptr}, {"to", nullptr}, {"tolerance", 1e-6 * L}});
+    s.validate(kSelectSegmentKeys, {{"tolerance", 1e-6 * L}});
     const Vec2 a = s.vec2("from"), b = s.vec2("to");
     const double tol = s.positive("tolerance");
     const Vec2 d = b - a;
@@ -188,18 +236,18 @@ std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
       if ((nodes[i] - (a + t * d)).norm() <= tol) out.push_back(i);
     }
   } else if (type == "box") {
-    s.validate({{"type", "box"}, {"min", nullptr}, {"max", nullptr}});
+    s.validate(kSelectBoxKeys);
     const Vec2 lo = s.vec2("min"), hi = s.vec2("max");
     for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
       if ((nodes[i].array() >= lo.array()).all() && (nodes[i].array() <= hi.array()).all()) out.push_back(i);
   } else if (type == "circle") {
-    s.validate({{"type", "circle"}, {"centre", nullptr}, {"radius", nullptr}, {"tolerance", 1e-6 * L}});
+    s.validate(kSelectCircleKeys, {{"tolerance", 1e-6 * L}});
     const Vec2 c = s.vec2("centre");
     const double r = s.positive("radius"), tol = s.positive("tolerance");
     for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
       if (std::abs((nodes[i] - c).norm() - r) <= tol) out.push_back(i);
   } else {
-    s.validate({{"type", "all"}});
+    s.validate(kSelectAllKeys);
     for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i) out.push_back(i);
   }
   if (out.empty()) s.fail("the selection contains no node");

@@ -14,6 +14,27 @@ namespace lagfsi {
 
 namespace {
 
+const KeyTable kConstantKeys("time function (type constant)", "f(t) = value.",
+                             {{"type", "constant", "`constant`."}, {"value", 1.0, "The value."}});
+
+const KeyTable kRampKeys("time function (type ramp)", "f(t) = 0 before t0, rising linearly to 1 at t1, then 1.",
+                         {{"type", "ramp", "`ramp`."},
+                          {"t0", 0.0, "Start of the ramp (s)."},
+                          {"t1", nullptr, "End of the ramp (s), after t0."}});
+
+const KeyTable kSinusoidKeys("time function (type sinusoid)", "f(t) = amplitude sin(2 pi frequency t + phase).",
+                             {{"type", "sinusoid", "`sinusoid`."},
+                              {"amplitude", 1.0, "Amplitude."},
+                              {"frequency", nullptr, "Frequency (Hz), positive."},
+                              {"phase", 0.0, "Phase (rad)."}});
+
+const KeyTable kTableKeys("time function (type table)",
+                          "f(t) interpolated linearly in a table of (time, value) rows, constant beyond its ends.",
+                          {{"type", "table", "`table`."},
+                           {"file", nullptr,
+                            "Text file (relative to the case file) of rows `time, value` (',' or spaces; '#' "
+                            "comments; an optional header line); times increasing."}});
+
 class Constant final : public TimeFunction {
  public:
   explicit Constant(double c) : c_(c) {}
@@ -196,20 +217,20 @@ std::unique_ptr<TimeFunction> make_time_function(Params p, const std::filesystem
   if (!p.has("type")) p.fail("type", "required key is missing");
   const std::string type = p.choice("type", {"constant", "ramp", "sinusoid", "table"});
   if (type == "constant") {
-    p.validate({{"type", "constant"}, {"value", 1.0}});
+    p.validate(kConstantKeys);
     return std::make_unique<Constant>(p.number("value"));
   }
   if (type == "ramp") {
-    p.validate({{"type", "ramp"}, {"t0", 0.0}, {"t1", nullptr}});
+    p.validate(kRampKeys);
     const double t0 = p.number("t0"), t1 = p.number("t1");
     if (!(t1 > t0)) p.fail("t1", "must be greater than t0");
     return std::make_unique<Ramp>(t0, t1);
   }
   if (type == "sinusoid") {
-    p.validate({{"type", "sinusoid"}, {"amplitude", 1.0}, {"frequency", nullptr}, {"phase", 0.0}});
+    p.validate(kSinusoidKeys);
     return std::make_unique<Sinusoid>(p.number("amplitude"), p.positive("frequency"), p.number("phase"));
   }
-  p.validate({{"type", "table"}, {"file", nullptr}});
+  p.validate(kTableKeys);
   return read_table(p, base_dir);
 }
 

@@ -249,27 +249,53 @@ class IqnImvj final : public Acceleration {
   int columns_ = 0;
 };
 
+const char* const kInitialRelaxationDoc = "Relaxation factor of the first pass, in (0, 1].";
+const char* const kFilterDoc =
+    "Columns of the least-squares system whose share falls below this are dropped (QR filter), in (0, 1).";
+
+const KeyTable kConstantKeys("/couplings/*/acceleration (type constant)",
+                             "Constant under-relaxation of the interface positions.",
+                             {{"type", "constant", "`constant`."},
+                              {"relaxation", 0.5, "Relaxation factor, in (0, 1]."}});
+
+const KeyTable kAitkenKeys("/couplings/*/acceleration (type aitken)",
+                           "Aitken's dynamic relaxation (the default acceleration).",
+                           {{"type", "aitken", "`aitken`."}, {"initial_relaxation", 0.5, kInitialRelaxationDoc}});
+
+const KeyTable kIqnIlsKeys("/couplings/*/acceleration (type iqn_ils)",
+                           "Interface quasi-Newton with an inverse Jacobian from least squares (IQN-ILS).",
+                           {{"type", "iqn_ils", "`iqn_ils`."},
+                            {"initial_relaxation", 0.1, kInitialRelaxationDoc},
+                            {"reuse_steps", 8, "Earlier steps whose iterates are reused in the least squares."},
+                            {"filter", 1e-8, kFilterDoc}});
+
+const KeyTable kIqnImvjKeys("/couplings/*/acceleration (type iqn_imvj)",
+                            "Interface quasi-Newton with a multi-vector Jacobian kept between steps (IQN-IMVJ).",
+                            {{"type", "iqn_imvj", "`iqn_imvj`."},
+                             {"initial_relaxation", 0.1, kInitialRelaxationDoc},
+                             {"filter", 1e-8, kFilterDoc}});
+
 }  // namespace
 
 std::unique_ptr<Acceleration> make_acceleration(Params p) {
   if (!p.json().is_object() || !p.has("type")) p.fail("type", "required key is missing");
   const std::string type = p.choice("type", {"constant", "aitken", "iqn_ils", "iqn_imvj"});
   if (type == "constant") {
-    p.validate({{"type", type}, {"relaxation", 0.5}});
+    p.validate(kConstantKeys);
     const double w = p.positive("relaxation");
     if (w > 1) p.fail("relaxation", "must lie in (0, 1]");
     return std::make_unique<ConstantRelaxation>(w);
   }
   if (type == "aitken") {
-    p.validate({{"type", type}, {"initial_relaxation", 0.5}});
+    p.validate(kAitkenKeys);
     const double w = p.positive("initial_relaxation");
     if (w > 1) p.fail("initial_relaxation", "must lie in (0, 1]");
     return std::make_unique<Aitken>(w);
   }
   if (type == "iqn_ils")
-    p.validate({{"type", type}, {"initial_relaxation", 0.1}, {"reuse_steps", 8}, {"filter", 1e-8}});
+    p.validate(kIqnIlsKeys);
   else
-    p.validate({{"type", type}, {"initial_relaxation", 0.1}, {"filter", 1e-8}});
+    p.validate(kIqnImvjKeys);
   const double w = p.positive("initial_relaxation");
   if (w > 1) p.fail("initial_relaxation", "must lie in (0, 1]");
   const double filter = p.positive("filter");

@@ -16,6 +16,35 @@ namespace lagfsi::fsi {
 
 namespace {
 
+const KeyTable kCouplingKeys(
+    "/couplings/* (type dirichlet_neumann)",
+    "Strong Dirichlet-Neumann coupling of a fluid body and a structure (solid or shell) through ghost particles.",
+    {{"name", "fsi", "Coupling name (probes refer to it)."},
+     {"type", "dirichlet_neumann", "`dirichlet_neumann`."},
+     {"fluid", nullptr, "Name of the fluid body."},
+     {"structure", nullptr, "Name of the structure (a solid or shell body)."},
+     {"interface", nullptr,
+      "The structure's wet boundary nodes (see selection (type point) and others); edges whose nodes are all "
+      "selected carry ghost particles."},
+     {"ghost_spacing", 0.0, "Ghost particles along the interface at this spacing (m); 0: one at each node."},
+     {"acceleration", Json{{"type", "aitken"}}, "Acceleration of the iterations (see /couplings/*/acceleration)."},
+     {"max_iterations", 50, "Coupling passes before the step fails (and is retried at half dt)."},
+     {"tolerance", 1e-6,
+      "Converged when the interface positions change by less than this times the step's interface motion."},
+     {"reference_floor", 1e-9, "Smallest interface motion (m) the change is compared with."},
+     {"augmented_mass", 1.0,
+      "Augmented-mass factor of the structure (>= 1, 1: off; > 1 with constant relaxation only)."},
+     {"predictor", "extrapolation",
+      "First guess of the interface: extrapolation (the last step's motion repeated) or forces (the structure "
+      "solved under the last step's interface forces)."}});
+
+const KeyTable kInterfaceForceProbeKeys("/probes/* (coupling, type interface_force)",
+                                        "The total force (N) of the fluid on the structure.",
+                                        probe_keys({"interface_force"}, {{"component", "x", "x or y."}}));
+
+const KeyTable kIterationsProbeKeys("/probes/* (coupling, type iterations)", "The coupling passes of the step.",
+                                    probe_keys({"iterations"}, {}));
+
 class DirichletNeumann;
 
 class CouplingProbe final : public Probe {
@@ -121,18 +150,7 @@ std::string fmt(double x, int prec = 6) {
 
 DirichletNeumann::DirichletNeumann(Params p, const CaseContext& ctx, PhysicsModel& fluid, PhysicsModel& structure)
     : ctx_(ctx), fluid_model_(fluid), structure_model_(structure) {
-  p.validate({{"name", "fsi"},
-              {"type", "dirichlet_neumann"},
-              {"fluid", nullptr},
-              {"structure", nullptr},
-              {"interface", nullptr},
-              {"ghost_spacing", 0.0},
-              {"acceleration", Json{{"type", "aitken"}}},
-              {"max_iterations", 50},
-              {"tolerance", 1e-6},
-              {"reference_floor", 1e-9},
-              {"augmented_mass", 1.0},
-              {"predictor", "extrapolation"}});
+  p.validate(kCouplingKeys);
   name_ = p.identifier("name");
   fluid_ = dynamic_cast<InterfaceFluid*>(&fluid);
   structure_ = dynamic_cast<InterfaceStructure*>(&structure);
@@ -285,11 +303,11 @@ void DirichletNeumann::finalize_step() {
 std::unique_ptr<Probe> DirichletNeumann::make_probe(Params p) {
   const std::string t = p.choice("type", {"interface_force", "iterations"});
   if (t == "interface_force") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"component", "x"}});
+    p.validate(kInterfaceForceProbeKeys);
     return std::make_unique<CouplingProbe>(*this, p.string("name"), t,
                                            p.choice("component", {"x", "y"}) == "x" ? 0 : 1);
   }
-  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+  p.validate(kIterationsProbeKeys);
   return std::make_unique<CouplingProbe>(*this, p.string("name"), t, 0);
 }
 

@@ -11,6 +11,160 @@
 
 namespace lagfsi::fluid {
 
+namespace {
+
+const KeyTable kFluidKeys(
+    "/bodies/* (type fluid)",
+    "A free-surface Newtonian fluid (PFEM: particles remeshed every step, or a fixed mesh with \"remesh\": false).",
+    {{"name", nullptr, "Body name (output files <name>.pvd, <name>/*.vtu; probes refer to it)."},
+     {"type", "fluid", "`fluid`."},
+     {"density", nullptr, "Mass density (kg/m^3)."},
+     {"viscosity", nullptr, "Dynamic viscosity (Pa s), >= 0."},
+     {"spacing", nullptr, "Particle spacing h (m): the mesh size; lengths below are often multiples of it."},
+     {"alpha", 1.2, "Alpha-shape parameter in [1, 5]: triangles with a circumradius above alpha h are not fluid."},
+     {"domain_detection", "alpha",
+      "Which new triangles are fluid: alpha (the alpha shape), advected (the previous domain moved with the "
+      "particles) or level_set; default: advected with the monolithic scheme and remeshing, alpha otherwise.",
+      kDerived},
+     {"separation_alpha", 2.5,
+      "Advected/level-set detection: an element inside the domain with an edge beyond this times h is separated "
+      "(a film tearing); at least alpha."},
+     {"level_set_band", 0.25, "Level-set detection: width of the band around the advected boundary, times h."},
+     {"contact_gap", 0.0,
+      "Fluid parts are joined only once the gap between them is at most this times h (0: off, at most 2); "
+      "default: 0.3 with the advected detection, 0 otherwise.",
+      kDerived},
+     {"keep_edges_angle", 0.0,
+      "Hysteresis of the Delaunay flips (degrees, below 90): an edge of the last mesh is kept while the two angles "
+      "facing it sum to less than 180 plus this."},
+     {"wall_model", "particles",
+      "How rigid walls hold the fluid: particles (a layer of fixed particles) or constraints (on the fluid "
+      "particles on them); default: constraints with the monolithic scheme, remeshing and a detection other "
+      "than alpha, particles otherwise.",
+      kDerived},
+     {"wall_snap_fraction", 0.1,
+      "A particle whose step ends beyond a wall, or within this times h of it while approaching, is put on it "
+      "(below 0.5)."},
+     {"wall_friction", "held",
+      "Walls as constraints: held (their particles do not slide) or navier (sliding against a Navier friction); "
+      "default: navier with constraints under the monolithic scheme and remeshing, held otherwise.",
+      kDerived},
+     {"slip_length", 0.5, "Navier friction: the slip length, times h."},
+     {"domain_margin", 0.1,
+      "Particles leaving the domain box (walls and initial fluid, enlarged by this times its larger side) are "
+      "removed."},
+     {"remesh", true, "true: PFEM (remeshed every step); false: the initial mesh for the whole run."},
+     {"regions", nullptr, "The fluid's initial regions: geometries (see geometry (type rectangle) and others)."},
+     {"particles", "structured",
+      "Particles of the regions: structured (a square lattice of spacing h; rectangles only) or unstructured (the "
+      "nodes of a Delaunay mesh of size h)."},
+     {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/*)."},
+     {"boundaries", Json::array(),
+      "Boundary conditions on segments of the fluid's boundary, each chosen by its type (see "
+      "/bodies/*/boundaries/* (fluid body, type prescribed_velocity))."},
+     {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s) of the fluid particles."},
+     {"initial_pressure", Json{{"type", "zero"}}, "Initial pressure (see /bodies/*/initial_pressure)."},
+     {"initial_state", Json{{"type", "given"}},
+      "An analytic initial state that overrides initial_velocity and initial_pressure (see "
+      "/bodies/*/initial_state)."},
+     {"scheme", Json::object(),
+      "The solution scheme and its settings (see /bodies/*/scheme); default: the monolithic scheme."}});
+
+/// The scheme keys of both schemes (particles, mass conservation).
+std::vector<KeyDecl> scheme_keys(const std::string& type, std::vector<KeyDecl> own) {
+  std::vector<KeyDecl> keys = {
+      {"type", type, "The scheme: monolithic_pspg (default) or fractional_step; this one is `" + type + "`."},
+      {"volume_correction", "none",
+       "How the area the remeshing adds or removes is put back: surface, source, particle (monolithic scheme, "
+       "advected or level-set detection) or none; default: surface with the alpha detection, particle with the "
+       "monolithic scheme and remeshing, none otherwise.",
+       kDerived},
+      {"split_edge_factor", 1.6,
+       "Advected and level-set detection: free-surface edges longer than this times h are split (0: off, else "
+       ">= 1)."},
+      {"volume_relaxation_time", 0.1,
+       "Time (s) over which the source or particle correction returns the area; default: 0.01 with particle, 0.1 "
+       "otherwise.",
+       kDerived},
+      {"remove_close_fraction", 0.3, "Of two particles closer than this times h one is removed (0: off; below 0.9)."},
+      {"insert_area_factor", 1.0, "Elements larger than this times h^2 get a particle at their centroid (0: off)."},
+      {"bulk_modulus", 2.2e9, "Bulk modulus (Pa) of the weakly compressible continuity (0: incompressible)."},
+      {"flat_element_fraction", 0.01, "Elements of area below this times h^2 are removed from the mesh."}};
+  for (auto& k : own) keys.push_back(std::move(k));
+  return keys;
+}
+
+const KeyTable kPspgKeys(
+    "/bodies/*/scheme (fluid body, type monolithic_pspg)",
+    "The monolithic scheme: Newton on positions and pressures with PSPG stabilisation, the analysis' integrator.",
+    scheme_keys("monolithic_pspg",
+                {{"tau", Json{{"type", "automatic"}}, "The stabilisation parameter (see /bodies/*/scheme/tau)."},
+                 {"mass", "lumped", "Mass matrix: lumped or consistent."},
+                 {"free_surface_pressure", "dirichlet",
+                  "dirichlet (p = 0 imposed), natural (traction-free in the weak form) or robin (pulled weakly to it); "
+                  "default: robin with remeshing and a detection other than alpha, dirichlet otherwise.",
+                  kDerived},
+                 {"robin_factor", 0.04,
+                  "Weight of the Robin free-surface term (a tuned value; 0.01-0.2 keep the area)."},
+                 {"tolerance", 1e-4, "Relative tolerance of the Newton iterations."},
+                 {"refactorize_every", 0, "Factorize the Newton matrix every this many iterations (0: once a step)."},
+                 {"linear_solver", "klu", "umfpack, klu or eigen_lu."}}));
+
+const KeyTable kFractionalStepKeys(
+    "/bodies/*/scheme (fluid body, type fractional_step)",
+    "The fractional step: a predictor, a pressure Poisson solve and a correction per step, p = 0 on the free "
+    "surface.",
+    scheme_keys("fractional_step",
+                {{"viscous_step", "automatic",
+                  "automatic (implicit when dt > rho (0.3 h)^2 / (8 mu)), explicit or implicit."},
+                 {"linear_solver", "cholmod", "cholmod, cholmod_supernodal or eigen_ldlt."},
+                 {"inverted_elements", "retry",
+                  "A step in which an element turns over: retry (with dt / 2) or remesh (kept, left to the next "
+                  "remesh)."}}));
+
+const KeyTable kTauAutomaticKeys("/bodies/*/scheme/tau (fluid body, type automatic)",
+                                 "PSPG parameter from the element size, the time step and the viscosity.",
+                                 {{"type", "automatic", "`automatic`."}});
+
+const KeyTable kTauVelocityKeys("/bodies/*/scheme/tau (fluid body, type velocity_scale)",
+                                "PSPG parameter from a given velocity scale.",
+                                {{"type", "velocity_scale", "`velocity_scale`."},
+                                 {"U", nullptr, "The velocity scale (m/s), positive."}});
+
+const KeyTable kStructuredRegionKeys("/bodies/*/regions/* (fluid body, particles structured)",
+                                     "A region of structured particles: a rectangle (each side at least h / 2).",
+                                     {{"type", "rectangle", "`rectangle`."},
+                                      {"origin", Json::array({0.0, 0.0}), "Lower-left corner [x, y] (m)."},
+                                      {"size", nullptr, "Width and height [w, h] (m)."}});
+
+const KeyTable kPressureZeroKeys("/bodies/*/initial_pressure (fluid body, type zero)", "p = 0 everywhere.",
+                                 {{"type", "zero", "`zero`."}});
+
+const KeyTable kPressureHydrostaticKeys("/bodies/*/initial_pressure (fluid body, type hydrostatic)",
+                                        "p = rho g (level - y) below the level, 0 above.",
+                                        {{"type", "hydrostatic", "`hydrostatic`."},
+                                         {"level", nullptr, "Height (m) of the free surface."}});
+
+const KeyTable kStateGivenKeys("/bodies/*/initial_state (fluid body, type given)",
+                               "initial_velocity and initial_pressure as given.", {{"type", "given", "`given`."}});
+
+const KeyTable kStateTaylorGreenKeys(
+    "/bodies/*/initial_state (fluid body, type taylor_green)",
+    "Divergence-free cellular flow on a square: u = U sin(pi X) cos(pi Y), v = -U cos(pi X) sin(pi Y).",
+    {{"type", "taylor_green", "`taylor_green`."},
+     {"amplitude", nullptr, "U (m/s)."},
+     {"origin", Json::array({0.0, 0.0}), "Corner [x0, y0] (m) of the square; X = (x - x0) / L."},
+     {"length", nullptr, "Side L (m) of the square."}});
+
+const KeyTable kStateSolitaryKeys("/bodies/*/initial_state (fluid body, type solitary_wave)",
+                                  "Laitone's first-order solitary wave moving towards +x (needs gravity).",
+                                  {{"type", "solitary_wave", "`solitary_wave`."},
+                                   {"depth", nullptr, "Still-water depth d (m)."},
+                                   {"height", nullptr, "Wave height H (m)."},
+                                   {"crest", nullptr, "x (m) of the crest."}});
+
+}  // namespace
+
 // The defaults that depend on other keys (docs/fluid_settings.md, "How the defaults follow from each other"). With
 // the monolithic scheme and remeshing they are conservative: the previous domain advected with
 // the particles decides which new triangles are fluid, rigid walls are constraints on the fluid particles on them,
@@ -75,31 +229,10 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
 }
 
 void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs) {
-  b.validate({{"name", nullptr},
-              {"type", "fluid"},
-              {"density", nullptr},
-              {"viscosity", nullptr},
-              {"spacing", nullptr},
-              {"alpha", 1.2},
-              {"domain_detection", d.detection},
-              {"separation_alpha", 2.5},
-              {"level_set_band", 0.25},
-              {"contact_gap", d.contact_gap},
-              {"keep_edges_angle", 0.0},
-              {"wall_model", d.wall_model},
-              {"wall_snap_fraction", 0.1},
-              {"wall_friction", d.wall_friction},
-              {"slip_length", 0.5},
-              {"domain_margin", 0.1},
-              {"remesh", true},
-              {"regions", nullptr},
-              {"particles", "structured"},
-              {"walls", Json::array()},
-              {"boundaries", Json::array()},
-              {"initial_velocity", Json::array({0.0, 0.0})},
-              {"initial_pressure", Json{{"type", "zero"}}},
-              {"initial_state", Json{{"type", "given"}}},
-              {"scheme", Json::object()}});
+  b.validate(kFluidKeys, {{"domain_detection", d.detection},
+                          {"contact_gap", d.contact_gap},
+                          {"wall_model", d.wall_model},
+                          {"wall_friction", d.wall_friction}});
   c_.name = b.identifier("name");
   c_.gravity = ctx_.gravity;
   c_.analysis_dt = ctx_.analysis.dt;
@@ -151,35 +284,18 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
   const std::string scheme =
       s.has("type") ? s.choice("type", {"monolithic_pspg", "fractional_step"}) : "monolithic_pspg";
   const bool pspg = scheme == "monolithic_pspg";
-  // Keys common to both schemes (particles, mass conservation), then each scheme's own.
-  Json keys = {{"type", scheme},
-               {"volume_correction", d.volume_correction},
-               {"split_edge_factor", 1.6},
-               {"volume_relaxation_time", d.volume_relaxation_time},
-               {"remove_close_fraction", 0.3},
-               {"insert_area_factor", 1.0},
-               {"bulk_modulus", 2.2e9},
-               {"flat_element_fraction", 0.01}};
-  if (pspg) {
-    keys.update(Json{{"tau", Json{{"type", "automatic"}}},
-                     {"mass", "lumped"},
-                     {"free_surface_pressure", d.free_surface_pressure},
-                     {"robin_factor", 0.04},
-                     {"tolerance", 1e-4},
-                     {"refactorize_every", 0},
-                     {"linear_solver", "klu"}});
-  } else {
-    keys.update(Json{{"viscous_step", "automatic"}, {"linear_solver", "cholmod"}, {"inverted_elements", "retry"}});
-  }
-  s.validate(keys);
+  // The defaults that follow other keys (fluid_defaults); the free-surface pressure is the monolithic scheme's.
+  Json derived = {{"volume_correction", d.volume_correction}, {"volume_relaxation_time", d.volume_relaxation_time}};
+  if (pspg) derived["free_surface_pressure"] = d.free_surface_pressure;
+  s.validate(pspg ? kPspgKeys : kFractionalStepKeys, derived);
   if (pspg) {
     Params tau = s.at("tau");
     if (!tau.json().is_object() || !tau.has("type")) tau.fail("type", "required key is missing");
     const std::string tau_type = tau.choice("type", {"automatic", "velocity_scale"});
     if (tau_type == "automatic") {
-      tau.validate({{"type", "automatic"}});
+      tau.validate(kTauAutomaticKeys);
     } else {
-      tau.validate({{"type", "velocity_scale"}, {"U", nullptr}});
+      tau.validate(kTauVelocityKeys);
       ps.tau_U = tau.positive("U");
     }
     ps.lumped = s.choice("mass", {"lumped", "consistent"}) == "lumped";
@@ -289,7 +405,7 @@ void FluidModel::build_particles(Params b) {
     if (layout == "structured") {
       if (!g.has("type") || g.string("type") != "rectangle")
         g.fail("type", "structured particles need rectangle regions (use \"particles\": \"unstructured\")");
-      g.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      g.validate(kStructuredRegionKeys);
       const Vec2 sz = g.vec2("size");
       if (!(sz.x() >= 0.5 * h && sz.y() >= 0.5 * h))
         g.fail("size", "each side must be at least half the particle spacing (" + std::to_string(h) + ")");
@@ -353,12 +469,12 @@ void FluidModel::set_initial_state(Params b, const std::vector<Vec2>& pts, const
   if (!ip.has("type")) ip.fail("type", "required key is missing");
   const std::string ipt = ip.choice("type", {"zero", "hydrostatic"});
   if (ipt == "hydrostatic") {
-    ip.validate({{"type", "hydrostatic"}, {"level", nullptr}});
+    ip.validate(kPressureHydrostaticKeys);
     const double level = ip.number("level");
     const double g = c_.gravity.norm();
     for (Index i = 0; i < np; ++i) p[i] = std::max(0.0, c_.rho * g * (level - pts[i].y()));
   } else {
-    ip.validate({{"type", "zero"}});
+    ip.validate(kPressureZeroKeys);
   }
 
   // Analytic initial states (they override initial_velocity and initial_pressure).
@@ -369,8 +485,7 @@ void FluidModel::set_initial_state(Params b, const std::vector<Vec2>& pts, const
     // Divergence-free cellular flow of amplitude U on a square [x0, x0 + L]^2 (a test of energy stability:
     // without gravity the kinetic energy of a free blob can only decrease):
     // u = U sin(pi X) cos(pi Y), v = -U cos(pi X) sin(pi Y), X = (x - x0) / L, Y = (y - y0) / L.
-    is.validate(
-        {{"type", "taylor_green"}, {"amplitude", nullptr}, {"origin", Json::array({0.0, 0.0})}, {"length", nullptr}});
+    is.validate(kStateTaylorGreenKeys);
     const double U = is.number("amplitude"), Lc = is.positive("length");
     const Vec2 o = is.vec2("origin");
     for (Index i = 0; i < np; ++i) {
@@ -383,7 +498,7 @@ void FluidModel::set_initial_state(Params b, const std::vector<Vec2>& pts, const
     // Laitone (1960) first-order solitary wave of height H on depth d, crest at x0, moving towards +x:
     // eta = d + H sech^2(k (x - x0)), k = sqrt(3H / (4 d^3)),
     // u = sqrt(g d) (H/d) sech^2, v = sqrt(3 g d) (H/d)^(3/2) (y/d) sech^2 tanh, p = rho g (eta - y).
-    is.validate({{"type", "solitary_wave"}, {"depth", nullptr}, {"height", nullptr}, {"crest", nullptr}});
+    is.validate(kStateSolitaryKeys);
     const double d = is.positive("depth"), H = is.positive("height"), x0 = is.number("crest");
     const double g = c_.gravity.norm();
     if (!(g > 0)) is.fail("type", "a solitary wave needs gravity");
@@ -397,7 +512,7 @@ void FluidModel::set_initial_state(Params b, const std::vector<Vec2>& pts, const
       p[i] = std::max(0.0, c_.rho * g * (d + H * sech2 - y));
     }
   } else {
-    is.validate({{"type", "given"}});
+    is.validate(kStateGivenKeys);
   }
 }
 

@@ -11,6 +11,49 @@
 namespace lagfsi::fluid {
 namespace {
 
+const KeyTable kFrontKeys("/probes/* (fluid body, type front)",
+                          "The largest x (m) of the fluid within a band above the floor.",
+                          probe_keys({"front"}, {{"floor", 0.0, "Height (m) of the floor."},
+                                                 {"band", 0.0,
+                                                  "Height (m) of the band above the floor; default: 2 h "
+                                                  "(at least h / 4).",
+                                                  kDerived}}));
+
+const KeyTable kColumnHeightKeys("/probes/* (fluid body, type column_height)",
+                                 "The largest y (m) of the fluid within a band next to the left wall.",
+                                 probe_keys({"column_height"}, {{"wall", 0.0, "x (m) of the wall."},
+                                                                {"band", 0.0,
+                                                                 "Width (m) of the band next to the wall; default: "
+                                                                 "2 h (at least h / 4).",
+                                                                 kDerived}}));
+
+const KeyTable kElevationKeys(
+    "/probes/* (fluid body, type elevation)", "The free-surface height (m) on a vertical line.",
+    probe_keys({"elevation"},
+               {{"x", nullptr, "x (m) of the vertical line."},
+                {"method", "mesh",
+                 "mesh (the highest point of the meshed fluid on the line) or particles (the highest particle "
+                 "within the band; biased upwards by the surface's noise)."},
+                {"band", 0.0, "Particles method: half-width (m) of the band; default: 1.5 h (at least h / 4).",
+                 kDerived}}));
+
+const KeyTable kPressureKeys("/probes/* (fluid body, type pressure)", "The mean pressure (Pa) over a sensor segment.",
+                             probe_keys({"pressure"}, {{"from", nullptr, "One end of the segment [x, y] (m)."},
+                                                       {"to", nullptr, "The other end [x, y] (m)."},
+                                                       {"tolerance", 0.0,
+                                                        "Distance (m) from the segment within which particles "
+                                                        "count; default: h / 2.",
+                                                        kDerived}}));
+
+const KeyTable kGlobalKeys(
+    "/probes/* (fluid body, type fluid_area, water_area, kinetic_energy, ...)",
+    "A quantity of the whole fluid: fluid_area (m^2), water_area (with particles in flight), kinetic_energy, "
+    "potential_energy, gravity_work, viscous_dissipation, volume_correction_energy, total_energy, boundary_work "
+    "(J per m of thickness), max_speed (m/s).",
+    probe_keys({"fluid_area", "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
+                "volume_correction_energy", "total_energy", "boundary_work", "max_speed"},
+               {}));
+
 class FluidProbe final : public Probe {
  public:
   FluidProbe(const FluidModel& m, std::string name, std::string type, Params p);
@@ -57,13 +100,13 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
   };
   if (type_ == "front") {
     // largest x of fluid within a band above the floor
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"floor", 0.0}, {"band", 2.0 * h}});
+    p.validate(kFrontKeys, {{"band", 2.0 * h}});
     coord_ = p.number("floor");
     inside("floor", coord_, 1);
     read_band();
   } else if (type_ == "column_height") {
     // largest y of fluid within a band next to the left wall
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"wall", 0.0}, {"band", 2.0 * h}});
+    p.validate(kColumnHeightKeys, {{"band", 2.0 * h}});
     coord_ = p.number("wall");
     inside("wall", coord_, 0);
     read_band();
@@ -71,19 +114,13 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     // "mesh": the highest point of the meshed fluid on the vertical line x (free-surface edges
     // interpolated); "particles": the highest fluid particle within `band` of x (biased upwards by the
     // particle noise of the surface, kept for comparison).
-    p.validate(
-        {{"name", nullptr}, {"type", type_}, {"body", nullptr}, {"x", nullptr}, {"method", "mesh"}, {"band", 1.5 * h}});
+    p.validate(kElevationKeys, {{"band", 1.5 * h}});
     coord_ = p.number("x");
     inside("x", coord_, 0);
     read_band();
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "pressure") {
-    p.validate({{"name", nullptr},
-                {"type", type_},
-                {"body", nullptr},
-                {"from", nullptr},
-                {"to", nullptr},
-                {"tolerance", 0.5 * h}});
+    p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
     a_ = p.vec2("from");
     b_ = p.vec2("to");
     for (int axis = 0; axis < 2; ++axis) {
@@ -92,7 +129,7 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     }
     band_ = p.positive("tolerance");
   } else {
-    p.validate({{"name", nullptr}, {"type", type_}, {"body", nullptr}});
+    p.validate(kGlobalKeys);
   }
 }
 

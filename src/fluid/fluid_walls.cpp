@@ -10,12 +10,30 @@
 
 namespace lagfsi::fluid {
 
+namespace {
+
+const KeyTable kWallKeys("/bodies/*/walls/* (fluid body)",
+                         "A rigid wall: a polyline that holds the fluid, fixed or with a prescribed motion.",
+                         {{"name", "wall", "Wall name; default: wall<index>.", kDerived},
+                          {"points", nullptr, "The polyline [[x, y], ...] (m), at least two distinct points."},
+                          {"slip", false, "true: no viscous stress along the wall (free slip); false: no slip."},
+                          {"motion", Json::object(),
+                           "Prescribed motion (see /bodies/*/walls/*/motion); default {}: fixed."}});
+
+const KeyTable kWallMotionKeys("/bodies/*/walls/*/motion (fluid body)",
+                               "A wall's rigid translation: value times a function of time.",
+                               {{"type", nullptr, "prescribed_displacement (m) or prescribed_velocity (m/s)."},
+                                {"value", nullptr, "The displacement or velocity [x, y], scaled by the function."},
+                                {"function", nullptr,
+                                 "Function of time (see time function (type constant) and others)."}});
+
+}  // namespace
+
 void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_dir, bool constraints) {
   constraint_model_ = constraints;
   for (size_t i = 0; i < walls.size(); ++i) {
     Params w = walls.at(i);
-    w.validate(
-        {{"name", "wall" + std::to_string(i)}, {"points", nullptr}, {"slip", false}, {"motion", Json::object()}});
+    w.validate(kWallKeys, {{"name", "wall" + std::to_string(i)}});
     Wall wall;
     wall.name = w.string("name");
     wall.polyline = w.points("points");
@@ -29,7 +47,7 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
     if (!mo.json().empty()) {
       if (!mo.has("type")) mo.fail("type", "required key is missing");
       const std::string mt = mo.choice("type", {"prescribed_displacement", "prescribed_velocity"});
-      mo.validate({{"type", mt}, {"value", nullptr}, {"function", nullptr}});
+      mo.validate(kWallMotionKeys);
       wall.value = mo.vec2("value");
       wall.fn = make_time_function(mo.at("function"), base_dir);
       wall.velocity = mt == "prescribed_velocity";

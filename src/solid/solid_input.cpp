@@ -3,9 +3,137 @@
 // conditions, loads and the initial state.
 #include "solid_model_impl.hpp"
 
+#include <algorithm>
+
 namespace lagfsi::solid {
 
 namespace {
+
+/// The keys of solid and shell bodies, then the type's own.
+std::vector<KeyDecl> body_keys(const std::string& type, const Json& thickness, std::vector<KeyDecl> own) {
+  std::vector<KeyDecl> keys = {
+      {"name", nullptr, "Body name (output files <name>.pvd, <name>/*.vtu; probes and couplings refer to it)."},
+      {"type", type, "`" + type + "`."},
+      {"material", nullptr, "The material (see /bodies/*/material)."},
+      {"thickness", thickness, "Out-of-plane thickness (m)."},
+      {"damping", Json::object(), "Rayleigh damping (see /bodies/*/damping)."},
+      {"geometry", nullptr, ""},
+      {"mesh", nullptr, ""},
+      {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s)."},
+      {"boundary_conditions", Json::array(), "Supports and prescribed motions (see /bodies/*/boundary_conditions/*)."},
+      {"loads", Json::array(), "Loads (see /bodies/*/loads/*)."},
+      {"gravity", true, "Whether the case's gravity acts on the body."}};
+  for (auto& k : own) {
+    auto it = std::find_if(keys.begin(), keys.end(), [&](const KeyDecl& d) { return d.name == k.name; });
+    if (it != keys.end())
+      *it = std::move(k);
+    else
+      keys.push_back(std::move(k));
+  }
+  return keys;
+}
+
+const KeyTable kSolidKeys("/bodies/* (type solid)",
+                          "A 2D continuum (plane strain or stress) of triangles, positional FEM, large displacements.",
+                          body_keys("solid", 1.0,
+                                    {{"geometry", nullptr,
+                                      "The body's shape (see geometry (type rectangle) and others)."},
+                                     {"mesh", nullptr, "Its triangles (see mesh (triangles of a geometry))."}}));
+
+const KeyTable kShellKeys(
+    "/bodies/* (type shell)", "A positional frame/shell (Reissner kinematics) along a mid-line, SVK law in its frame.",
+    body_keys("shell", nullptr,
+              {{"geometry", nullptr, "The mid-line (see /bodies/*/geometry (shell body, type line) or polyline)."},
+               {"mesh", nullptr, "Elements along the mid-line (see /bodies/*/mesh (shell body))."},
+               {"width", 1.0, "Out-of-plane width (m) of the section."},
+               {"shear_correction", 5.0 / 6.0, "Shear correction factor."},
+               {"shear_integration", "reduced", "reduced (selective reduced integration of shear) or full."}}));
+
+const KeyTable kShellLineKeys("/bodies/*/geometry (shell body, type line)", "A straight mid-line.",
+                              {{"type", "line", "`line`."},
+                               {"from", nullptr, "One end [x, y] (m)."},
+                               {"to", nullptr, "The other end [x, y] (m)."}});
+
+const KeyTable kShellPolylineKeys("/bodies/*/geometry (shell body, type polyline)", "A mid-line of straight segments.",
+                                  {{"type", "polyline", "`polyline`."},
+                                   {"points", nullptr, "The points [[x, y], ...] (m), at least two."}});
+
+const KeyTable kShellMeshKeys("/bodies/*/mesh (shell body)",
+                              "Elements along the mid-line: give either elements (a line) or size.",
+                              {{"order", 3, "Element order: 1, 2 or 3."},
+                               {"elements", 0, "Number of elements of a line (0: use size)."},
+                               {"size", 0.0, "Element length (m); each segment gets ceil(length / size) elements."}});
+
+const KeyTable kMaterialKeys("/bodies/*/material (solid or shell body)", "A hyperelastic material.",
+                             {{"type", "svk", "svk (Saint Venant-Kirchhoff) or neo_hookean (solids only)."},
+                              {"young", nullptr, "Young's modulus (Pa)."},
+                              {"poisson", 0.0, "Poisson's ratio, in (-1, 0.5)."},
+                              {"density", nullptr, "Mass density (kg/m^3)."},
+                              {"hypothesis", "plane_strain", "plane_strain or plane_stress."}});
+
+const KeyTable kDampingKeys("/bodies/*/damping (solid or shell body)", "Rayleigh damping C = mass M + stiffness K.",
+                            {{"mass", 0.0, "Mass-proportional coefficient (1/s), >= 0."},
+                             {"stiffness", 0.0, "Stiffness-proportional coefficient (s), >= 0."}});
+
+const char* const kSelectDoc = "The nodes (a shell: mid-line nodes) held (see selection (type point) and others).";
+const char* const kComponentsDoc = "Held components: x, y or xy.";
+const char* const kValueDoc = "Displacement (m) or velocity (m/s) [x, y], scaled by the function.";
+const char* const kFunctionDoc = "Function of time (see time function (type constant) and others).";
+
+const KeyTable kFixedKeys("/bodies/*/boundary_conditions/* (solid body, type fixed)", "Held in place.",
+                          {{"type", "fixed", "`fixed`."},
+                           {"select", nullptr, kSelectDoc},
+                           {"components", "xy", kComponentsDoc}});
+
+const KeyTable kPrescribedKeys("/bodies/*/boundary_conditions/* (solid body, type prescribed_displacement, ...)",
+                               "A prescribed displacement or velocity: value times a function of time.",
+                               {{"type", nullptr, "prescribed_displacement or prescribed_velocity."},
+                                {"select", nullptr, kSelectDoc},
+                                {"components", "xy", kComponentsDoc},
+                                {"value", nullptr, kValueDoc},
+                                {"function", Json{{"type", "constant"}}, kFunctionDoc}});
+
+const KeyTable kShellFixedKeys("/bodies/*/boundary_conditions/* (shell body, type fixed or pinned)",
+                               "Held in place; pinned is fixed with a free rotation.",
+                               {{"type", nullptr, "fixed or pinned."},
+                                {"select", nullptr, kSelectDoc},
+                                {"components", "xy", kComponentsDoc},
+                                {"rotation", "fixed",
+                                 "Whether the section's rotation is held: fixed or free; default: free when pinned.",
+                                 kDerived}});
+
+const KeyTable kShellPrescribedKeys("/bodies/*/boundary_conditions/* (shell body, type prescribed_displacement, ...)",
+                                    "A prescribed displacement or velocity: value times a function of time.",
+                                    {{"type", nullptr, "prescribed_displacement or prescribed_velocity."},
+                                     {"select", nullptr, kSelectDoc},
+                                     {"components", "xy", kComponentsDoc},
+                                     {"value", nullptr, kValueDoc},
+                                     {"function", Json{{"type", "constant"}}, kFunctionDoc},
+                                     {"rotation", "fixed", "Whether the section's rotation is held: fixed or free."}});
+
+const KeyTable kPointLoadKeys(
+    "/bodies/*/loads/* (solid or shell body, type point_load or traction)",
+    "point_load: a total force split equally over the selected nodes; traction: a force per unit reference area "
+    "on the boundary edges whose points are all selected.",
+    {{"type", nullptr, "point_load or traction."},
+     {"value", nullptr, "Force [x, y] (N), or traction (Pa), scaled by the function."},
+     {"select", nullptr, "Where it acts (see selection (type point) and others)."},
+     {"function", Json{{"type", "constant"}}, kFunctionDoc}});
+
+const KeyTable kPressureLoadKeys(
+    "/bodies/*/loads/* (solid or shell body, type pressure)",
+    "A pressure on the boundary edges whose points are all selected (the force is -p n ds, n outward).",
+    {{"type", "pressure", "`pressure`."},
+     {"value", nullptr, "Pressure (Pa), scaled by the function."},
+     {"select", nullptr, "The boundary points (see selection (type point) and others)."},
+     {"function", Json{{"type", "constant"}}, kFunctionDoc},
+     {"follower", true, "true: follows the deformed boundary; false: acts on the reference one."}});
+
+const KeyTable kBodyForceKeys("/bodies/*/loads/* (solid or shell body, type body_force)",
+                              "A force per unit volume on the whole body.",
+                              {{"type", "body_force", "`body_force`."},
+                               {"value", nullptr, "Force per unit volume [x, y] (N/m^3), scaled by the function."},
+                               {"function", Json{{"type", "constant"}}, kFunctionDoc}});
 
 /// The reference mid-line of a shell body: {"type": "line", "from", "to"} or {"type": "polyline",
 /// "points"}, cut into elements of the mesh's order by "elements" (a line) or "size" (each segment into
@@ -15,14 +143,14 @@ std::vector<Vec2> shell_midline(Params geo, Params mesh, int& order) {
   const std::string gt = geo.choice("type", {"line", "polyline"});
   std::vector<Vec2> corners;
   if (gt == "line") {
-    geo.validate({{"type", "line"}, {"from", nullptr}, {"to", nullptr}});
+    geo.validate(kShellLineKeys);
     corners = {geo.vec2("from"), geo.vec2("to")};
   } else {
-    geo.validate({{"type", "polyline"}, {"points", nullptr}});
+    geo.validate(kShellPolylineKeys);
     corners = geo.points("points");
     if (corners.size() < 2) geo.fail("points", "a polyline needs at least two points");
   }
-  mesh.validate({{"order", 3}, {"elements", 0}, {"size", 0.0}});
+  mesh.validate(kShellMeshKeys);
   order = mesh.integer("order", 1);
   if (order > 3) mesh.fail("order", "must be 1, 2 or 3");
   const int nel = mesh.integer("elements", 0);
@@ -45,29 +173,13 @@ std::vector<Vec2> shell_midline(Params geo, Params mesh, int& order) {
 SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_(ctx.analysis.type == "static") {
   type_ = b.string("type");
   const bool shell = type_ == "shell";
-  Json defaults{{"name", nullptr},
-                {"type", type_},
-                {"material", nullptr},
-                {"thickness", shell ? Json(nullptr) : Json(1.0)},
-                {"damping", Json::object()},
-                {"geometry", nullptr},
-                {"mesh", nullptr},
-                {"initial_velocity", Json::array({0.0, 0.0})},
-                {"boundary_conditions", Json::array()},
-                {"loads", Json::array()},
-                {"gravity", true}};
-  if (shell) {
-    defaults["width"] = 1.0;
-    defaults["shear_correction"] = 5.0 / 6.0;
-    defaults["shear_integration"] = "reduced";
-  }
-  b.validate(defaults);
+  b.validate(shell ? kShellKeys : kSolidKeys);
   name_ = b.identifier("name");
 
   read_body(b);
 
   Params damp = b.at("damping");
-  damp.validate({{"mass", 0.0}, {"stiffness", 0.0}});
+  damp.validate(kDampingKeys);
   damp_mass_ = damp.non_negative("mass");
   damp_stiff_ = damp.non_negative("stiffness");
 
@@ -106,8 +218,7 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
 void SolidModel::read_body(Params b) {
   const bool shell = type_ == "shell";
   Params mat = b.at("material");
-  mat.validate(
-      {{"type", "svk"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}, {"hypothesis", "plane_strain"}});
+  mat.validate(kMaterialKeys);
   const double E = mat.positive("young"), nu = mat.number("poisson"), rho = mat.positive("density");
   if (!(nu > -1.0 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
   const std::string hyp_name = mat.choice("hypothesis", {"plane_strain", "plane_stress"});
@@ -162,13 +273,13 @@ void SolidModel::read_boundary_conditions(Params b) {
     const std::string t = shell
                               ? bc.choice("type", {"fixed", "pinned", "prescribed_displacement", "prescribed_velocity"})
                               : bc.choice("type", {"fixed", "prescribed_displacement", "prescribed_velocity"});
-    Json bdef{{"type", t}, {"select", nullptr}, {"components", "xy"}};
-    if (t != "fixed" && t != "pinned") {
-      bdef["value"] = nullptr;
-      bdef["function"] = Json{{"type", "constant"}};
-    }
-    if (shell) bdef["rotation"] = t == "pinned" ? "free" : "fixed";
-    bc.validate(bdef);
+    const bool fixed = t == "fixed" || t == "pinned";
+    if (!shell)
+      bc.validate(fixed ? kFixedKeys : kPrescribedKeys);
+    else if (fixed)
+      bc.validate(kShellFixedKeys, {{"rotation", t == "pinned" ? "free" : "fixed"}});
+    else
+      bc.validate(kShellPrescribedKeys);
     const std::string comps = bc.choice("components", {"x", "y", "xy"});
     const bool hold_rotation = shell && bc.choice("rotation", {"fixed", "free"}) == "fixed";
     const auto sel = select_nodes(bc.at("select"), stations);
@@ -226,10 +337,7 @@ void SolidModel::read_loads(Params b) {
     Params l = loads.at(i);
     if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
     const std::string t = l.choice("type", {"point_load", "traction", "pressure", "body_force"});
-    Json ldef{{"type", t}, {"value", nullptr}, {"function", Json{{"type", "constant"}}}};
-    if (t != "body_force") ldef["select"] = nullptr;
-    if (t == "pressure") ldef["follower"] = true;
-    l.validate(ldef);
+    l.validate(t == "pressure" ? kPressureLoadKeys : t == "body_force" ? kBodyForceKeys : kPointLoadKeys);
     Load load{Vec::Zero(nd), std::shared_ptr<TimeFunction>(make_time_function(l.at("function"), ctx_.base_dir)), {}};
     if (t == "pressure") {
       // Pressure p pushes on the boundary: the force is -p n ds (n outward).

@@ -6,6 +6,26 @@ namespace lagfsi::solid {
 
 namespace {
 
+const KeyTable kDisplacementProbeKeys(
+    "/probes/* (solid or shell body, type displacement or position)",
+    "The displacement (m) or the current position (m) of a material point.",
+    probe_keys({"displacement", "position"},
+               {{"at", nullptr, "The point's reference position [x, y] (m); inside the body (a shell: its section)."},
+                {"component", "y", "x, y or magnitude."}}));
+
+const KeyTable kReactionProbeKeys("/probes/* (solid or shell body, type reaction)",
+                                  "The sum of the reaction forces (N) over held nodes.",
+                                  probe_keys({"reaction"},
+                                             {{"select", nullptr, "The nodes (see selection (type point) and others)."},
+                                              {"component", "y", "x or y."}}));
+
+const KeyTable kEnergyProbeKeys(
+    "/probes/* (solid or shell body, type energy)", "An energy of the body (J).",
+    probe_keys({"energy"},
+               {{"kind", "total",
+                 "kinetic, strain, external_work, interface_work, dissipated, total (kinetic + strain) or balance "
+                 "(E(t) - E(0) - external work + dissipated: zero for an exact integrator)."}}));
+
 class DisplacementProbe final : public Probe {
  public:
   DisplacementProbe(const SolidModel& m, std::string name, std::vector<std::pair<Index, double>> weights,
@@ -53,21 +73,21 @@ class EnergyProbe final : public Probe {
 std::unique_ptr<Probe> SolidModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"displacement", "position", "reaction", "energy"});
   if (t == "displacement" || t == "position") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"component", "y"}});
+    p.validate(kDisplacementProbeKeys);
     const std::string comp = p.choice("component", {"x", "y", "magnitude"});
     std::vector<std::pair<Index, double>> w;
     if (!body_->locate(p.vec2("at"), w)) p.fail("at", "the point is outside body '" + name_ + "'");
     return std::make_unique<DisplacementProbe>(*this, p.string("name"), std::move(w), comp, t == "position");
   }
   if (t == "reaction") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"select", nullptr}, {"component", "y"}});
+    p.validate(kReactionProbeKeys);
     const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
     need_reaction_ = true;
     std::vector<Index> nodes;
     for (Index s : select_nodes(p.at("select"), body_->stations())) nodes.push_back(body_->station_node(s));
     return std::make_unique<ReactionProbe>(*this, p.string("name"), std::move(nodes), comp);
   }
-  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
+  p.validate(kEnergyProbeKeys);
   return std::make_unique<EnergyProbe>(
       *this, p.string("name"),
       p.choice("kind", {"kinetic", "strain", "external_work", "interface_work", "dissipated", "total", "balance"}));

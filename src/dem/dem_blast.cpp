@@ -10,6 +10,23 @@
 
 namespace lagfsi::dem {
 
+namespace {
+
+const KeyTable kBlastKeys(
+    "/bodies/*/blast (dem body)",
+    "An air blast: Henrych overpressure, Wu-Hao duration, Friedlander decay, loaded on the exposed arcs of the discs.",
+    {{"charge_mass", nullptr, "Charge mass W (kg of TNT)."},
+     {"position", nullptr, "Position of the charge [x, y] (m)."},
+     {"t_end", 2.5e-3, "The load acts until this time (s)."},
+     {"beta", 1.0, "Decay coefficient of the Friedlander pulse."},
+     {"arrival", "direct", "Arrival time: direct (R / Us) or integrated (the integral of dr / Us(r))."},
+     {"area", "arc", "Loaded length of a disc: arc (the exposed arc) or projected (its projected width)."},
+     {"ambient_pressure", 101325.0, "Ambient pressure (Pa)."},
+     {"sound_speed", 340.0, "Speed of sound of the air (m/s)."},
+     {"exposure_every", 1, "Recompute which arcs are exposed every this many steps."}});
+
+}  // namespace
+
 double henrych_overpressure_kpa(double z) {
   z = std::clamp(z, 0.05, 10.0);
   const double z2 = z * z, z3 = z2 * z;
@@ -23,15 +40,7 @@ double wu_hao_duration(double r, double w) { return 0.5e-3 * std::pow(r, 0.72) *
 double shock_speed(double ps, double p0, double a0) { return a0 * std::sqrt(1.0 + 6.0 * ps / (7.0 * p0)); }
 
 Blast::Blast(Params p) {
-  p.validate({{"charge_mass", nullptr},
-              {"position", nullptr},
-              {"t_end", 2.5e-3},
-              {"beta", 1.0},
-              {"arrival", "direct"},
-              {"area", "arc"},
-              {"ambient_pressure", 101325.0},
-              {"sound_speed", 340.0},
-              {"exposure_every", 1}});
+  p.validate(kBlastKeys);
   w_ = p.positive("charge_mass");
   w13_ = std::cbrt(w_);
   g_ = p.vec2("position");

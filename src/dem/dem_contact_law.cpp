@@ -10,6 +10,61 @@ namespace lagfsi::dem {
 
 namespace {
 
+const char* const kFrictionDoc = "Friction coefficient mu of the tangential force (|ft| <= mu |fn|).";
+const char* const kTangentialDoc =
+    "Tangential model: coulomb (a spring with history, limited by friction), haff_werner (viscous, limited by "
+    "friction) or none; with friction 0 the default model is off.";
+const char* const kHaffWernerDoc = "Viscous coefficient of the haff_werner tangential model (1/s).";
+const char* const kNoAttractionDoc = "Clamp the normal force at 0 (the dashpot does not pull).";
+const char* const kRollingDoc = "Rolling friction coefficient (0: none).";
+
+const KeyTable kLinearKeys("/bodies/*/contact (dem body, law linear)",
+                           "Linear spring-dashpot (Cundall and Strack): fn = kn x + cn dx/dt.",
+                           {{"law", "linear", "`linear`."},
+                            {"kn", nullptr, "Normal stiffness (N/m per m of depth)."},
+                            {"damping", "ratio",
+                             "How cn is given: ratio (damping_ratio), restitution or viscous (gamma_n)."},
+                            {"damping_ratio", 0.0, "Normal damping ratio zeta, below 1."},
+                            {"restitution", 1.0, "Restitution coefficient e, in (0, 1]."},
+                            {"gamma_n", 0.0, "Viscous damping: cn = m_eff gamma_n (1/s)."},
+                            {"kt_ratio", 2.0 / 7.0, "Tangential stiffness over normal stiffness."},
+                            {"tangential_damping_ratio", 0.0, "Tangential damping ratio."},
+                            {"gamma_t", 0.0, "Tangential viscous damping: ct = m_eff gamma_t (1/s)."},
+                            {"friction", 0.0, kFrictionDoc},
+                            {"tangential", "coulomb", kTangentialDoc},
+                            {"haff_werner_gamma", 100.0, kHaffWernerDoc},
+                            {"no_attraction", false, kNoAttractionDoc},
+                            {"rolling_friction", 0.0, kRollingDoc}});
+
+const KeyTable kHertzMindlinKeys(
+    "/bodies/*/contact (dem body, law hertz_mindlin)",
+    "Hertz normal force with Mindlin tangential stiffness and Tsuji damping (needs material.young).",
+    {{"law", "hertz_mindlin", "`hertz_mindlin`."},
+     {"restitution", 1.0, "Restitution coefficient e, in (0.01, 1]."},
+     {"friction", 0.0, kFrictionDoc},
+     {"tangential", "coulomb", kTangentialDoc},
+     {"haff_werner_gamma", 100.0, kHaffWernerDoc},
+     {"no_attraction", false, kNoAttractionDoc},
+     {"rolling_friction", 0.0, kRollingDoc}});
+
+const KeyTable kSabatucciKeys(
+    "/bodies/*/contact (dem body, law sabatucci)",
+    "The banded normal law of Sabatucci et al. (2013) with rupture, Haff-Werner tangential force.",
+    {{"law", "sabatucci", "`sabatucci`."},
+     {"kn", nullptr, "Base normal stiffness (N/m per m of depth)."},
+     {"damping_ratio", 0.01, "Normal damping ratio zeta."},
+     {"lambda", 50.0, "Stiffness factor of the bands: lambda kn, then lambda^2 kn."},
+     {"bands", Json::array({0.1, 0.7}), "Relative overlaps [b1, b2] where the lambda and lambda^2 branches start."},
+     {"rupture", 0.7, "Relative overlap at which both discs are marked ruptured (no force when unloading)."},
+     {"continuous", false, "A continuous piecewise linear loading curve instead of the literal bands."},
+     {"friction", 0.2, kFrictionDoc},
+     {"tangential", "haff_werner", kTangentialDoc},
+     {"haff_werner_gamma", 100.0, kHaffWernerDoc}});
+
+}  // namespace
+
+namespace {
+
 /// zeta of a linear spring-dashpot whose restitution (unclamped contact) is e.
 double zeta_from_restitution(double e) {
   if (e >= 1.0) return 0.0;
@@ -134,20 +189,7 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
   if (!c.has("law")) c.fail("law", "required key is missing");
   const std::string law = c.choice("law", {"linear", "hertz_mindlin", "sabatucci"});
   if (law == "linear") {
-    c.validate({{"law", law},
-                {"kn", nullptr},
-                {"damping", "ratio"},
-                {"damping_ratio", 0.0},
-                {"restitution", 1.0},
-                {"gamma_n", 0.0},
-                {"kt_ratio", 2.0 / 7.0},
-                {"tangential_damping_ratio", 0.0},
-                {"gamma_t", 0.0},
-                {"friction", 0.0},
-                {"tangential", "coulomb"},
-                {"haff_werner_gamma", 100.0},
-                {"no_attraction", false},
-                {"rolling_friction", 0.0}});
+    c.validate(kLinearKeys);
     const double kn = c.positive("kn");
     const std::string d = c.choice("damping", {"ratio", "restitution", "viscous"});
     double zeta = 0, gamma_n = 0;
@@ -169,13 +211,7 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     return law;
   }
   if (law == "hertz_mindlin") {
-    c.validate({{"law", law},
-                {"restitution", 1.0},
-                {"friction", 0.0},
-                {"tangential", "coulomb"},
-                {"haff_werner_gamma", 100.0},
-                {"no_attraction", false},
-                {"rolling_friction", 0.0}});
+    c.validate(kHertzMindlinKeys);
     const double e = c.number("restitution");
     if (!(e > 0.01 && e <= 1)) c.fail("restitution", "must lie in (0.01, 1]");
     if (!(young > 0)) c.fail("law", "hertz_mindlin needs the body's material.young > 0");
@@ -184,16 +220,7 @@ std::unique_ptr<ContactLaw> make_contact_law(Params c, double young, double pois
     law->set_rolling(c.non_negative("rolling_friction"));
     return law;
   }
-  c.validate({{"law", law},
-              {"kn", nullptr},
-              {"damping_ratio", 0.01},
-              {"lambda", 50.0},
-              {"bands", Json::array({0.1, 0.7})},
-              {"rupture", 0.7},
-              {"continuous", false},
-              {"friction", 0.2},
-              {"tangential", "haff_werner"},
-              {"haff_werner_gamma", 100.0}});
+  c.validate(kSabatucciKeys);
   const auto bands = c.numbers("bands");
   if (bands.size() != 2 || !(bands[0] > 0 && bands[1] > bands[0]))
     c.fail("bands", "expected [b1, b2] with 0 < b1 < b2");

@@ -29,6 +29,58 @@ namespace lagfsi::dem {
 
 namespace {
 
+const KeyTable kDemKeys(
+    "/bodies/* (type dem)",
+    "A discrete element body: rigid discs with contact laws, rigid walls, gravity and an optional air blast.",
+    {{"name", "dem", "Body name (output files; probes refer to it)."},
+     {"type", "dem", "`dem`."},
+     {"material", nullptr, "The discs' material (see /bodies/*/material (dem body))."},
+     {"mass", "disc",
+      "disc (m = rho pi r^2 per m of depth, I = m r^2 / 2) or sphere (m = 4/3 rho pi r^3, I = 2/5 m r^2)."},
+     {"rotation", true, "Integrate the discs' rotation (false: no rotation)."},
+     {"contact", nullptr, "The contact law (see /bodies/*/contact (dem body, law linear) and others)."},
+     {"discs", nullptr, "Disc generators, appended in order (see /bodies/*/discs/* (dem body, ...))."},
+     {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/* (dem body))."},
+     {"time_step", Json::object(), "The body's own time step (see /bodies/*/time_step (dem body))."},
+     {"neighbour", Json::object(), "Neighbour search (see /bodies/*/neighbour (dem body))."},
+     {"overlap_tolerance", 1e-3, "Initial overlaps above this fraction of the smaller radius are errors."},
+     {"blast", Json::object(), "An air-blast load (see /bodies/*/blast (dem body)); {}: none."},
+     {"settle", Json::object(), "A settling stage before t = 0 (see /bodies/*/settle (dem body)); {}: none."},
+     {"discs_csv", false, "Also write <name>_discs.csv at each output."},
+     {"crater", Json::object(), "Write crater.csv at each output (see /bodies/*/crater (dem body)); {}: none."}});
+
+const KeyTable kDemMaterialKeys("/bodies/*/material (dem body)", "The discs' material.",
+                                {{"density", nullptr, "Mass density (kg/m^3)."},
+                                 {"young", 0.0, "Young's modulus (Pa); for the hertz_mindlin law."},
+                                 {"poisson", 0.3, "Poisson's ratio, in (-1, 0.5)."}});
+
+const KeyTable kDemTimeStepKeys(
+    "/bodies/*/time_step (dem body)",
+    "The driver's step is split into sub-steps no longer than this dt (explicit central difference).",
+    {{"dt", 0.0, "Sub-step (s); 0: fraction times the critical step 2 / omega_max of the contact law."},
+     {"fraction", 0.2, "Fraction of the critical step, in (0, 1]."},
+     {"allow_above_critical", false, "Accept a dt above the critical step."}});
+
+const KeyTable kDemNeighbourKeys("/bodies/*/neighbour (dem body)", "The neighbour lists of the contact search.",
+                                 {{"skin", 0.0, "Verlet skin (m); 0: half the largest radius."},
+                                  {"reorder", true, "Reorder the discs along the grid for memory locality."}});
+
+const KeyTable kDemCraterKeys(
+    "/bodies/*/crater (dem body)", "The crater profile of a blast, written to crater.csv at each output.",
+    {{"surface", 0.0, "Ground level (m); 0: the top of the bed at t = 0, after any settling."},
+     {"bin", 0.0, "Width (m) of the profile's bins; 0: twice the largest diameter."},
+     {"centre", 0.0, "x (m) of the crater's centre; default: the charge's x (0 without a blast).", kDerived},
+     {"offsets", Json::array({-0.05, 0.0, 0.05}), "Offsets (m) from the centre where the depth is read."}});
+
+const KeyTable kDemSettleKeys("/bodies/*/settle (dem body)",
+                              "Settle under gravity before t = 0, then remove walls and start from rest.",
+                              {{"time", nullptr, "Settling time (s)."},
+                               {"remove_walls", Json::array(), "Names of the walls removed after it."}});
+
+}  // namespace
+
+namespace {
+
 std::string fmt(double v) {
   std::ostringstream o;
   o << v;
@@ -67,26 +119,12 @@ void check_overlaps(Params body, DemBody& b, double tol) {
 }  // namespace
 
 double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
-  body.validate({{"name", "dem"},
-                 {"type", "dem"},
-                 {"material", nullptr},
-                 {"mass", "disc"},
-                 {"rotation", true},
-                 {"contact", nullptr},
-                 {"discs", nullptr},
-                 {"walls", Json::array()},
-                 {"time_step", Json::object()},
-                 {"neighbour", Json::object()},
-                 {"overlap_tolerance", 1e-3},
-                 {"blast", Json::object()},
-                 {"settle", Json::object()},
-                 {"discs_csv", false},
-                 {"crater", Json::object()}});
+  body.validate(kDemKeys);
   b.csv = body.boolean("discs_csv");
   b.name = body.identifier("name");
   b.file = ctx.case_file.string();
   Params mat = body.at("material");
-  mat.validate({{"density", nullptr}, {"young", 0.0}, {"poisson", 0.3}});
+  mat.validate(kDemMaterialKeys);
   const double rho = mat.positive("density"), young = mat.non_negative("young"), nu = mat.number("poisson");
   if (!(nu > -1 && nu < 0.5)) mat.fail("poisson", "must lie in (-1, 0.5)");
   const bool sphere = body.choice("mass", {"disc", "sphere"}) == "sphere";
@@ -133,7 +171,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
 
   // time step
   Params ts = body.at("time_step");
-  ts.validate({{"dt", 0.0}, {"fraction", 0.2}, {"allow_above_critical", false}});
+  ts.validate(kDemTimeStepKeys);
   double m_min = D.mass[0];
   for (double m : D.mass) m_min = std::min(m_min, m);
   const double omega = b.law->max_frequency(m_min, b.r_min, b.inertia_factor, b.rotation);
@@ -149,7 +187,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   b.integrator = make_central_difference();
 
   Params nb = body.at("neighbour");
-  nb.validate({{"skin", 0.0}, {"reorder", true}});
+  nb.validate(kDemNeighbourKeys);
   b.skin = nb.non_negative("skin");
   if (b.skin == 0) b.skin = 0.5 * b.r_max;
   b.reorder = nb.boolean("reorder");
@@ -176,10 +214,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
 
   Params cr = body.at("crater");
   if (!cr.json().empty()) {
-    cr.validate({{"surface", 0.0},
-                 {"bin", 0.0},
-                 {"centre", b.blast ? b.blast->charge().x() : 0.0},
-                 {"offsets", Json::array({-0.05, 0.0, 0.05})}});
+    cr.validate(kDemCraterKeys, {{"centre", b.blast ? b.blast->charge().x() : 0.0}});
     b.crater.enabled = true;
     b.crater.surface = cr.number("surface");  // 0: set at t = 0 (DemModel::initialize), after any settling
     b.crater.bin = cr.non_negative("bin");
@@ -191,7 +226,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   Params st = body.at("settle");
   double settle = 0;
   if (!st.json().empty()) {
-    st.validate({{"time", nullptr}, {"remove_walls", Json::array()}});
+    st.validate(kDemSettleKeys);
     settle = st.positive("time");
     Params rw = st.at("remove_walls");
     for (size_t i = 0; i < rw.size(); ++i) {

@@ -11,6 +11,52 @@
 
 namespace lagfsi::dem {
 
+namespace {
+
+const char* const kVelocityDoc = "Initial velocity [vx, vy] (m/s) of the generator's discs.";
+const char* const kAngularDoc = "Initial angular velocity (rad/s) of the generator's discs.";
+const char* const kRegionDoc = "The region (see /bodies/*/discs/*/region (dem body, ...)).";
+
+const KeyTable kDemRectangleKeys("/bodies/*/discs/*/region (dem body, type rectangle)", "A rectangle.",
+                                 {{"type", "rectangle", "`rectangle`."},
+                                  {"origin", nullptr, "Lower-left corner [x, y] (m)."},
+                                  {"size", nullptr, "Width and height [w, h] (m)."}});
+
+const KeyTable kDemPolygonKeys("/bodies/*/discs/*/region (dem body, type polygon)", "A polygon.",
+                               {{"type", "polygon", "`polygon`."},
+                                {"points", nullptr, "Outline [[x, y], ...] (m), at least 3 points."}});
+
+const KeyTable kDemListKeys("/bodies/*/discs/* (dem body, type list)", "Discs given one by one.",
+                            {{"type", "list", "`list`."},
+                             {"discs", nullptr, "The discs [[x, y, r], ...] (m)."},
+                             {"velocity", Json::array({0.0, 0.0}), kVelocityDoc},
+                             {"angular_velocity", 0.0, kAngularDoc}});
+
+const KeyTable kDemHexKeys(
+    "/bodies/*/discs/* (dem body, type hex_lattice)",
+    "A hexagonal lattice of pitch 2 r (1 + gap), the first row on the region's bottom, every disc inside.",
+    {{"type", "hex_lattice", "`hex_lattice`."},
+     {"region", nullptr, kRegionDoc},
+     {"radius", nullptr, "Disc radius r (m)."},
+     {"gap", 0.0, "Relative gap between neighbouring discs."},
+     {"velocity", Json::array({0.0, 0.0}), kVelocityDoc},
+     {"angular_velocity", 0.0, kAngularDoc}});
+
+const KeyTable kDemRandomKeys(
+    "/bodies/*/discs/* (dem body, type random)",
+    "Random sequential addition of non-overlapping discs until a packing fraction or a count (a loose pack).",
+    {{"type", "random", "`random`."},
+     {"region", nullptr, kRegionDoc},
+     {"radius", nullptr, "Disc radius r (m), or [r_min, r_max] for radii uniform between them."},
+     {"fraction", 0.5, "Target packing fraction, at most 0.6."},
+     {"count", 0, "Number of discs (0: until the fraction)."},
+     {"seed", 1, "Seed of the random numbers."},
+     {"attempts", 20000, "Failed placements before the generator stops."},
+     {"velocity", Json::array({0.0, 0.0}), kVelocityDoc},
+     {"angular_velocity", 0.0, kAngularDoc}});
+
+}  // namespace
+
 double polygon_area(const std::vector<Vec2>& p) {
   double a = 0;
   for (size_t i = 0; i < p.size(); ++i) {
@@ -125,12 +171,12 @@ std::vector<Vec2> read_region(Params region) {
   if (!region.json().is_object() || !region.has("type")) region.fail("type", "required key is missing");
   const std::string t = region.choice("type", {"rectangle", "polygon"});
   if (t == "rectangle") {
-    region.validate({{"type", t}, {"origin", nullptr}, {"size", nullptr}});
+    region.validate(kDemRectangleKeys);
     const Vec2 o = region.vec2("origin"), s = region.vec2("size");
     if (!(s.x() > 0 && s.y() > 0)) region.fail("size", "must be positive");
     return {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
   }
-  region.validate({{"type", t}, {"points", nullptr}});
+  region.validate(kDemPolygonKeys);
   auto p = region.points("points");
   if (p.size() < 3 || !(polygon_area(p) > 0)) region.fail("points", "a polygon needs at least 3 points and an area");
   return p;
@@ -143,10 +189,9 @@ std::vector<DiscSpec> generate_discs(Params discs) {
     Params d = discs.at(g);
     if (!d.json().is_object() || !d.has("type")) d.fail("type", "required key is missing");
     const std::string t = d.choice("type", {"list", "hex_lattice", "random"});
-    const Json common_v = Json::array({0.0, 0.0});
     std::vector<DiscSpec> made;
     if (t == "list") {
-      d.validate({{"type", t}, {"discs", nullptr}, {"velocity", common_v}, {"angular_velocity", 0.0}});
+      d.validate(kDemListKeys);
       Params l = d.at("discs");
       for (size_t i = 0; i < l.size(); ++i) {
         const auto v = l.at(i).json();
@@ -157,12 +202,7 @@ std::vector<DiscSpec> generate_discs(Params discs) {
         made.push_back({Vec2(v[0].get<double>(), v[1].get<double>()), r, Vec2::Zero(), 0.0, 0});
       }
     } else if (t == "hex_lattice") {
-      d.validate({{"type", t},
-                  {"region", nullptr},
-                  {"radius", nullptr},
-                  {"gap", 0.0},
-                  {"velocity", common_v},
-                  {"angular_velocity", 0.0}});
+      d.validate(kDemHexKeys);
       const double r = d.positive("radius");
       const auto poly = read_region(d.at("region"));
       Vec2 lo, hi;
@@ -170,15 +210,7 @@ std::vector<DiscSpec> generate_discs(Params discs) {
       if ((hi - lo).x() * (hi - lo).y() / (r * r) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
       made = hex_lattice(poly, r, d.non_negative("gap"));
     } else {
-      d.validate({{"type", t},
-                  {"region", nullptr},
-                  {"radius", nullptr},
-                  {"fraction", 0.5},
-                  {"count", 0},
-                  {"seed", 1},
-                  {"attempts", 20000},
-                  {"velocity", common_v},
-                  {"angular_velocity", 0.0}});
+      d.validate(kDemRandomKeys);
       double r0, r1;
       if (d.json().at("radius").is_array()) {
         const auto rr = d.numbers("radius");

@@ -29,6 +29,41 @@ namespace lagfsi::dem {
 
 namespace {
 
+const KeyTable kDemEnergyProbeKeys(
+    "/probes/* (dem body, type energy)", "An energy of the body (J per m of depth).",
+    probe_keys({"energy"},
+               {{"kind", "kinetic",
+                 "kinetic (translation + rotation), rotational, elastic (in the contacts), gravity, dissipated, "
+                 "blast_work or balance (about 0)."}}));
+
+const KeyTable kDemFrontProbeKeys("/probes/* (dem body, type front)", "The largest x + r (m) of the discs.",
+                                  probe_keys({"front"},
+                                             {{"skip", 0, "Ignore the this many farthest discs (strays)."}}));
+
+const KeyTable kDemCountProbeKeys(
+    "/probes/* (dem body, type contacts or max_contact_force)",
+    "The number of contacts with a non-zero force, or the largest contact force (N per m).",
+    probe_keys({"contacts", "max_contact_force"}, {}));
+
+const KeyTable kDemDiscProbeKeys(
+    "/probes/* (dem body, type disc)", "A quantity of one disc.",
+    probe_keys({"disc"}, {{"id", nullptr, "The disc's place in generation order (from 0)."},
+                          {"quantity", "y", "x, y (m), vx, vy (m/s), omega (rad/s) or theta (rad)."}}));
+
+const KeyTable kDemKeNearProbeKeys(
+    "/probes/* (dem body, type ke_near)",
+    "The mean kinetic energy (J per m) of the discs nearest a point at t = 0, and a column <name>_peak_time.",
+    probe_keys({"ke_near"}, {{"at", nullptr, "The point [x, y] (m)."}, {"count", 6, "How many discs."}}));
+
+const KeyTable kDemHeightProbeKeys(
+    "/probes/* (dem body, type height)", "The largest y + r (m) of the discs whose centre lies within a band of x.",
+    probe_keys({"height"}, {{"x", nullptr, "x (m) of the line."},
+                            {"band", 0.0, "Half-width (m) of the band; 0: twice the largest radius."}}));
+
+}  // namespace
+
+namespace {
+
 class DemProbe final : public Probe {
  public:
   DemProbe(const DemModel& m, std::string name, std::string type, std::string quantity)
@@ -133,24 +168,24 @@ std::unique_ptr<Probe> DemModel::make_probe(Params p) {
       p.choice("type", {"energy", "contacts", "max_contact_force", "disc", "ke_near", "front", "height"});
   const std::string name = p.identifier("name");
   if (t == "energy") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "kinetic"}});
+    p.validate(kDemEnergyProbeKeys);
     const std::string k =
         p.choice("kind", {"kinetic", "rotational", "elastic", "gravity", "dissipated", "blast_work", "balance"});
     if (k == "elastic" || k == "dissipated" || k == "balance") b.track_energy = true;
     return std::make_unique<DemProbe>(*this, name, t, k);
   }
   if (t == "front") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"skip", 0}});
+    p.validate(kDemFrontProbeKeys);
     auto probe = std::make_unique<DemProbe>(*this, name, t, "");
     probe->skip = p.integer("skip", 0);
     return probe;
   }
   if (t == "contacts" || t == "max_contact_force") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    p.validate(kDemCountProbeKeys);
     return std::make_unique<DemProbe>(*this, name, t, "");
   }
   if (t == "disc") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"id", nullptr}, {"quantity", "y"}});
+    p.validate(kDemDiscProbeKeys);
     auto probe =
         std::make_unique<DemProbe>(*this, name, t, p.choice("quantity", {"x", "y", "vx", "vy", "omega", "theta"}));
     probe->id = p.integer("id", 0);
@@ -160,13 +195,13 @@ std::unique_ptr<Probe> DemModel::make_probe(Params p) {
     return probe;
   }
   if (t == "ke_near") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"count", 6}});
+    p.validate(kDemKeNearProbeKeys);
     auto probe = std::make_unique<DemProbe>(*this, name, t, "");
     probe->at = p.vec2("at");
     probe->count = p.integer("count", 1);
     return probe;
   }
-  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", 0.0}});
+  p.validate(kDemHeightProbeKeys);
   auto probe = std::make_unique<DemProbe>(*this, name, t, "");
   probe->x = p.number("x");
   probe->band = p.non_negative("band");

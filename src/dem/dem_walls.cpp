@@ -3,6 +3,18 @@
 
 namespace lagfsi::dem {
 
+namespace {
+
+const KeyTable kDemWallKeys(
+    "/bodies/*/walls/* (dem body)", "A rigid polyline wall, fixed or translated with a velocity v0 f(t).",
+    {{"name", "wall", "Wall name; default: wall<index>.", kDerived},
+     {"points", nullptr, "The polyline [[x, y], ...] (m), at least 2 points."},
+     {"velocity", Json::array({0.0, 0.0}), "Velocity v0 [vx, vy] (m/s)."},
+     {"function", Json::object(),
+      "Function of time f scaling the velocity (see time function (type constant) and others); {}: 1."}});
+
+}  // namespace
+
 Vec2 Wall::displacement(double t) const {
   if (!moving()) return Vec2::Zero();
   return velocity0 * (function ? function->integral(t) : t);
@@ -18,10 +30,7 @@ std::vector<Wall> read_walls(Params walls, const std::filesystem::path& base_dir
   for (size_t i = 0; i < walls.size(); ++i) {
     Params w = walls.at(i);
     if (!w.json().is_object()) w.fail("expected an object");
-    w.validate({{"name", "wall" + std::to_string(i)},
-                {"points", nullptr},
-                {"velocity", Json::array({0.0, 0.0})},
-                {"function", Json::object()}});
+    w.validate(kDemWallKeys, {{"name", "wall" + std::to_string(i)}});
     Wall wall;
     wall.name = w.identifier("name");
     wall.points = w.points("points");

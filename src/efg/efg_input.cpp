@@ -13,23 +13,126 @@
 namespace lagfsi::efg {
 
 namespace {
+
+const KeyTable kEfgKeys(
+    "/bodies/* (type efg)",
+    "An element-free Galerkin body: a static, physically nonlinear plane analysis (MLS shape functions).",
+    {{"name", nullptr, "Body name (output files; probes refer to it)."},
+     {"type", "efg", "`efg` (needs a static analysis)."},
+     {"thickness", 1.0, "Out-of-plane thickness (m)."},
+     {"domain", nullptr, "The nodes and background cells (see /bodies/*/domain (efg body, ...))."},
+     {"material", nullptr, "The material (see /bodies/*/material (efg body, type linear_elastic) and others)."},
+     {"regions", Json::array(), "Boxes with another material (see /bodies/*/regions/* (efg body))."},
+     {"efg", Json::object(), "Shape functions and integration (see /bodies/*/efg (efg body))."},
+     {"essential", Json::object(), "How essential conditions are imposed (see /bodies/*/essential (efg body))."},
+     {"exact", Json::object(), "An analytical solution for boundary data and errors (see /bodies/*/exact (efg body))."},
+     {"boundary_conditions", Json::array(), "Held displacements (see /bodies/*/boundary_conditions/* (efg body))."},
+     {"loads", Json::array(), "The reference load (see /bodies/*/loads/* (efg body, ...))."},
+     {"operator", "tangent", "Newton operator: tangent or secant."},
+     {"control", Json::object(), "Path following (see /bodies/*/control (efg body))."}});
+
+const KeyTable kEfgRegionKeys("/bodies/*/regions/* (efg body)", "An axis-aligned box of another material.",
+                              {{"min", nullptr, "Lower-left corner [x, y] (m)."},
+                               {"max", nullptr, "Upper-right corner [x, y] (m)."},
+                               {"material", nullptr,
+                                "Its material (see /bodies/*/material (efg body, type linear_elastic) and others)."}});
+
+const KeyTable kEfgExactKeys(
+    "/bodies/*/exact (efg body)", "An analytical solution (boundary data, energy-norm error).",
+    {{"type", "none",
+      "none, timoshenko (cantilever under a parabolic end shear), kirsch (plate with a hole) or polynomial "
+      "(quadratic u_x, u_y: patch tests)."},
+     {"P", 0.0, "timoshenko: end load (N)."},
+     {"L", 0.0, "timoshenko: length (m), x from the clamped end."},
+     {"D", 0.0, "timoshenko: depth (m), y centred."},
+     {"sigma0", 0.0, "kirsch: remote stress in x (Pa)."},
+     {"radius", 0.0, "kirsch: hole radius (m)."},
+     {"ux", Json::array({0, 0, 0, 0, 0, 0}), "polynomial: coefficients of 1, x, y, x^2, xy, y^2 in u_x."},
+     {"uy", Json::array({0, 0, 0, 0, 0, 0}), "polynomial: coefficients of 1, x, y, x^2, xy, y^2 in u_y."}});
+
+const KeyTable kEfgRectangleKeys(
+    "/bodies/*/domain (efg body, type rectangle)", "A rectangle of cells, possibly minus boxes.",
+    {{"type", "rectangle", "`rectangle`."},
+     {"origin", Json::array({0.0, 0.0}), "Lower-left corner [x, y] (m)."},
+     {"size", nullptr, "Width and height [w, h] (m)."},
+     {"divisions", nullptr, "Cells [nx, ny]."},
+     {"holes", Json::array(), "Boxes without cells (see /bodies/*/domain/holes/* (efg body))."},
+     {"cells", "q4", "Background cells: q4 or q9 (nodes at the corners, or also at mid-sides and centres)."}});
+
+const KeyTable kEfgHoleKeys("/bodies/*/domain/holes/* (efg body)", "A box removed from the rectangle.",
+                            {{"min", nullptr, "Lower-left corner [x, y] (m)."},
+                             {"max", nullptr, "Upper-right corner [x, y] (m)."}});
+
+const KeyTable kEfgPlateKeys("/bodies/*/domain (efg body, type plate_with_hole)",
+                             "A quarter of a square plate [0, size]^2 with a circular hole at the origin.",
+                             {{"type", "plate_with_hole", "`plate_with_hole`."},
+                              {"radius", nullptr, "Hole radius (m)."},
+                              {"size", nullptr, "Side of the quarter plate (m)."},
+                              {"divisions", nullptr,
+                               "Cells [n_arc, n_radial]: along each half of the arc, and radially."},
+                              {"grading", 1.0, "Ratio of the outermost to the innermost radial cell size."}});
+
+const KeyTable kEfgSettingsKeys(
+    "/bodies/*/efg (efg body)", "The MLS shape functions and the integration.",
+    {{"basis", "bilinear", "Polynomial basis: linear, bilinear, quadratic or biquadratic."},
+     {"weight", "cubic_spline", "Weight function: cubic_spline, quartic_spline, exponential or quartic_alt."},
+     {"domain", "rectangular", "Influence domains: rectangular or circular."},
+     {"alpha", 2.0, "Domain size: alpha times the node spacing."},
+     {"gauss", 5, "Gauss points per direction in each cell, 1-12."},
+     {"integration", "gauss", "gauss, or consistent (derivatives corrected per cell)."},
+     {"rcond_min", 1e-12, "Smallest reciprocal condition number of the moment matrix."},
+     {"protected_segments", Json::array(),
+      "Segments the supports do not cross (visibility; see /bodies/*/efg/protected_segments/* (efg body))."}});
+
+const KeyTable kEfgSegmentKeys("/bodies/*/efg/protected_segments/* (efg body)",
+                               "A segment (a crack, a re-entrant corner's side) no support crosses.",
+                               {{"from", nullptr, "One end [x, y] (m)."},
+                                {"to", nullptr, "The other end [x, y] (m)."}});
+
+const KeyTable kEfgEssentialKeys(
+    "/bodies/*/essential (efg body)", "How essential boundary conditions are imposed.",
+    {{"method", "coupling",
+      "coupling (FE nodes at the supports, coupled to EFG), penalty (collocation) or lagrange (multipliers; "
+      "umfpack or klu)."},
+     {"penalty", 1e4, "Penalty factor, times Young's modulus."},
+     {"fe_nodes", Json::array(),
+      "coupling: node selections made FE nodes without holding them ([{\"type\": \"all\"}]: the FE model)."}});
+
+const KeyTable kEfgBcKeys("/bodies/*/boundary_conditions/* (efg body)", "Held displacements, times the load factor.",
+                          {{"type", nullptr, "fixed, prescribed (value) or exact (the exact solution's)."},
+                           {"select", nullptr, "The nodes (see selection (type point) and others)."},
+                           {"components", "xy", "x, y or xy."},
+                           {"value", Json::array({0.0, 0.0}), "prescribed: displacement [x, y] (m)."}});
+
+const KeyTable kEfgBodyForceKeys("/bodies/*/loads/* (efg body, type exact_body_force)",
+                                 "The exact solution's body force.",
+                                 {{"type", "exact_body_force", "`exact_body_force`."}});
+
+const KeyTable kEfgTractionKeys(
+    "/bodies/*/loads/* (efg body, type traction or exact_traction)",
+    "A traction on the cell edges of the selected nodes, or the exact solution's.",
+    {{"type", nullptr, "traction or exact_traction."},
+     {"select", nullptr, "The boundary nodes (see selection (type point) and others)."},
+     {"value", Json::array({0.0, 0.0}), "traction: [x, y] (Pa), the peak of a non-uniform profile."},
+     {"profile", "uniform", "uniform, parabolic or triangular (along a segment selection)."}});
+
+const KeyTable kEfgControlKeys(
+    "/bodies/*/control (efg body)", "Path following: the load factor of each load step.",
+    {{"type", "load", "load, displacement, generalized_displacement or arc_length."},
+     {"form", "V", "Control space: U (nodal displacements) or V (MLS parameters)."},
+     {"increment", 0.0, "Initial load factor or displacement increment; 0 with load control: the analysis' load step."},
+     {"at", Json::array({0.0, 0.0}), "displacement control: the node [x, y] (m) whose displacement is controlled."},
+     {"component", "y", "displacement control: x or y."},
+     {"complex_roots", "real_part", "Arc length with complex roots: real_part, normal_plane or cut_back."}});
+
+}  // namespace
+
+namespace {
 Vec2 box_corner(Params p, const std::string& key) { return p.vec2(key); }
 }  // namespace
 
 EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
-  b.validate({{"name", nullptr},
-              {"type", "efg"},
-              {"thickness", 1.0},
-              {"domain", nullptr},
-              {"material", nullptr},
-              {"regions", Json::array()},
-              {"efg", Json::object()},
-              {"essential", Json::object()},
-              {"exact", Json::object()},
-              {"boundary_conditions", Json::array()},
-              {"loads", Json::array()},
-              {"operator", "tangent"},
-              {"control", Json::object()}});
+  b.validate(kEfgKeys);
   name_ = b.identifier("name");
   thickness_ = b.positive("thickness");
   if (ctx.analysis.type != "static")
@@ -38,20 +141,13 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   Params regions = b.at("regions");
   for (size_t i = 0; i < regions.size(); ++i) {
     Params r = regions.at(i);
-    r.validate({{"min", nullptr}, {"max", nullptr}, {"material", nullptr}});
+    r.validate(kEfgRegionKeys);
     region_boxes_.push_back({box_corner(r, "min"), box_corner(r, "max")});
     region_materials_.push_back(make_material(r.at("material")));
   }
   operator_ = b.choice("operator", {"tangent", "secant"}) == "tangent" ? Operator::tangent : Operator::secant;
   Params ex = b.at("exact");
-  ex.validate({{"type", "none"},
-               {"P", 0.0},
-               {"L", 0.0},
-               {"D", 0.0},
-               {"sigma0", 0.0},
-               {"radius", 0.0},
-               {"ux", Json::array({0, 0, 0, 0, 0, 0})},
-               {"uy", Json::array({0, 0, 0, 0, 0, 0})}});
+  ex.validate(kEfgExactKeys);
   exact_.type = ex.choice("type", {"none", "timoshenko", "kirsch", "polynomial"});
   if (exact_.type == "polynomial")
     for (const char* k : {"ux", "uy"}) {
@@ -95,12 +191,7 @@ void EfgModel::read_discretization(Params b) {
   const std::string t = d.choice("type", {"rectangle", "plate_with_hole"});
   try {
     if (t == "rectangle") {
-      d.validate({{"type", t},
-                  {"origin", Json::array({0.0, 0.0})},
-                  {"size", nullptr},
-                  {"divisions", nullptr},
-                  {"holes", Json::array()},
-                  {"cells", "q4"}});
+      d.validate(kEfgRectangleKeys);
       const int order = d.choice("cells", {"q4", "q9"}) == "q9" ? 2 : 1;
       const Vec2 size = d.vec2("size");
       if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
@@ -111,12 +202,12 @@ void EfgModel::read_discretization(Params b) {
       Params h = d.at("holes");
       for (size_t i = 0; i < h.size(); ++i) {
         Params hi = h.at(i);
-        hi.validate({{"min", nullptr}, {"max", nullptr}});
+        hi.validate(kEfgHoleKeys);
         holes.push_back({hi.vec2("min"), hi.vec2("max")});
       }
       mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes, order);
     } else {
-      d.validate({{"type", t}, {"radius", nullptr}, {"size", nullptr}, {"divisions", nullptr}, {"grading", 1.0}});
+      d.validate(kEfgPlateKeys);
       const auto div = d.numbers("divisions");
       if (div.size() != 2 || div[0] < 1 || div[1] < 1) d.fail("divisions", "expected [n_arc, n_radial] (each >= 1)");
       mesh_ = plate_with_hole(d.positive("radius"), d.positive("size"), static_cast<int>(div[0]),
@@ -126,14 +217,7 @@ void EfgModel::read_discretization(Params b) {
     d.fail(e.what());
   }
   Params e = b.at("efg");
-  e.validate({{"basis", "bilinear"},
-              {"weight", "cubic_spline"},
-              {"domain", "rectangular"},
-              {"alpha", 2.0},
-              {"gauss", 5},
-              {"integration", "gauss"},
-              {"rcond_min", 1e-12},
-              {"protected_segments", Json::array()}});
+  e.validate(kEfgSettingsKeys);
   consistent_ = e.choice("integration", {"gauss", "consistent"}) == "consistent";
   Basis basis;
   basis.type = Basis::parse(e.choice("basis", Basis::names()));
@@ -148,7 +232,7 @@ void EfgModel::read_discretization(Params b) {
   Params segs = e.at("protected_segments");
   for (size_t i = 0; i < segs.size(); ++i) {
     Params s = segs.at(i);
-    s.validate({{"from", nullptr}, {"to", nullptr}});
+    s.validate(kEfgSegmentKeys);
     vis_.segments.push_back({s.vec2("from"), s.vec2("to")});
   }
   // rho_j = alpha h_j, h_j the largest node spacing (width / height of the cells, halved for Q9 cells) at node j.
@@ -183,7 +267,7 @@ void EfgModel::read_discretization(Params b) {
 
 void EfgModel::read_boundary_conditions(Params b) {
   Params es = b.at("essential");
-  es.validate({{"method", "coupling"}, {"penalty", 1e4}, {"fe_nodes", Json::array()}});
+  es.validate(kEfgEssentialKeys);
   essential_ = es.choice("method", {"coupling", "penalty", "lagrange"});
   penalty_ = es.positive("penalty") * material_->young();
   const Index nn = mesh_.num_nodes();
@@ -196,7 +280,7 @@ void EfgModel::read_boundary_conditions(Params b) {
     Params c = bcs.at(i);
     if (!c.json().is_object() || !c.has("type")) c.fail("type", "required key is missing");
     const std::string t = c.choice("type", {"fixed", "prescribed", "exact"});
-    c.validate({{"type", t}, {"select", nullptr}, {"components", "xy"}, {"value", Json::array({0.0, 0.0})}});
+    c.validate(kEfgBcKeys);
     const std::string comps = c.choice("components", {"x", "y", "xy"});
     if (t == "exact" && exact_.type != "timoshenko" && exact_.type != "polynomial")
       c.fail("type", "\"exact\" displacements need exact.type = timoshenko or polynomial");
@@ -258,7 +342,7 @@ void EfgModel::read_loads(Params b) {
     if (!l.json().is_object() || !l.has("type")) l.fail("type", "required key is missing");
     const std::string t = l.choice("type", {"traction", "exact_traction", "exact_body_force"});
     if (t == "exact_body_force") {
-      l.validate({{"type", t}});
+      l.validate(kEfgBodyForceKeys);
       if (!exact_.available()) l.fail("type", "exact_body_force needs an exact solution (exact.type)");
       for (const auto& gp : gps_) {
         const Vec2 bf = exact_.body_force(gp.x);
@@ -270,7 +354,7 @@ void EfgModel::read_loads(Params b) {
       }
       continue;
     }
-    l.validate({{"type", t}, {"select", nullptr}, {"value", Json::array({0.0, 0.0})}, {"profile", "uniform"}});
+    l.validate(kEfgTractionKeys);
     // (the edge rule is the one of the consistent-integration correction: interior edges cancel, boundary ones match)
     if (t == "exact_traction" && !exact_.available())
       l.fail("type", "exact_traction needs an exact solution (exact.type)");
@@ -338,12 +422,7 @@ void EfgModel::read_loads(Params b) {
 
 void EfgModel::read_control(Params b) {
   Params c = b.at("control");
-  c.validate({{"type", "load"},
-              {"form", "V"},
-              {"increment", 0.0},
-              {"at", Json::array({0.0, 0.0})},
-              {"component", "y"},
-              {"complex_roots", "real_part"}});
+  c.validate(kEfgControlKeys);
   const ControlType t =
       PathFollowing::parse(c.choice("type", {"load", "displacement", "generalized_displacement", "arc_length"}));
   control_u_form_ = c.choice("form", {"U", "V"}) == "U";

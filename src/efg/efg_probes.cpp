@@ -10,6 +10,33 @@
 namespace lagfsi::efg {
 
 namespace {
+
+const KeyTable kEfgLoadFactorProbeKeys("/probes/* (efg body, type load_factor)", "The load factor lambda.",
+                                       probe_keys({"load_factor"}, {}));
+
+const KeyTable kEfgDamageProbeKeys("/probes/* (efg body, type damage_max)", "The largest damage (0-1) of the body.",
+                                   probe_keys({"damage_max"}, {}));
+
+const KeyTable kEfgLoadProbeKeys("/probes/* (efg body, type load)",
+                                 "The total applied load (N): lambda times the reference load.",
+                                 probe_keys({"load"},
+                                            {{"component", "y", "x or y."}, {"scale", 1.0, "Factor applied to it."}}));
+
+const KeyTable kEfgStressProbeKeys("/probes/* (efg body, type stress)",
+                                   "The elastic stress (Pa) at a node, averaged over the cells around it.",
+                                   probe_keys({"stress"}, {{"at", nullptr, "The node [x, y] (m)."},
+                                                           {"component", "xx", "xx, yy or xy."}}));
+
+const KeyTable kEfgDisplacementProbeKeys(
+    "/probes/* (efg body, type displacement)", "The displacement (m) at a node, or its MLS parameter.",
+    probe_keys({"displacement"}, {{"at", nullptr, "The node [x, y] (m)."},
+                                  {"component", "y", "x or y."},
+                                  {"value", "displacement", "displacement or parameter (the nodal MLS parameter)."}}));
+
+const KeyTable kEfgReactionProbeKeys("/probes/* (efg body, type reaction)", "The sum of the reactions (N) over nodes.",
+                                     probe_keys({"reaction"}, {{"select", nullptr,
+                                                                "The nodes (see selection (type point) and others)."},
+                                                               {"component", "y", "x or y."}}));
 class FnProbe final : public Probe {
  public:
   FnProbe(std::string name, std::function<double()> f) : name_(std::move(name)), f_(std::move(f)) {}
@@ -26,15 +53,15 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
   const std::string t = p.choice("type", {"load_factor", "load", "displacement", "reaction", "damage_max", "stress"});
   const std::string name = p.identifier("name");
   if (t == "load_factor") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    p.validate(kEfgLoadFactorProbeKeys);
     return std::make_unique<FnProbe>(name, [this] { return lambda0_; });
   }
   if (t == "damage_max") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    p.validate(kEfgDamageProbeKeys);
     return std::make_unique<FnProbe>(name, [this] { return summary()["damage_max"].get<double>(); });
   }
   if (t == "load") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"component", "y"}, {"scale", 1.0}});
+    p.validate(kEfgLoadProbeKeys);
     const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
     const double scale = p.number("scale");
     double total = 0;
@@ -43,7 +70,7 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
   }
   if (t == "stress") {
     // Elastic stress D0 B v at a node, averaged over the cells around it (each evaluates its own functions).
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"component", "xx"}});
+    p.validate(kEfgStressProbeKeys);
     Json sel = {{"type", "point"}, {"at", p.json()["at"]}};
     Params sp(sel, p.file(), p.child_path("at"));
     const Index n = select_nodes(sp, mesh_.nodes).front();
@@ -77,12 +104,7 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
     });
   }
   if (t == "displacement") {
-    p.validate({{"name", nullptr},
-                {"type", t},
-                {"body", nullptr},
-                {"at", nullptr},
-                {"component", "y"},
-                {"value", "displacement"}});
+    p.validate(kEfgDisplacementProbeKeys);
     Json sel = {{"type", "point"}, {"at", p.json()["at"]}};
     Params sp(sel, p.file(), p.child_path("at"));
     const Index n = select_nodes(sp, mesh_.nodes).front();
@@ -95,7 +117,7 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
       return u;
     });
   }
-  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"select", nullptr}, {"component", "y"}});
+  p.validate(kEfgReactionProbeKeys);
   const auto nodes = select_nodes(p.at("select"), mesh_.nodes);
   const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
   return std::make_unique<FnProbe>(name, [this, nodes, comp] {

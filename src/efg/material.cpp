@@ -6,6 +6,52 @@
 
 namespace lagfsi::efg {
 
+namespace {
+
+/// The keys of every law, then the law's own.
+std::vector<KeyDecl> law_keys(const std::string& type, std::vector<KeyDecl> own) {
+  std::vector<KeyDecl> keys = {{"type", type, "`" + type + "`."},
+                               {"young", nullptr, "Young's modulus E0 (Pa)."},
+                               {"poisson", nullptr, "Poisson's ratio, in [0, 0.5)."},
+                               {"hypothesis", "plane_stress", "plane_stress or plane_strain."}};
+  for (auto& k : own) keys.push_back(std::move(k));
+  return keys;
+}
+
+const KeyTable kElasticKeys("/bodies/*/material (efg body, type linear_elastic)", "Linear elasticity.",
+                            law_keys("linear_elastic", {}));
+
+const KeyTable kMazarsKeys("/bodies/*/material (efg body, type mazars)",
+                           "Mazars' (1984) damage: D = a_t D_t + a_c D_c from the equivalent strain.",
+                           law_keys("mazars", {{"At", nullptr, "A_t of the tensile damage D_t."},
+                                               {"Bt", nullptr, "B_t of the tensile damage D_t."},
+                                               {"Ac", nullptr, "A_c of the compressive damage D_c."},
+                                               {"Bc", nullptr, "B_c of the compressive damage D_c."},
+                                               {"kappa0", nullptr, "Damage threshold (strain)."}}));
+
+const KeyTable kExponentialDamageKeys(
+    "/bodies/*/material (efg body, type exponential_damage)",
+    "D = 1 - (kappa0 / kappa) [1 - alpha + alpha exp(-beta (kappa - kappa0))], Mazars' equivalent strain.",
+    law_keys("exponential_damage", {{"alpha", nullptr, "alpha (the damage reached at large strain)."},
+                                    {"beta", nullptr, "beta (the rate of the damage)."},
+                                    {"kappa0", nullptr, "Damage threshold (strain)."}}));
+
+const KeyTable kSmearedCrackKeys(
+    "/bodies/*/material (efg body, type smeared_crack)",
+    "Rotating total-strain smeared crack: Carreira-Chu compression; exponential (fracture energy) or Carreira-Chu "
+    "tension.",
+    law_keys("smeared_crack",
+             {{"ft", nullptr, "Tensile strength f_t (Pa)."},
+              {"fc", nullptr, "Compressive strength f_c (Pa)."},
+              {"eps_c", 0.002, "Strain at the compressive peak (fc < eps_c young)."},
+              {"tension", "exponential", "Tension softening: exponential or carreira_chu."},
+              {"Gf", 0.0, "Exponential tension: fracture energy G_f (N/m), positive."},
+              {"band_width", 0.0, "Exponential tension: crack band width h (m), positive, below 2 E G_f / f_t^2."},
+              {"eps_t", 0.0, "Carreira-Chu tension: strain at the tensile peak (ft < eps_t young)."},
+              {"residual", 1e-4, "Residual stiffness fraction of a cracked direction, >= 0."}}));
+
+}  // namespace
+
 std::unique_ptr<Material> make_mazars(Params p, double E, double nu, bool ps);
 std::unique_ptr<Material> make_exponential_damage(Params p, double E, double nu, bool ps);
 std::unique_ptr<Material> make_smeared_crack(Params p, double E, double nu, bool ps);
@@ -70,11 +116,7 @@ std::unique_ptr<Material> make_material(Params p) {
   if (!p.json().is_object()) p.fail("expected an object");
   if (!p.has("type")) p.fail("type", "required key is missing");
   const std::string t = p.choice("type", {"linear_elastic", "mazars", "exponential_damage", "smeared_crack"});
-  auto common = [&](Json extra) {
-    Json d = {{"type", t}, {"young", nullptr}, {"poisson", nullptr}, {"hypothesis", "plane_stress"}};
-    d.update(extra);
-    p.validate(d);
-  };
+  auto common = [&](const KeyTable& table) { p.validate(table); };
   auto check = [&](double& E, double& nu, bool& ps) {
     E = p.positive("young");
     nu = p.number("poisson");
@@ -84,28 +126,21 @@ std::unique_ptr<Material> make_material(Params p) {
   double E, nu;
   bool ps;
   if (t == "linear_elastic") {
-    common(Json::object());
+    common(kElasticKeys);
     check(E, nu, ps);
     return std::make_unique<LinearElastic>(E, nu, ps);
   }
   if (t == "mazars") {
-    common({{"At", nullptr}, {"Bt", nullptr}, {"Ac", nullptr}, {"Bc", nullptr}, {"kappa0", nullptr}});
+    common(kMazarsKeys);
     check(E, nu, ps);
     return make_mazars(p, E, nu, ps);
   }
   if (t == "exponential_damage") {
-    common({{"alpha", nullptr}, {"beta", nullptr}, {"kappa0", nullptr}});
+    common(kExponentialDamageKeys);
     check(E, nu, ps);
     return make_exponential_damage(p, E, nu, ps);
   }
-  common({{"ft", nullptr},
-          {"fc", nullptr},
-          {"eps_c", 0.002},
-          {"tension", "exponential"},
-          {"Gf", 0.0},
-          {"band_width", 0.0},
-          {"eps_t", 0.0},
-          {"residual", 1e-4}});
+  common(kSmearedCrackKeys);
   check(E, nu, ps);
   return make_smeared_crack(p, E, nu, ps);
 }

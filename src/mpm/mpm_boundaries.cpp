@@ -16,6 +16,38 @@
 
 namespace lagfsi::mpm {
 
+namespace {
+
+const KeyTable kMpmLoadKeys(
+    "/bodies/*/loads/* (mpm body, type particle_force)", "A total force split equally over the selected particles.",
+    {{"type", "particle_force", "`particle_force`."},
+     {"select", nullptr, "The particles, by reference position (see selection (type point) and others)."},
+     {"value", nullptr, "Total force [x, y] (N), scaled by the function."},
+     {"function", Json{{"type", "constant"}}, "Function of time (see time function (type constant) and others)."}});
+
+const KeyTable kMpmFixedKeys("/bodies/*/boundary_conditions/* (mpm body, type fixed)", "Grid nodes held.",
+                             {{"type", "fixed", "`fixed`."},
+                              {"select", nullptr, "The grid nodes (see selection (type point) and others)."},
+                              {"components", "xy", "Held components: x, y or xy."}});
+
+const KeyTable kMpmPrescribedKeys(
+    "/bodies/*/boundary_conditions/* (mpm body, type prescribed_velocity or prescribed_acceleration)",
+    "Grid nodes moved with value f(t) (velocity) or its integral (acceleration); components whose value is 0 are free.",
+    {{"type", nullptr, "prescribed_velocity or prescribed_acceleration."},
+     {"select", nullptr, "The grid nodes (see selection (type point) and others)."},
+     {"value", nullptr, "Velocity (m/s) or acceleration (m/s^2) [x, y], scaled by the function."},
+     {"function", nullptr, "Function of time, e.g. an accelerogram as a table (see time function (type table))."}});
+
+const KeyTable kMpmAbsorbingKeys(
+    "/bodies/*/absorbing_boundaries/* (mpm body)",
+    "Lysmer-Kuhlemeyer dashpots on grid nodes, or a free-field lateral boundary (a 1D column beside it).",
+    {{"select", nullptr, "The grid nodes (see selection (type point) and others)."},
+     {"normal", nullptr, "Outward normal [x, y] (free field: [1, 0] or [-1, 0])."},
+     {"free_field", false, "A lateral boundary with a free-field column of the body's material."},
+     {"start", 0.0, "Free field: rollers until this time (s), their reactions after (0: off)."}});
+
+}  // namespace
+
 // ------------------------------------------------------------------------------------------ applying
 
 void GridBoundaries::impose_motion(Grid& grid, double t1, double dt) const {
@@ -129,10 +161,7 @@ std::vector<ParticleLoad> read_particle_loads(Params loads, const std::vector<Ve
   std::vector<ParticleLoad> out;
   for (size_t i = 0; i < loads.size(); ++i) {
     Params l = loads.at(i);
-    l.validate({{"type", "particle_force"},
-                {"select", nullptr},
-                {"value", nullptr},
-                {"function", Json{{"type", "constant"}}}});
+    l.validate(kMpmLoadKeys);
     l.choice("type", {"particle_force"});
     ParticleLoad pl;
     pl.particles = select_nodes(l.at("select"), reference_positions);
@@ -151,7 +180,7 @@ void read_boundary_conditions(Params bcs, const std::vector<Vec2>& nodes, bool t
     if (!bc.json().is_object() || !bc.has("type")) bc.fail("type", "required key is missing");
     const std::string type = bc.choice("type", {"fixed", "prescribed_velocity", "prescribed_acceleration"});
     if (type == "fixed") {
-      bc.validate({{"type", "fixed"}, {"select", nullptr}, {"components", "xy"}});
+      bc.validate(kMpmFixedKeys);
       const std::string comps = bc.choice("components", {"x", "y", "xy"});
       for (Index n : select_nodes(bc.at("select"), nodes)) {
         if (comps != "y") out.fixed.push_back({n, 0});
@@ -161,7 +190,7 @@ void read_boundary_conditions(Params bcs, const std::vector<Vec2>& nodes, bool t
     }
     // The selected nodes move with value * f(t) (velocity) or value * int f (acceleration); both components
     // whose value is non-zero are prescribed, and "fixed" other components stay fixed.
-    bc.validate({{"type", type}, {"select", nullptr}, {"value", nullptr}, {"function", nullptr}});
+    bc.validate(kMpmPrescribedKeys);
     if (two_phase) bc.fail("type", "prescribed motion of two-phase bodies is not available in this version");
     const Vec2 value = bc.vec2("value");
     std::shared_ptr<TimeFunction> fn = make_time_function(bc.at("function"), base_dir);
@@ -244,7 +273,7 @@ void read_absorbing_boundaries(Params ab, const std::vector<Vec2>& nodes, const 
   const double h = grid.h;
   for (size_t i = 0; i < ab.size(); ++i) {
     Params a = ab.at(i);
-    a.validate({{"select", nullptr}, {"normal", nullptr}, {"free_field", false}, {"start", 0.0}});
+    a.validate(kMpmAbsorbingKeys);
     if (!a.boolean("free_field") && a.non_negative("start") > 0) a.fail("start", "is for free-field boundaries");
     if (body.two_phase) a.fail("select", "absorbing boundaries of two-phase bodies are not available in this version");
     Vec2 nrm = a.vec2("normal");

@@ -16,6 +16,103 @@ namespace lagfsi::mpm {
 
 namespace {
 
+const KeyTable kMpmKeys(
+    "/bodies/* (type mpm)",
+    "A material point method body: particles carried on a fixed background grid (explicit or implicit).",
+    {{"name", nullptr, "Body name (output files <name>.pvd, <name>/*.vtu; probes refer to it)."},
+     {"type", "mpm", "`mpm`."},
+     {"material", nullptr, "The material (see /bodies/*/material (mpm body, type linear_elastic) and others)."},
+     {"grid", nullptr, "The background grid (see /bodies/*/grid (mpm body))."},
+     {"regions", nullptr, "Regions filled with particles (see /bodies/*/regions/* (mpm body, ...))."},
+     {"particles_per_cell", 2, "Particles per cell in each direction, 1-8."},
+     {"shape_functions", "linear", "linear or gimp."},
+     {"update", "musl", "Stress update of the explicit scheme: musl, usl or usf."},
+     {"cfl", 0.5, "Courant number of the explicit substeps, in (0, 1]."},
+     {"flip", 1.0, "FLIP share of the particle velocity update, in [0, 1] (1: FLIP, 0: PIC)."},
+     {"boundary_conditions", Json::array(),
+      "Grid-node conditions (see /bodies/*/boundary_conditions/* (mpm body, ...))."},
+     {"damping", Json::object(), "Damping (see /bodies/*/damping (mpm body))."},
+     {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s) of the particles."},
+     {"initial_state", Json{{"type", "given"}},
+      "Initial velocity field (see /bodies/*/initial_state (mpm body, ...))."},
+     {"initial_stress", Json{{"type", "zero"}}, "Initial stress (see /bodies/*/initial_stress (mpm body, ...))."},
+     {"particles_csv", false, "Also write the particles as CSV files."},
+     {"grid_output", false,
+      "Also write <name>_grid.pvd: the grid nodes with mass, velocity, force and boundary flags."},
+     {"two_phase", Json::object(), "Saturated soil (see /bodies/*/two_phase (mpm body)); {}: single phase."},
+     {"absorbing_boundaries", Json::array(), "Absorbing boundaries (see /bodies/*/absorbing_boundaries/* (mpm body))."},
+     {"time_integration", "explicit",
+      "explicit, or implicit (the analysis' Newmark or generalized-alpha; linear elastic, single phase, undamped)."},
+     {"loads", Json::array(), "Particle loads (see /bodies/*/loads/* (mpm body, type particle_force))."},
+     {"gravity", true, "Whether the case's gravity acts on the body."}});
+
+const KeyTable kMpmGridKeys("/bodies/*/grid (mpm body)", "The background grid: square cells over a rectangle.",
+                            {{"origin", Json::array({0.0, 0.0}), "Lower-left corner [x, y] (m)."},
+                             {"size", nullptr, "Width and height [w, h] (m), a whole number of cells each."},
+                             {"cell", nullptr, "Cell size h (m)."}});
+
+const KeyTable kMpmRectangleKeys("/bodies/*/regions/* (mpm body, type rectangle)", "A rectangle inside the grid.",
+                                 {{"type", "rectangle", "`rectangle`."},
+                                  {"origin", Json::array({0.0, 0.0}), "Lower-left corner [x, y] (m)."},
+                                  {"size", nullptr, "Width and height [w, h] (m)."}});
+
+const KeyTable kMpmPolygonKeys("/bodies/*/regions/* (mpm body, type polygon)", "A polygon inside the grid.",
+                               {{"type", "polygon", "`polygon`."},
+                                {"points", nullptr, "Outline [[x, y], ...] (m), at least 3 points."}});
+
+const KeyTable kMpmPulseKeys("/bodies/*/initial_state (mpm body, type pulse)",
+                             "v = amplitude exp(-((x - centre) / width)^2) along an axis (a wave packet).",
+                             {{"type", "pulse", "`pulse`."},
+                              {"amplitude", nullptr, "Amplitude (m/s)."},
+                              {"centre", nullptr, "Centre (m) on the axis."},
+                              {"width", nullptr, "Width (m), positive."},
+                              {"axis", "x", "x or y."}});
+
+const KeyTable kMpmAxialModeKeys("/bodies/*/initial_state (mpm body, type axial_mode)",
+                                 "v = amplitude sin(wavenumber (x - start)) along an axis (a vibrating bar).",
+                                 {{"type", "axial_mode", "`axial_mode`."},
+                                  {"amplitude", nullptr, "Amplitude (m/s)."},
+                                  {"wavenumber", nullptr, "Wavenumber (1/m)."},
+                                  {"start", 0.0, "Origin (m) of the sine on the axis."},
+                                  {"axis", "x", "x or y."}});
+
+const KeyTable kMpmGivenKeys("/bodies/*/initial_state (mpm body, type given)", "The uniform initial_velocity.",
+                             {{"type", "given", "`given`."}});
+
+const KeyTable kMpmGeostaticKeys("/bodies/*/initial_stress (mpm body, type geostatic)",
+                                 "Vertical stress from the weight above the surface, horizontal k0 times it.",
+                                 {{"type", "geostatic", "`geostatic`."},
+                                  {"surface", nullptr, "Height (m) of the ground surface."},
+                                  {"k0", 0.0, "Lateral stress ratio; default: poisson / (1 - poisson).", kDerived}});
+
+const KeyTable kMpmZeroStressKeys("/bodies/*/initial_stress (mpm body, type zero)", "No initial stress.",
+                                  {{"type", "zero", "`zero`."}});
+
+const KeyTable kMpmTwoPhaseKeys(
+    "/bodies/*/two_phase (mpm body)",
+    "Saturated soil: the particles carry water (the material's density is then the grains').",
+    {{"porosity", nullptr, "Porosity, in (0, 1)."},
+     {"water_density", 1000.0, "Water density (kg/m^3)."},
+     {"water_bulk_modulus", 2.2e9, "Water bulk modulus (Pa)."},
+     {"hydraulic_conductivity", nullptr, "Hydraulic conductivity (m/s)."},
+     {"initial_pore_pressure", Json{{"type", "zero"}},
+      "Initial pore pressure (see /bodies/*/two_phase/initial_pore_pressure (mpm body, ...))."}});
+
+const KeyTable kMpmPoreHydrostaticKeys("/bodies/*/two_phase/initial_pore_pressure (mpm body, type hydrostatic)",
+                                       "Hydrostatic pore pressure below a water level.",
+                                       {{"type", "hydrostatic", "`hydrostatic`."},
+                                        {"level", nullptr, "Height (m) of the water table."}});
+
+const KeyTable kMpmPoreZeroKeys("/bodies/*/two_phase/initial_pore_pressure (mpm body, type zero)",
+                                "No initial pore pressure.", {{"type", "zero", "`zero`."}});
+
+const KeyTable kMpmDampingKeys("/bodies/*/damping (mpm body)",
+                               "Cundall's local damping until a time, and Rayleigh damping mass M + stiffness K.",
+                               {{"local", 0.0, "Local damping coefficient, in [0, 1)."},
+                                {"local_until", 1e30, "Time (s) until which the local damping acts."},
+                                {"mass", 0.0, "Mass-proportional Rayleigh coefficient (1/s)."},
+                                {"stiffness", 0.0, "Stiffness-proportional Rayleigh coefficient (s)."}});
+
 bool inside_polygon(const std::vector<Vec2>& poly, const Vec2& q) {
   bool in = false;
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -28,7 +125,7 @@ bool inside_polygon(const std::vector<Vec2>& poly, const Vec2& q) {
 
 /// "grid": origin, size (a whole number of cells per direction) and cell.
 void read_grid(Params g, Grid& grid) {
-  g.validate({{"origin", Json::array({0.0, 0.0})}, {"size", nullptr}, {"cell", nullptr}});
+  g.validate(kMpmGridKeys);
   grid.origin = g.vec2("origin");
   const Vec2 size = g.vec2("size");
   grid.h = g.positive("cell");
@@ -59,12 +156,12 @@ void fill_regions(Params regions, const Grid& grid, int ppc, double rho, Particl
     if (!reg.has("type")) reg.fail("type", "required key is missing");
     std::vector<Vec2> poly;
     if (reg.choice("type", {"rectangle", "polygon"}) == "rectangle") {
-      reg.validate({{"type", "rectangle"}, {"origin", Json::array({0.0, 0.0})}, {"size", nullptr}});
+      reg.validate(kMpmRectangleKeys);
       const Vec2 o = reg.vec2("origin"), s = reg.vec2("size");
       if (!(s.x() > 0 && s.y() > 0)) reg.fail("size", "must be positive");
       poly = {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
     } else {
-      reg.validate({{"type", "polygon"}, {"points", nullptr}});
+      reg.validate(kMpmPolygonKeys);
       poly = reg.points("points");
       if (poly.size() < 3) reg.fail("points", "a polygon needs at least 3 points");
     }
@@ -99,7 +196,7 @@ void read_initial_state(const Vec2& v0, Params is, Particles& P) {
   const std::string ist = is.choice("type", {"given", "axial_mode", "pulse"});
   if (ist == "pulse") {
     // v = amplitude exp(-((x - centre) / width)^2) along an axis (a wave packet for boundary tests).
-    is.validate({{"type", "pulse"}, {"amplitude", nullptr}, {"centre", nullptr}, {"width", nullptr}, {"axis", "x"}});
+    is.validate(kMpmPulseKeys);
     const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
     const double A = is.number("amplitude"), x0 = is.number("centre"), w = is.positive("width");
     for (size_t q = 0; q < P.size(); ++q) {
@@ -108,8 +205,7 @@ void read_initial_state(const Vec2& v0, Params is, Particles& P) {
       P.v[q][ax] = A * std::exp(-r * r);
     }
   } else if (ist == "axial_mode") {
-    is.validate(
-        {{"type", "axial_mode"}, {"amplitude", nullptr}, {"wavenumber", nullptr}, {"start", 0.0}, {"axis", "x"}});
+    is.validate(kMpmAxialModeKeys);
     const int ax = is.choice("axis", {"x", "y"}) == "x" ? 0 : 1;
     const double A = is.number("amplitude"), k = is.number("wavenumber"), x0 = is.number("start");
     for (size_t p = 0; p < P.size(); ++p) {
@@ -117,7 +213,7 @@ void read_initial_state(const Vec2& v0, Params is, Particles& P) {
       P.v[p][ax] = A * std::sin(k * (P.x[p][ax] - x0));
     }
   } else {
-    is.validate({{"type", "given"}});
+    is.validate(kMpmGivenKeys);
   }
 }
 
@@ -127,7 +223,7 @@ double read_initial_stress(Params st, const MpmMaterial& mat, double gy, Particl
   const double nu = mat.poisson(), rho = mat.density();
   if (!st.has("type")) st.fail("type", "required key is missing");
   if (st.choice("type", {"zero", "geostatic"}) == "geostatic") {
-    st.validate({{"type", "geostatic"}, {"surface", nullptr}, {"k0", nu / (1 - nu)}});
+    st.validate(kMpmGeostaticKeys, {{"k0", nu / (1 - nu)}});
     const double top = st.number("surface"), k0 = st.non_negative("k0");
     for (size_t p = 0; p < P.size(); ++p) {
       const double sv = rho * gy * (top - P.x[p].y());  // negative (compression) below the surface
@@ -135,17 +231,13 @@ double read_initial_stress(Params st, const MpmMaterial& mat, double gy, Particl
     }
     return k0;
   }
-  st.validate({{"type", "zero"}});
+  st.validate(kMpmZeroStressKeys);
   return nu / (1 - nu);
 }
 
 /// Saturated soil: the material's density is the grains'; the particle carries water (porosity n).
 void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
-  tp.validate({{"porosity", nullptr},
-               {"water_density", 1000.0},
-               {"water_bulk_modulus", 2.2e9},
-               {"hydraulic_conductivity", nullptr},
-               {"initial_pore_pressure", Json{{"type", "zero"}}}});
+  tp.validate(kMpmTwoPhaseKeys);
   body.two_phase = true;
   const double n0 = tp.number("porosity");
   if (!(n0 > 0 && n0 < 1)) tp.fail("porosity", "must lie in (0, 1)");
@@ -160,10 +252,10 @@ void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
   double level = 0;
   const bool hydro = ip.choice("type", {"zero", "hydrostatic"}) == "hydrostatic";
   if (hydro) {
-    ip.validate({{"type", "hydrostatic"}, {"level", nullptr}});
+    ip.validate(kMpmPoreHydrostaticKeys);
     level = ip.number("level");
   } else {
-    ip.validate({{"type", "zero"}});
+    ip.validate(kMpmPoreZeroKeys);
   }
   Particles& P = body.particles;
   const double rho = body.material->density();
@@ -214,28 +306,7 @@ std::unique_ptr<MpmScheme> read_implicit_scheme(Params b, const MpmBody& B, cons
 }  // namespace
 
 MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx), body_(std::make_unique<MpmBody>()) {
-  b.validate({{"name", nullptr},
-              {"type", "mpm"},
-              {"material", nullptr},
-              {"grid", nullptr},
-              {"regions", nullptr},
-              {"particles_per_cell", 2},
-              {"shape_functions", "linear"},
-              {"update", "musl"},
-              {"cfl", 0.5},
-              {"flip", 1.0},
-              {"boundary_conditions", Json::array()},
-              {"damping", Json::object()},
-              {"initial_velocity", Json::array({0.0, 0.0})},
-              {"initial_state", Json{{"type", "given"}}},
-              {"initial_stress", Json{{"type", "zero"}}},
-              {"particles_csv", false},
-              {"grid_output", false},
-              {"two_phase", Json::object()},
-              {"absorbing_boundaries", Json::array()},
-              {"time_integration", "explicit"},
-              {"loads", Json::array()},
-              {"gravity", true}});
+  b.validate(kMpmKeys);
   MpmBody& B = *body_;
   B.name = b.identifier("name");
   B.case_gravity = ctx.gravity;
@@ -257,7 +328,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx), body_(std::mak
   const bool particles_csv = b.boolean("particles_csv");
   const bool grid_output = b.boolean("grid_output");
   Params d = b.at("damping");
-  d.validate({{"local", 0.0}, {"local_until", 1e30}, {"mass", 0.0}, {"stiffness", 0.0}});
+  d.validate(kMpmDampingKeys);
   B.damping.local_until = d.number("local_until");
   B.damping.local = d.non_negative("local");
   if (B.damping.local >= 1) d.fail("local", "must lie in [0, 1)");

@@ -8,6 +8,28 @@
 
 namespace lagfsi::mpm {
 
+namespace {
+
+const KeyTable kMpmElasticKeys("/bodies/*/material (mpm body, type linear_elastic)", "Linear elasticity.",
+                               {{"type", "linear_elastic", "`linear_elastic`."},
+                                {"young", nullptr, "Young's modulus (Pa)."},
+                                {"poisson", 0.0, "Poisson's ratio, in (-1, 0.5)."},
+                                {"density", nullptr, "Mass density (kg/m^3)."}});
+
+const KeyTable kMpmMohrCoulombKeys("/bodies/*/material (mpm body, type mohr_coulomb)",
+                                   "Elastic-perfectly plastic Mohr-Coulomb.",
+                                   {{"type", "mohr_coulomb", "`mohr_coulomb`."},
+                                    {"young", nullptr, "Young's modulus (Pa)."},
+                                    {"poisson", 0.0, "Poisson's ratio, in (-1, 0.5)."},
+                                    {"density", nullptr, "Mass density (kg/m^3)."},
+                                    {"cohesion", 0.0, "Cohesion c (Pa)."},
+                                    {"friction_angle", nullptr, "Friction angle (degrees), in (0, 90)."},
+                                    {"dilatancy_angle", 0.0, "Dilatancy angle (degrees), in [0, friction_angle]."},
+                                    {"tension_cutoff", -1.0,
+                                     "Tensile strength (Pa), at most c cot(friction angle); -1: the apex."}});
+
+}  // namespace
+
 MpmMaterial::MpmMaterial(double young, double poisson, double density) : E_(young), nu_(poisson), rho_(density) {
   mu_ = E_ / (2 * (1 + nu_));
   lambda_ = E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_));
@@ -26,14 +48,7 @@ std::unique_ptr<MpmMaterial> make_mpm_material(Params mat) {
   const bool plastic = mat.choice("type", {"linear_elastic", "mohr_coulomb"}) == "mohr_coulomb";
   double cohesion = 0, phi = 0, psi = 0, tension_cutoff = -1;
   if (plastic) {
-    mat.validate({{"type", "mohr_coulomb"},
-                  {"young", nullptr},
-                  {"poisson", 0.0},
-                  {"density", nullptr},
-                  {"cohesion", 0.0},
-                  {"friction_angle", nullptr},
-                  {"dilatancy_angle", 0.0},
-                  {"tension_cutoff", -1.0}});
+    mat.validate(kMpmMohrCoulombKeys);
     cohesion = mat.non_negative("cohesion");
     phi = mat.number("friction_angle");
     psi = mat.number("dilatancy_angle");
@@ -46,7 +61,7 @@ std::unique_ptr<MpmMaterial> make_mpm_material(Params mat) {
         mat.fail("tension_cutoff", "must not exceed c cot(phi) = " + std::to_string(apex) + " Pa");
     }
   } else {
-    mat.validate({{"type", "linear_elastic"}, {"young", nullptr}, {"poisson", 0.0}, {"density", nullptr}});
+    mat.validate(kMpmElasticKeys);
   }
   const double E = mat.positive("young");
   const double nu = mat.number("poisson");

@@ -14,6 +14,31 @@ namespace lagfsi::mpm {
 
 namespace {
 
+const KeyTable kMpmPorePressureProbeKeys("/probes/* (mpm body, type mean_pore_pressure)",
+                                         "sum p V / sum V over a two-phase body (Pa, compression positive).",
+                                         probe_keys({"mean_pore_pressure"}, {}));
+
+const KeyTable kMpmFrontProbeKeys("/probes/* (mpm body, type front)", "The largest x (m) of the particles.",
+                                  probe_keys({"front"}, {}));
+
+const KeyTable kMpmHeightProbeKeys(
+    "/probes/* (mpm body, type height)", "The largest y (m) of the particles near a vertical line.",
+    probe_keys({"height"},
+               {{"x", nullptr, "x (m) of the line, inside the grid."},
+                {"band", 0.0, "Half-width (m) of the band; default: cell / particles_per_cell.", kDerived}}));
+
+const KeyTable kMpmEnergyProbeKeys("/probes/* (mpm body, type energy)", "An energy of the body (J per m).",
+                                   probe_keys({"energy"},
+                                              {{"kind", "total", "kinetic, strain, total or gravity_work."}}));
+
+const KeyTable kMpmParticleProbeKeys(
+    "/probes/* (mpm body, type particle)", "A quantity of the particle nearest to a reference position.",
+    probe_keys({"particle"},
+               {{"at", nullptr, "Reference position [x, y] (m); a particle within a cell of it."},
+                {"quantity", "displacement_y",
+                 "displacement_x, displacement_y (m), velocity_x, velocity_y (m/s), acceleration_x, acceleration_y "
+                 "(m/s^2), stress_xx, stress_yy, stress_xy or pore_pressure (Pa)."}}));
+
 class MpmProbe final : public Probe {
  public:
   MpmProbe(const MpmModel& m, std::string name, std::string quantity, Index particle)
@@ -79,17 +104,16 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
   const double h = grid.h;
   const std::string t = p.choice("type", {"particle", "energy", "front", "height", "mean_pore_pressure"});
   if (t == "mean_pore_pressure") {  // sum p V / sum V over the body (compression positive)
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    p.validate(kMpmPorePressureProbeKeys);
     if (!B.two_phase) p.fail("type", "body '" + B.name + "' is not two-phase");
     return std::make_unique<MpmProbe>(*this, p.string("name"), "mean_pore_pressure", -1);
   }
   if (t == "front") {  // the largest x of any particle (a run-out)
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}});
+    p.validate(kMpmFrontProbeKeys);
     return std::make_unique<MpmProbe>(*this, p.string("name"), "front", -1);
   }
   if (t == "height") {  // the largest y of the particles within `band` of the vertical line x
-    p.validate(
-        {{"name", nullptr}, {"type", t}, {"body", nullptr}, {"x", nullptr}, {"band", h / B.shape.particles_per_cell}});
+    p.validate(kMpmHeightProbeKeys, {{"band", h / B.shape.particles_per_cell}});
     const double x = p.number("x"), x0 = grid.origin.x(), x1 = grid.origin.x() + grid.nx * h;
     if (!(x >= x0 && x <= x1)) {  // outside the grid no particle can be: nan at every step
       std::ostringstream os;
@@ -101,12 +125,12 @@ std::unique_ptr<Probe> MpmModel::make_probe(Params p) {
     return probe;
   }
   if (t == "energy") {
-    p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"kind", "total"}});
+    p.validate(kMpmEnergyProbeKeys);
     return std::make_unique<MpmProbe>(*this, p.string("name"),
                                       p.choice("kind", {"kinetic", "strain", "total", "gravity_work"}), -1);
   }
   // The particle nearest to a reference position.
-  p.validate({{"name", nullptr}, {"type", t}, {"body", nullptr}, {"at", nullptr}, {"quantity", "displacement_y"}});
+  p.validate(kMpmParticleProbeKeys);
   const std::string q =
       p.choice("quantity", {"displacement_x", "displacement_y", "velocity_x", "velocity_y", "stress_xx", "stress_yy",
                             "stress_xy", "pore_pressure", "acceleration_x", "acceleration_y"});

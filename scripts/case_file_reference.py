@@ -26,6 +26,12 @@ def main():
     if undescribed:
         print("keys declared without a description:\n  " + "\n  ".join(undescribed))
         return 1
+    # One section per kind of object: two tables with the same heading would be one reference entry twice.
+    headings = [line for line in generated.splitlines() if line.startswith("## ")]
+    repeated = sorted({h for h in headings if headings.count(h) > 1})
+    if repeated:
+        print("sections declared twice:\n  " + "\n  ".join(repeated))
+        return 1
     if args.write:
         REFERENCE.write_text(generated)
         print(f"wrote {REFERENCE}")

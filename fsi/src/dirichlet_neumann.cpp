@@ -27,7 +27,8 @@ const KeyTable kCouplingKeys(
       "The structure's wet boundary nodes (see selection (type point) and others); edges whose nodes are all "
       "selected carry ghost particles."},
      {"ghost_spacing", 0.0, "Ghost particles along the interface at this spacing (m); 0: one at each node."},
-     {"acceleration", Json{{"type", "aitken"}}, "Acceleration of the iterations (see /couplings/*/acceleration)."},
+     {"acceleration", Json{{"type", "aitken"}},
+      "Acceleration of the iterations (see /couplings/*/acceleration (type aitken) and others)."},
      {"max_iterations", 50, "Coupling passes before the step fails (and is retried at half dt)."},
      {"tolerance", 1e-6,
       "Converged when the interface positions change by less than this times the step's interface motion."},

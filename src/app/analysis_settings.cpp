@@ -18,7 +18,8 @@ const KeyTable kAnalysisKeys(
      {"load_steps", 10, "Number of load steps of a static analysis (the loads' functions see t = k / load_steps)."},
      {"max_step_halvings", 4, "How many times a step that fails (Newton, inverted elements) is retried at half dt."},
      {"integrator", Json::object(),
-      "Time integrator (see /analysis/integrator); default: {\"type\": \"newmark\"}, or generalized_alpha with "
+      "Time integrator (see /analysis/integrator (type newmark) and others); default: {\"type\": \"newmark\"}, or "
+      "generalized_alpha with "
       "rho_inf 0.8 when a fluid body has the Robin free-surface pressure with walls as constraints.",
       kDerived},
      {"newton", Json::object(), "Newton iteration settings (see /analysis/newton)."},

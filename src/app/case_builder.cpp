@@ -25,9 +25,11 @@ const KeyTable kCaseKeys(
      {"gravity", Json::array({0.0, 0.0}), "Acceleration of gravity [gx, gy] (m/s^2), e.g. [0, -9.81]."},
      {"bodies", nullptr,
       "The bodies (at least one), each an object whose `type` is solid, shell, fluid, mpm, dem or efg (see "
-      "/bodies/*)."},
-     {"couplings", Json::array(), "Fluid-structure couplings between two bodies (see /couplings/*)."},
-     {"probes", Json::array(), "Quantities sampled at every step into probes.csv (see /probes/*)."},
+      "/bodies/* (type solid) and the others)."},
+     {"couplings", Json::array(),
+      "Fluid-structure couplings between two bodies (see /couplings/* (type dirichlet_neumann))."},
+     {"probes", Json::array(),
+      "Quantities sampled at every step into probes.csv (see the /probes/* sections, by body type)."},
      {"output", Json::object(), "What is written and how often (see /output)."}});
 
 const KeyTable kOutputKeys("/output", "What a run writes besides probes.csv, log.csv and summary.json.",

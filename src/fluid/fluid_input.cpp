@@ -58,17 +58,19 @@ const KeyTable kFluidKeys(
      {"particles", "structured",
       "Particles of the regions: structured (a square lattice of spacing h; rectangles only) or unstructured (the "
       "nodes of a Delaunay mesh of size h)."},
-     {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/*)."},
+     {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/* (fluid body))."},
      {"boundaries", Json::array(),
       "Boundary conditions on segments of the fluid's boundary, each chosen by its type (see "
       "/bodies/*/boundaries/* (fluid body, type prescribed_velocity))."},
      {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s) of the fluid particles."},
-     {"initial_pressure", Json{{"type", "zero"}}, "Initial pressure (see /bodies/*/initial_pressure)."},
+     {"initial_pressure", Json{{"type", "zero"}},
+      "Initial pressure (see /bodies/*/initial_pressure (fluid body, ...))."},
      {"initial_state", Json{{"type", "given"}},
       "An analytic initial state that overrides initial_velocity and initial_pressure (see "
-      "/bodies/*/initial_state)."},
+      "/bodies/*/initial_state (fluid body, ...))."},
      {"scheme", Json::object(),
-      "The solution scheme and its settings (see /bodies/*/scheme); default: the monolithic scheme."}});
+      "The solution scheme and its settings (see /bodies/*/scheme (fluid body, ...)); default: the monolithic "
+      "scheme."}});
 
 /// The scheme keys of both schemes (particles, mass conservation).
 std::vector<KeyDecl> scheme_keys(const std::string& type, std::vector<KeyDecl> own) {
@@ -98,7 +100,8 @@ const KeyTable kPspgKeys(
     "/bodies/*/scheme (fluid body, type monolithic_pspg)",
     "The monolithic scheme: Newton on positions and pressures with PSPG stabilisation, the analysis' integrator.",
     scheme_keys("monolithic_pspg",
-                {{"tau", Json{{"type", "automatic"}}, "The stabilisation parameter (see /bodies/*/scheme/tau)."},
+                {{"tau", Json{{"type", "automatic"}},
+                  "The stabilisation parameter (see /bodies/*/scheme/tau (fluid body, ...))."},
                  {"mass", "lumped", "Mass matrix: lumped or consistent."},
                  {"free_surface_pressure", "dirichlet",
                   "dirichlet (p = 0 imposed), natural (traction-free in the weak form) or robin (pulled weakly to it); "

@@ -18,7 +18,7 @@ const KeyTable kWallKeys("/bodies/*/walls/* (fluid body)",
                           {"points", nullptr, "The polyline [[x, y], ...] (m), at least two distinct points."},
                           {"slip", false, "true: no viscous stress along the wall (free slip); false: no slip."},
                           {"motion", Json::object(),
-                           "Prescribed motion (see /bodies/*/walls/*/motion); default {}: fixed."}});
+                           "Prescribed motion (see /bodies/*/walls/*/motion (fluid body)); default {}: fixed."}});
 
 const KeyTable kWallMotionKeys("/bodies/*/walls/*/motion (fluid body)",
                                "A wall's rigid translation: value times a function of time.",

@@ -14,14 +14,15 @@ std::vector<KeyDecl> body_keys(const std::string& type, const Json& thickness, s
   std::vector<KeyDecl> keys = {
       {"name", nullptr, "Body name (output files <name>.pvd, <name>/*.vtu; probes and couplings refer to it)."},
       {"type", type, "`" + type + "`."},
-      {"material", nullptr, "The material (see /bodies/*/material)."},
+      {"material", nullptr, "The material (see /bodies/*/material (solid or shell body))."},
       {"thickness", thickness, "Out-of-plane thickness (m)."},
-      {"damping", Json::object(), "Rayleigh damping (see /bodies/*/damping)."},
+      {"damping", Json::object(), "Rayleigh damping (see /bodies/*/damping (solid or shell body))."},
       {"geometry", nullptr, ""},
       {"mesh", nullptr, ""},
       {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s)."},
-      {"boundary_conditions", Json::array(), "Supports and prescribed motions (see /bodies/*/boundary_conditions/*)."},
-      {"loads", Json::array(), "Loads (see /bodies/*/loads/*)."},
+      {"boundary_conditions", Json::array(),
+       "Supports and prescribed motions (see /bodies/*/boundary_conditions/* (solid body, ...) or (shell body, ...))."},
+      {"loads", Json::array(), "Loads (see /bodies/*/loads/* (solid or shell body, ...))."},
       {"gravity", true, "Whether the case's gravity acts on the body."}};
   for (auto& k : own) {
     auto it = std::find_if(keys.begin(), keys.end(), [&](const KeyDecl& d) { return d.name == k.name; });
@@ -93,14 +94,14 @@ const KeyTable kPrescribedKeys("/bodies/*/boundary_conditions/* (solid body, typ
                                 {"value", nullptr, kValueDoc},
                                 {"function", Json{{"type", "constant"}}, kFunctionDoc}});
 
-const KeyTable kShellFixedKeys("/bodies/*/boundary_conditions/* (shell body, type fixed or pinned)",
-                               "Held in place; pinned is fixed with a free rotation.",
-                               {{"type", nullptr, "fixed or pinned."},
-                                {"select", nullptr, kSelectDoc},
-                                {"components", "xy", kComponentsDoc},
-                                {"rotation", "fixed",
-                                 "Whether the section's rotation is held: fixed or free; default: free when pinned.",
-                                 kDerived}});
+const KeyTable kShellFixedKeys(
+    "/bodies/*/boundary_conditions/* (shell body, type fixed or pinned)",
+    "Held in place; pinned is fixed with a free rotation.",
+    {{"type", nullptr, "fixed or pinned."},
+     {"select", nullptr, kSelectDoc},
+     {"components", "xy", kComponentsDoc},
+     {"rotation", "fixed", "Whether the section's rotation is held: fixed or free; default: fixed (free when pinned).",
+      kDerived}});
 
 const KeyTable kShellPrescribedKeys("/bodies/*/boundary_conditions/* (shell body, type prescribed_displacement, ...)",
                                     "A prescribed displacement or velocity: value times a function of time.",

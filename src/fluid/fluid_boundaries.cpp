@@ -33,11 +33,12 @@ void FluidBoundaries::read(Params boundaries, const BoundaryContext& ctx) {
     if (!b.json().is_object()) b.fail("expected an object");
     if (!b.has("type")) b.fail("type", "required key is missing");
     const std::string type = b.choice("type", types);
-    std::string name = "boundary" + std::to_string(j);
-    if (b.has("name")) name = b.identifier("name");
+    BoundaryContext bc = ctx;
+    bc.name = "boundary" + std::to_string(j);
+    boundaries_.push_back(boundary_registry().at(type)(b, bc));
+    const std::string name = b.identifier("name");
     for (const auto& n : names_)
       if (n == name) b.fail("name", "duplicate boundary name '" + name + "'");
-    boundaries_.push_back(boundary_registry().at(type)(b, ctx));
     names_.push_back(name);
   }
 }

@@ -29,6 +29,7 @@ struct BoundaryConstraint {
 struct BoundaryContext {
   double h = 0;                    ///< the particle spacing
   std::filesystem::path base_dir;  ///< the case file's folder (tables of time functions)
+  std::string name;                ///< its default name: boundary<index>
 };
 
 class FluidBoundary {

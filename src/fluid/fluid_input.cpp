@@ -363,7 +363,7 @@ void FluidModel::build_particles(Params b) {
   std::vector<ParticleKind> kind;
   PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);  // the particles so far, for the proximity tests
   if (c_.remesh && !wall_constraints_) walls_.place_particles(walls, h, pts, kind, wall_grid);
-  boundaries_.read(b.at("boundaries"), {h, ctx_.base_dir});
+  boundaries_.read(b.at("boundaries"), {h, ctx_.base_dir, ""});
   const Index n_wall = static_cast<Index>(pts.size());
 
   // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay

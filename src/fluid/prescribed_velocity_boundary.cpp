@@ -16,15 +16,20 @@ namespace lagfsi::fluid {
 
 namespace {
 
+const KeyTable kPrescribedVelocityKeys(
+    "/bodies/*/boundaries/* (fluid body, type prescribed_velocity)",
+    "A segment that moves the fluid particles on it at a given velocity (a lid, a belt); the segment does not move.",
+    {{"type", "prescribed_velocity", "`prescribed_velocity`."},
+     {"name", "boundary", "Boundary name (summary.json); default: boundary<index>.", kDerived},
+     {"segment", nullptr, "The segment [[x0, y0], [x1, y1]] (m)."},
+     {"velocity", nullptr, "The velocity [u, v] (m/s) of the particles on it, scaled by the function."},
+     {"function", Json::object(), "A time function f(t) scaling the velocity (see time function (type ...)); default {}: 1."},
+     {"tolerance", 1e-6, "A fluid particle within this times h of the segment is on it."}});
+
 class PrescribedVelocity final : public FluidBoundary {
  public:
   PrescribedVelocity(Params p, const BoundaryContext& ctx) {
-    p.validate({{"type", "prescribed_velocity"},
-                {"name", ""},
-                {"segment", nullptr},
-                {"velocity", nullptr},
-                {"function", Json::object()},
-                {"tolerance", 1e-6}});
+    p.validate(kPrescribedVelocityKeys, {{"name", ctx.name}});
     const std::vector<Vec2> s = p.points("segment");
     if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
     a_ = s[0];

@@ -93,6 +93,9 @@ class PhysicsModel {
   virtual std::vector<Metric> step_metrics() const { return {}; }
   /// The model's own numbers for summary.json (an object merged into its entry; empty: none).
   virtual Json summary() const { return Json::object(); }
+  /// What the body's input chose on purpose against the safe default, or got unlike it asked, each line
+  /// starting with its JSON path: printed as warnings and listed in summary.json's "warnings" (empty: none).
+  virtual std::vector<std::string> warnings() const { return {}; }
   PhaseTimes& times() { return times_; }
   const PhaseTimes& times() const { return times_; }
 

@@ -109,6 +109,7 @@ Case build_case(const RunOptions& opt, bool for_check) {
     if (!b.has("type")) b.fail("type", "required key is missing");
     const std::string type = b.choice("type", types);
     c.models.push_back(model_registry().at(type)(b, c.ctx));
+    for (const auto& w : c.models.back()->warnings()) c.warnings.push_back(w);
     for (size_t j = 0; j + 1 < c.models.size(); ++j)
       if (c.models[j]->name() == c.models.back()->name()) b.fail("name", "duplicate body name");
   }

@@ -27,8 +27,8 @@ struct Case {
   int output_every = 1;
   bool vtk = true;
   CheckpointSettings checkpoint;
-  std::vector<std::string>
-      warnings;  ///< chosen on purpose (a conditionally stable integrator): stderr and summary.json
+  std::vector<std::string> warnings;  ///< chosen on purpose (a conditionally stable integrator,
+                                      ///< PhysicsModel::warnings): stderr and summary.json
 };
 
 /// Builds the case; on bad input prints the one-line error and returns null. `for_check`: for `lagfsi check`.

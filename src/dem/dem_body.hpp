@@ -71,10 +71,19 @@ struct DemBody {
   bool track_energy = false;
   std::vector<double> pair_elastic, pair_dissipated, disc_elastic, disc_dissipated;
   double elastic = 0, dissipated = 0, blast_work = 0, energy0 = 0;
+  // The energy guard (DemModel::solve_iteration), always on: the mechanical energy without the contacts' elastic
+  // part, E = kinetic + gravity potential, can exceed its value at t = 0 plus the initial elastic energy
+  // (energy_ref) only by the work put in (blast_work, wall_work: the moving walls' work on the discs) in an exact
+  // run; a gain above energy_scale (the energy the body can hold or release at t = 0) is an instability.
+  double wall_work = 0, energy_ref = 0, energy_scale = 0;
+  double initial_overlap = 0;  // largest initial overlap / radius (walls and pairs) accepted by overlap_tolerance
 
   // blast
   std::optional<Blast> blast;
   std::vector<double> blast_force;  // 2 per disc (current order)
+
+  // what was chosen on purpose or came out unlike asked (summary.json's warnings, stderr)
+  std::vector<std::string> warnings;
 
   bool csv = false;
   CraterSettings crater;  // write <name>_discs.csv with the .vtp

@@ -13,7 +13,8 @@
 //  - the walls' offsets (their number is checked: the case gives the same walls);
 //  - the blast's exposure (with "exposure_every" > 1 the last update's loaded lengths are used until the next
 //    one), its call counter and distance order, and the blast forces of the last evaluation;
-//  - the energy sums (elastic, dissipated, blast work, the initial energy), the ground level of the crater;
+//  - the energy sums (elastic, dissipated, blast work, the initial energy; the energy guard's wall work, reference
+//    and scale), the ground level of the crater;
 //  - the counters and timings of summary.json (sub-steps, rebuilds, force / rebuild / blast times, wall time);
 //  - the output series (the .vtp of the discs and of the walls).
 #include "dem_body.hpp"
@@ -91,6 +92,7 @@ void DemModel::serialize(StateArchive& ar) {
   ar.io(b.blast_force);
   ar.section("energy");
   ar.io(b.elastic, b.dissipated, b.blast_work, b.energy0, b.crater.surface);
+  ar.io(b.wall_work, b.energy_ref, b.energy_scale);
   ar.section("counters");
   ar.io(b.substeps, b.t_force, b.t_rebuild, b.t_blast, wall_time_);
   writer_->serialize(ar, b.name);

@@ -6,9 +6,10 @@
 //   "contact": {"law": ...}        dem_contact_law.hpp
 //   "discs": [generators]          dem_particles.hpp
 //   "walls": [polylines]           dem_walls.hpp
-//   "time_step": {"dt": 0 (auto), "fraction": 0.2, "allow_above_critical": false}
+//   "time_step": {"dt": 0 (auto), "fraction": 0.2, "allow_above_critical": false}   (allowed above: a warning)
 //   "neighbour": {"skin": 0 (auto: 0.5 r_max), "reorder": true}
-//   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors
+//   "overlap_tolerance": 1e-3      initial overlaps above this fraction of the smaller radius are errors; in
+//                                  [0, 1); overlaps accepted above 1e-3 are a warning
 //   "blast": {}                    dem_blast.hpp (empty: none)
 //   "discs_csv": false             also write <name>_discs.csv at each output
 //   "crater": {}                   {"surface": 0 (top of the bed at t = 0, after settling), "bin": 0 (2 d_max),
@@ -43,7 +44,9 @@ const KeyTable kDemKeys(
      {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/* (dem body))."},
      {"time_step", Json::object(), "The body's own time step (see /bodies/*/time_step (dem body))."},
      {"neighbour", Json::object(), "Neighbour search (see /bodies/*/neighbour (dem body))."},
-     {"overlap_tolerance", 1e-3, "Initial overlaps above this fraction of the smaller radius are errors."},
+     {"overlap_tolerance", 1e-3,
+      "Initial overlaps above this fraction of the smaller radius are errors, in [0, 1); accepted ones above 1e-3 "
+      "are warnings."},
      {"blast", Json::object(), "An air-blast load (see /bodies/*/blast (dem body)); {}: none."},
      {"settle", Json::object(), "A settling stage before t = 0 (see /bodies/*/settle (dem body)); {}: none."},
      {"discs_csv", false, "Also write <name>_discs.csv at each output."},
@@ -81,13 +84,16 @@ const KeyTable kDemSettleKeys("/bodies/*/settle (dem body)",
 
 namespace {
 
+constexpr double kDefaultOverlapTolerance = 1e-3;
+
 std::string fmt(double v) {
   std::ostringstream o;
   o << v;
   return o.str();
 }
 
-/// Initial overlaps between discs, and between discs and walls, above tol x the smaller radius.
+/// Initial overlaps between discs, and between discs and walls, above tol x the smaller radius; coincident
+/// discs (no contact normal) whatever tol. Keeps the largest overlap accepted (b.initial_overlap, / radius).
 void check_overlaps(Params body, DemBody& b, double tol) {
   const Index n = static_cast<Index>(b.size());
   NeighbourGrid g;
@@ -96,8 +102,16 @@ void check_overlaps(Params body, DemBody& b, double tol) {
   g.build(b.state.x.data(), 3, b.discs.radius.data(), n, 0.0, l);
   for (size_t k = 0; k < l.size(); ++k) {
     const Index i = std::min(l.i[k], l.j[k]), j = std::max(l.i[k], l.j[k]);
-    const double ov = b.discs.radius[i] + b.discs.radius[j] - (b.position(i) - b.position(j)).norm();
-    if (ov > tol * std::min(b.discs.radius[i], b.discs.radius[j]))
+    const double d = (b.position(i) - b.position(j)).norm();
+    const double ov = b.discs.radius[i] + b.discs.radius[j] - d;
+    if (!(d > 1e-9 * b.r_min))
+      body.at("discs")
+          .at(b.discs.group[j])
+          .fail("discs " + std::to_string(i) + " and " + std::to_string(j) + " coincide at (" + fmt(b.position(i).x()) +
+                ", " + fmt(b.position(i).y()) + "): no contact normal between them");
+    const double rmin = std::min(b.discs.radius[i], b.discs.radius[j]);
+    b.initial_overlap = std::max(b.initial_overlap, ov / rmin);
+    if (ov > tol * rmin)
       body.at("discs")
           .at(b.discs.group[j])
           .fail("discs " + std::to_string(i) + " at (" + fmt(b.position(i).x()) + ", " + fmt(b.position(i).y()) +
@@ -110,6 +124,7 @@ void check_overlaps(Params body, DemBody& b, double tol) {
       for (size_t s = 0; s < b.walls[w].segments(); ++s) {
         const Vec2 c = b.position(p);
         const double ov = b.discs.radius[p] - (closest_on_segment(b.walls[w].a(s), b.walls[w].b(s), c) - c).norm();
+        b.initial_overlap = std::max(b.initial_overlap, ov / b.discs.radius[p]);
         if (ov > tol * b.discs.radius[p])
           body.at("walls").at(w).fail("disc " + std::to_string(p) + " at (" + fmt(c.x()) + ", " + fmt(c.y()) +
                                       ") overlaps this wall by " + fmt(ov) + " m");
@@ -123,6 +138,9 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   b.csv = body.boolean("discs_csv");
   b.name = body.identifier("name");
   b.file = ctx.case_file.string();
+  // The discs move in time: a static analysis (load factor 0..1, no inertia) would run a second of dynamics.
+  if (ctx.analysis.type != "dynamic")
+    body.fail("type", "a DEM body needs a dynamic analysis (analysis.type = \"dynamic\")");
   Params mat = body.at("material");
   mat.validate(kDemMaterialKeys);
   const double rho = mat.positive("density"), young = mat.non_negative("young"), nu = mat.number("poisson");
@@ -141,7 +159,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   b.gravity = ctx.gravity;
 
   // discs
-  const auto specs = generate_discs(body.at("discs"));
+  const auto specs = generate_discs(body.at("discs"), &b.warnings);
   const Index n = static_cast<Index>(specs.size());
   b.state.x.resize(3 * n);
   b.state.v.resize(3 * n);
@@ -153,12 +171,20 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   for (Index p = 0; p < n; ++p) {
     const DiscSpec& s = specs[p];
     const double m = sphere ? 4.0 / 3.0 * std::numbers::pi * rho * s.r * s.r * s.r : std::numbers::pi * rho * s.r * s.r;
+    if (!(m > 0 && std::isfinite(1.0 / m) && std::isfinite(m * s.r * s.r)))
+      body.at("discs").at(s.group).fail("disc " + std::to_string(p) + " of radius " + fmt(s.r) + " m has a mass of " +
+                                        fmt(m) + " kg (density " + fmt(rho) +
+                                        " kg/m^3): out of the range of double precision numbers");
     D.radius.push_back(s.r);
     D.mass.push_back(m);
     D.inertia.push_back(b.inertia_factor * m * s.r * s.r);
     D.id.push_back(p);
     D.mark.push_back(0);
     D.group.push_back(s.group);
+    if (!std::isfinite(0.5 * m * s.v.squaredNorm() + 0.5 * D.inertia.back() * s.w * s.w))
+      body.at("discs").at(s.group).fail("velocity", "the kinetic energy of disc " + std::to_string(p) +
+                                                        " (m = " + fmt(m) +
+                                                        " kg) overflows: check the velocity and angular_velocity");
     b.state.x.segment<3>(3 * p) << s.x.x(), s.x.y(), 0.0;
     b.state.v.segment<3>(3 * p) << s.v.x(), s.v.y(), s.w;
     b.inv_mass.segment<3>(3 * p) << 1.0 / m, 1.0 / m, b.rotation ? 1.0 / D.inertia.back() : 0.0;
@@ -167,7 +193,15 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   }
   b.where.resize(n);
   for (Index p = 0; p < n; ++p) b.where[p] = p;
-  check_overlaps(body, b, body.non_negative("overlap_tolerance"));
+  // An overlap of a whole radius puts the disc's centre on the wall line (no contact normal; the smaller disc's
+  // centre inside the other one): the contact would push it through.
+  const double tol = body.non_negative("overlap_tolerance");
+  if (!(tol < 1)) body.fail("overlap_tolerance", "must lie in [0, 1) (a fraction of the smaller radius)");
+  check_overlaps(body, b, tol);
+  if (b.initial_overlap > kDefaultOverlapTolerance)
+    b.warnings.push_back(body.child_path("overlap_tolerance") + ": initial overlaps of up to " +
+                         fmt(b.initial_overlap) + " of the radius were accepted (overlap_tolerance " + fmt(tol) +
+                         "): their elastic energy is released as motion at the start");
 
   // time step
   Params ts = body.at("time_step");
@@ -176,14 +210,33 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   for (double m : D.mass) m_min = std::min(m_min, m);
   const double omega = b.law->max_frequency(m_min, b.r_min, b.inertia_factor, b.rotation);
   b.dt_critical = 2.0 / omega;
+  // An overflow or underflow in the law's stiffness, the density or the radius, not the step, is then at fault.
+  if (!(b.dt_critical > 0 && std::isfinite(b.dt_critical)))
+    body.fail("contact", "the contact law's highest frequency omega_max = " + fmt(omega) +
+                             " rad/s for the lightest disc (m = " + fmt(m_min) + " kg, r = " + fmt(b.r_min) +
+                             " m) is not a finite positive number: check the stiffness, density and radii");
   const double dt = ts.non_negative("dt"), fraction = ts.positive("fraction");
   if (fraction > 1) ts.fail("fraction", "must lie in (0, 1]");
   b.dt = dt > 0 ? dt : fraction * b.dt_critical;
-  if (b.dt > b.dt_critical && !ts.boolean("allow_above_critical"))
-    ts.fail("dt", "dt = " + fmt(b.dt) + " s is above the critical step 2/omega_max = " + fmt(b.dt_critical) +
-                      " s of the contact law (set allow_above_critical to force it)");
+  if (b.dt > b.dt_critical) {
+    if (!ts.boolean("allow_above_critical"))
+      ts.fail("dt", "dt = " + fmt(b.dt) + " s is above the critical step 2/omega_max = " + fmt(b.dt_critical) +
+                        " s of the contact law (set allow_above_critical to force it)");
+    // The sub-steps are no longer than the driver's step either (DemModel::solve_iteration).
+    const double h = std::min(b.dt, ctx.analysis.dt);
+    if (h > b.dt_critical)
+      b.warnings.push_back(ts.child_path("dt") + ": sub-steps of " + fmt(h) + " s, above the critical step " +
+                           fmt(b.dt_critical) +
+                           " s (allow_above_critical): the central difference is unstable "
+                           "there, and a run whose energy grows past the work put in stops");
+  }
   const double steps = ctx.analysis.end_time / std::min(b.dt, ctx.analysis.dt);
-  if (!(steps * n <= 2e13)) ts.fail("dt", "the run needs " + fmt(steps) + " steps of " + std::to_string(n) + " discs");
+  if (!(steps * n <= 2e13))
+    ts.fail("dt", "the run needs " + fmt(steps) + " sub-steps of " + fmt(std::min(b.dt, ctx.analysis.dt)) + " s for " +
+                      std::to_string(n) +
+                      " discs, more than 2e13 disc updates (the critical step of the contact "
+                      "law is " +
+                      fmt(b.dt_critical) + " s): a shorter end_time, fewer or larger discs, or softer contacts");
   b.integrator = make_central_difference();
 
   Params nb = body.at("neighbour");

@@ -23,9 +23,6 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 DemModel::DemModel(Params body, const CaseContext& ctx) : ctx_(ctx), body_(std::make_unique<DemBody>()) {
   settle_time_ = read_dem_body(std::move(body), ctx, *body_);
   writer_ = std::make_unique<DemWriter>(ctx.out_dir, body_->csv);
-  if (!ctx.quiet)
-    std::fprintf(stderr, "[%s] %zu discs, critical step %.4g s, sub-step %.4g s\n", body_->name.c_str(), body_->size(),
-                 body_->dt_critical, body_->dt);
 }
 
 DemModel::~DemModel() = default;
@@ -34,20 +31,68 @@ std::string DemModel::name() const { return body_->name; }
 Index DemModel::num_nodes() const { return static_cast<Index>(body_->size()); }
 Index DemModel::num_elements() const { return body_->contact_count(); }
 
+namespace {
+
+double cross(const Vec2& u, const Vec2& w) { return u.x() * w.y() - u.y() * w.x(); }
+
+/// Whether the segments [p0, p1] and [a, b] cross (each one's ends strictly on either side of the other's line).
+bool crosses(const Vec2& p0, const Vec2& p1, const Vec2& a, const Vec2& b) {
+  const double o1 = cross(b - a, p0 - a), o2 = cross(b - a, p1 - a);
+  const double o3 = cross(p1 - p0, a - p0), o4 = cross(p1 - p0, b - p0);
+  return ((o1 < 0 && o2 > 0) || (o1 > 0 && o2 < 0)) && ((o3 < 0 && o4 > 0) || (o3 > 0 && o4 < 0));
+}
+
+}  // namespace
+
 void DemModel::substep(double h) {
   DemBody& b = *body_;
   if (b.needs_rebuild(h)) b.rebuild();
   b.place_walls(b.state.t + h);
+  // The centres of the discs near a wall before the sub-step: a centre that crosses a wall segment in it has
+  // been pushed through the wall (or tunnelled through it), which no contact law of the body can undo.
+  near_wall_.clear();
+  if (!b.segments.empty() && b.wall_row.size() == b.size() + 1)
+    for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
+      if (b.wall_row[p + 1] > b.wall_row[p]) near_wall_.push_back({p, b.position(p)});
   b.integrator->explicit_step_into(
       [&b, h](const Vec& x, const Vec& v, double t, Vec& f) { b.compute_forces(x, v, t, h, f); }, b.inv_mass, h,
       b.state, b.force);
+  for (const auto& [p, c0] : near_wall_)
+    for (Index e = b.wall_row[p]; e < b.wall_row[p + 1]; ++e) {
+      const auto [w, s] = b.segments[b.wall_seg[e]];
+      const Wall& wall = b.walls[w];
+      const Vec2 c1 = b.position(p);
+      if (!crosses(c0, c1, wall.a(s), wall.b(s))) continue;
+      char msg[640];
+      std::snprintf(msg, sizeof msg,
+                    "dem body '%s': disc %ld crossed wall '%s' from (%.6g, %.6g) to (%.6g, %.6g) at t = %.6g: %s",
+                    b.name.c_str(), static_cast<long>(b.discs.id[p]), wall.name.c_str(), c0.x(), c0.y(), c1.x(), c1.y(),
+                    b.state.t,
+                    b.dt > b.dt_critical ? "the sub-step is above the critical one"
+                                         : "the contact cannot hold it (too soft for the load or the initial overlap, "
+                                           "or the disc too fast for the sub-step)");
+      throw SolverError(msg);
+    }
   if (dynamic_cast<const Sabatucci*>(b.law.get())) b.apply_marks();
+  // The moving walls' work on the discs over the sub-step (the energy guard): force on the disc times the
+  // wall's velocity, at the step's end.
+  if (!b.segments.empty() && std::any_of(b.walls.begin(), b.walls.end(), [](const Wall& w) { return w.moving(); }))
+    for (Index e = 0; e < static_cast<Index>(b.wall_seg.size()); ++e) {
+      const Vec2 vw = b.walls[b.segments[b.wall_seg[e]].first].velocity(b.state.t);
+      b.wall_work += h * (b.wall_force[2 * e] * vw.x() + b.wall_force[2 * e + 1] * vw.y());
+    }
   ++b.substeps;
 }
+
+std::vector<std::string> DemModel::warnings() const { return body_->warnings; }
 
 void DemModel::initialize() {
   DemBody& b = *body_;
   const auto t0 = Clock::now();
+  // Here, not when the body is read: `lagfsi check` prints errors alone, and a run's later input error too.
+  if (!ctx_.quiet)
+    std::fprintf(stderr, "[%s] %zu discs, critical step %.4g s, sub-step %.4g s\n", b.name.c_str(), b.size(),
+                 b.dt_critical, b.dt);
   b.state.t = settle_time_ > 0 ? -settle_time_ : 0.0;
   b.place_walls(std::max(b.state.t, 0.0));
   b.rebuild();
@@ -86,7 +131,57 @@ void DemModel::initialize() {
   }
   b.blast_work = 0;
   b.energy0 = b.kinetic_energy() + b.elastic + b.gravity_potential();
+  start_energy_guard();
   wall_time_ += seconds_since(t0);
+}
+
+void DemModel::start_energy_guard() {
+  DemBody& b = *body_;
+  // The contacts' elastic energy at t = 0 (initial overlaps): one force sweep with the energy sums on, h = 0
+  // (no history advanced), its side effects on the energy probes' sums undone.
+  const bool tracked = b.track_energy;
+  const double elastic = b.elastic, dissipated = b.dissipated;
+  b.track_energy = true;
+  Vec f;
+  b.compute_forces(b.state.x, b.state.v, b.state.t, 0.0, f);
+  const double elastic0 = b.elastic;
+  b.track_energy = tracked;
+  b.elastic = elastic;
+  b.dissipated = dissipated;
+  b.wall_work = 0;
+  b.energy_ref = b.kinetic_energy() + b.gravity_potential() + elastic0;
+  // The scale: what the discs hold (kinetic, elastic) and what gravity can give them over the height of the
+  // discs and walls.
+  double mass = 0, lo = 1e300, hi = -1e300;
+  for (Index p = 0; p < static_cast<Index>(b.size()); ++p) {
+    mass += b.discs.mass[p];
+    lo = std::min(lo, b.position(p).y() - b.discs.radius[p]);
+    hi = std::max(hi, b.position(p).y() + b.discs.radius[p]);
+  }
+  for (const Wall& w : b.walls)
+    for (const Vec2& q : w.points) {
+      lo = std::min(lo, q.y() + w.offset.y());
+      hi = std::max(hi, q.y() + w.offset.y());
+    }
+  b.energy_scale = b.kinetic_energy() + std::abs(elastic0) + mass * b.gravity.norm() * (hi - lo);
+}
+
+void DemModel::check_energy() const {
+  const DemBody& b = *body_;
+  // Energy: E = kinetic + gravity potential may exceed the initial total (with the contacts' elastic energy)
+  // only by the work put in; the central difference, stable, keeps the error far below energy_scale.
+  const double gain = b.kinetic_energy() + b.gravity_potential() - b.energy_ref - b.blast_work - b.wall_work;
+  const double allowed = b.energy_scale + std::abs(b.blast_work) + std::abs(b.wall_work);
+  if (std::isnan(gain) || (gain > allowed && gain > 1e-12)) {
+    char msg[512];
+    std::snprintf(msg, sizeof msg,
+                  "dem body '%s': the energy grew by %.4g J by t = %.6g, more than the %.4g J the discs held or were "
+                  "given at the start (work of the blast and walls included)%s",
+                  b.name.c_str(), gain, b.state.t, allowed,
+                  b.dt > b.dt_critical ? ": the sub-step is above the critical one, and the run is unstable"
+                                       : ": the contact law or its step is unstable");
+    throw SolverError(msg);
+  }
 }
 
 void DemModel::predict(double t_new, double dt) {
@@ -124,8 +219,11 @@ IterationReport DemModel::solve_iteration() {
   for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
     if (!std::isfinite(b.state.x[3 * p]) || !std::isfinite(b.state.x[3 * p + 1]) || !std::isfinite(b.state.v[3 * p]))
       throw SolverError("dem body '" + b.name + "': disc " + std::to_string(b.discs.id[p]) +
-                        " has a non-finite position or velocity at t = " + std::to_string(t_new_) +
-                        " (time step above the stable one?)");
+                        " has a non-finite position or velocity at t = " + std::to_string(t_new_) + " (" +
+                        (b.dt > b.dt_critical ? "the sub-step is above the critical one: the run is unstable"
+                                              : "the forces on it overflowed") +
+                        ")");
+  check_energy();
   const double w = seconds_since(t0);
   wall_time_ += w;
   times_.assembly += w;

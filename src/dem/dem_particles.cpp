@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -96,6 +97,19 @@ bool fits(const std::vector<Vec2>& poly, const Vec2& x, double r) {
   return inside_polygon(poly, x) && distance_to_boundary(poly, x) >= r * (1 - 1e-9);
 }
 
+/// Discs of radius r placed among coordinates as large as the region's: past 1e9 r, x + r rounds to about x
+/// (a lattice's next column would fall on the last one and the generator would not advance).
+void check_resolution(Params d, const std::vector<Vec2>& poly, double r) {
+  double c = 0;
+  for (const auto& q : poly) c = std::max(c, q.cwiseAbs().maxCoeff());
+  if (!(c < 1e9 * r)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "coordinates up to %.3g m do not resolve discs of radius %.3g m (at most 1e9 radii)",
+                  c, r);
+    d.fail("region", buf);
+  }
+}
+
 void bounds(const std::vector<Vec2>& poly, Vec2& lo, Vec2& hi) {
   lo = hi = poly[0];
   for (const auto& q : poly) {
@@ -125,7 +139,7 @@ std::vector<DiscSpec> hex_lattice(const std::vector<Vec2>& poly, double r, doubl
 }
 
 std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, double r_max, double fraction, int count,
-                                  unsigned seed, int attempts) {
+                                  unsigned seed, int attempts, PackReport* report, long max_trials) {
   Vec2 lo, hi;
   bounds(poly, lo, hi);
   const double area = polygon_area(poly);
@@ -138,8 +152,10 @@ std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, d
   std::vector<DiscSpec> out;
   double filled = 0;
   int failures = 0;
-  while (failures < attempts && (count <= 0 || static_cast<int>(out.size()) < count) &&
+  long trials = 0;
+  while (failures < attempts && trials < max_trials && (count <= 0 || static_cast<int>(out.size()) < count) &&
          (fraction <= 0 || filled < fraction * area)) {
+    ++trials;
     const double r = r_max > r_min ? ur(rng) : r_min;
     const Vec2 c(ux(rng), uy(rng));
     bool ok = fits(poly, c, r);
@@ -164,6 +180,11 @@ std::vector<DiscSpec> random_pack(const std::vector<Vec2>& poly, double r_min, d
     out.push_back({c, r, Vec2::Zero(), 0.0, 0});
     filled += std::numbers::pi * r * r;
   }
+  if (report) {
+    report->fraction = filled / area;
+    report->trials = trials;
+    report->jammed = failures >= attempts;
+  }
   return out;
 }
 
@@ -182,7 +203,7 @@ std::vector<Vec2> read_region(Params region) {
   return p;
 }
 
-std::vector<DiscSpec> generate_discs(Params discs) {
+std::vector<DiscSpec> generate_discs(Params discs, std::vector<std::string>* warnings) {
   std::vector<DiscSpec> out;
   if (discs.size() == 0) discs.fail("at least one generator is needed");
   for (size_t g = 0; g < discs.size(); ++g) {
@@ -199,12 +220,15 @@ std::vector<DiscSpec> generate_discs(Params discs) {
           l.at(i).fail("expected [x, y, r]");
         const double r = v[2].get<double>();
         if (!(r > 0) || !std::isfinite(r)) l.at(i).fail("the radius must be positive");
+        if (!(std::abs(v[0].get<double>()) < 1e9 * r && std::abs(v[1].get<double>()) < 1e9 * r))
+          l.at(i).fail("the centre is more than 1e9 radii from the origin: its coordinates do not resolve the radius");
         made.push_back({Vec2(v[0].get<double>(), v[1].get<double>()), r, Vec2::Zero(), 0.0, 0});
       }
     } else if (t == "hex_lattice") {
       d.validate(kDemHexKeys);
       const double r = d.positive("radius");
       const auto poly = read_region(d.at("region"));
+      check_resolution(d, poly, r);
       Vec2 lo, hi;
       bounds(poly, lo, hi);
       if ((hi - lo).x() * (hi - lo).y() / (r * r) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
@@ -222,11 +246,32 @@ std::vector<DiscSpec> generate_discs(Params discs) {
         r0 = r1 = d.positive("radius");
       }
       const auto poly = read_region(d.at("region"));
+      check_resolution(d, poly, r0);
       const double phi = d.non_negative("fraction");
       if (phi > 0.6) d.fail("fraction", "random sequential addition jams near 0.55: use at most 0.6 (then settle)");
       if (polygon_area(poly) / (r0 * r0) > 4e7) d.fail("radius", "more than 1e7 discs: check the radius");
+      const int attempts = d.integer("attempts", 1);
+      if (attempts > kRandomPackAttempts) d.fail("attempts", "at most 1000000 consecutive failed trials");
+      PackReport rep;
       made = random_pack(poly, r0, r1, phi, d.integer("count", 0), static_cast<unsigned>(d.integer("seed", 0)),
-                         d.integer("attempts", 1));
+                         attempts, &rep);
+      auto fmt = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3g", v);
+        return std::string(buf);
+      };
+      const bool short_of_fraction = phi > 0 && rep.fraction < phi;
+      // A pack that drew the whole budget of trials without jamming or filling is far from its target: random
+      // sequential addition jams near 0.547 for equal discs (Feder 1980; Hinrichsen, Feder & Jossang 1986).
+      if (short_of_fraction && !rep.jammed && rep.trials >= kRandomPackTrials)
+        d.fail("fraction",
+               "the random pack reached a packing fraction of " + fmt(rep.fraction) + " after " +
+                   fmt(double(rep.trials)) + " trials (the limit), not " + fmt(phi) +
+                   ": random sequential addition jams near 0.547 for equal discs; ask for less, then settle");
+      if (short_of_fraction && warnings && !made.empty())
+        warnings->push_back(d.child_path("fraction") + ": the random pack jammed at a packing fraction of " +
+                            fmt(rep.fraction) + ", not the requested " + fmt(phi) + " (" + std::to_string(attempts) +
+                            " trials in a row failed): a looser pack than asked for");
     }
     if (made.empty()) d.fail("no disc fits in the region");
     const Vec2 v = d.vec2("velocity");

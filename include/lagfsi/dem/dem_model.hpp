@@ -23,12 +23,19 @@
 /// inverse masses 1/m, 1/m, 1/I. The driver's step is split into n equal sub-steps no longer than the body's
 /// "time_step.dt" (default: "fraction" x the critical step); the critical step is 2/omega_max with omega_max
 /// = sqrt(k/m) of the stiffest contact of the lightest discs (ContactLaw::max_frequency); a dt above it is
-/// refused unless "allow_above_critical" is true.
+/// refused unless "allow_above_critical" is true, and then a warning (stderr, summary.json).
+///
+/// Guards: a disc whose centre crosses a wall segment in a sub-step has been pushed through the wall; at the end of
+/// every step, kinetic + gravity potential energy may exceed the initial total (with the initial overlaps'
+/// elastic energy) only by the blast's and the moving walls' work, give or take the energy the body holds or can
+/// release at t = 0: either is a SolverError naming the cause.
 #include <lagfsi/case.hpp>
 #include <lagfsi/model.hpp>
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace lagfsi {
 
@@ -58,6 +65,8 @@ class DemModel final : public PhysicsModel {
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   Json summary() const override;
+  /// A step above the critical one, initial overlaps above the default tolerance, a random pack looser than asked.
+  std::vector<std::string> warnings() const override;
   bool can_checkpoint() const override { return true; }
   /// The whole state after finalize_step (dem_checkpoint.cpp): the discs in their current order with their
   /// properties, marks, dofs and forces; the pair and wall lists as built (pairs, incidences, tangential
@@ -75,6 +84,11 @@ class DemModel final : public PhysicsModel {
   double energy_balance() const;
 
  private:
+  /// Sets the energy guard's reference and scale at t = 0 (DemBody::energy_ref, energy_scale).
+  void start_energy_guard();
+  /// Throws SolverError when the energy grew past the work put in.
+  void check_energy() const;
+
   CaseContext ctx_;
   std::unique_ptr<DemBody> body_;
   std::unique_ptr<DemWriter> writer_;
@@ -83,6 +97,7 @@ class DemModel final : public PhysicsModel {
   double t_new_ = 0, dt_ = 0;
   double settle_time_ = 0;
   double wall_time_ = 0;
+  std::vector<std::pair<Index, Vec2>> near_wall_;  // discs near a wall and their centres before a sub-step
 };
 
 /// Reads a DEM body into `b` (dem_input.cpp). Returns the settling time (0: none).

@@ -22,6 +22,7 @@
 #include <lagfsi/params.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace lagfsi::dem {
@@ -47,16 +48,32 @@ struct Discs {
 /// A hexagonal lattice of discs of radius r in a polygon (discs wholly inside), pitch 2 r (1 + gap).
 std::vector<DiscSpec> hex_lattice(const std::vector<Vec2>& polygon, double r, double gap);
 
+/// How a random pack ended (random_pack).
+struct PackReport {
+  double fraction = 0;  ///< the packing fraction reached (disc area / region area)
+  long trials = 0;      ///< trial positions drawn
+  bool jammed = false;  ///< `attempts` consecutive trials failed before the fraction or the count was reached
+};
+
+/// The largest number of trial positions a random pack draws in all (about 10 s): past it
+/// generate_discs fails, since a fraction that this many trials cannot reach is one the pack cannot reach.
+inline constexpr long kRandomPackTrials = 20'000'000;
+/// The largest "attempts" (consecutive failed trials before the pack counts as jammed).
+inline constexpr int kRandomPackAttempts = 1'000'000;
+
 /// Random sequential addition in a polygon: radii uniform in [r_min, r_max], until the packing fraction or the
-/// count is reached or `attempts` consecutive trials failed; deterministic for a seed.
+/// count is reached, `attempts` consecutive trials failed, or max_trials trials were drawn in all;
+/// deterministic for a seed. `report` (if given) receives how it ended.
 std::vector<DiscSpec> random_pack(const std::vector<Vec2>& polygon, double r_min, double r_max, double fraction,
-                                  int count, unsigned seed, int attempts);
+                                  int count, unsigned seed, int attempts, PackReport* report = nullptr,
+                                  long max_trials = kRandomPackTrials);
 
 /// A region object (rectangle or polygon) as a polygon.
 std::vector<Vec2> read_region(Params region);
 
-/// Reads the body's "discs" array (validating each generator).
-std::vector<DiscSpec> generate_discs(Params discs);
+/// Reads the body's "discs" array (validating each generator). A random pack that jammed below its fraction
+/// adds a line to `warnings` (if given); one that used up kRandomPackTrials is an error.
+std::vector<DiscSpec> generate_discs(Params discs, std::vector<std::string>* warnings = nullptr);
 
 /// Area of a simple polygon, whether a point is inside it, and its distance to the boundary.
 double polygon_area(const std::vector<Vec2>& p);

@@ -10,6 +10,7 @@
 
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct WaterProperties {
 
 struct MpmBody {
   std::string name;
+  std::string grid_path;  // the body's "grid" in the case file (/bodies/i/grid), for the errors about it
   std::unique_ptr<MpmMaterial> material;
   Grid grid;
   ShapeFunctions shape;
@@ -51,10 +53,18 @@ struct MpmBody {
 
   /// Gravity acting on the body (zero when switched off).
   Vec2 gravity() const { return gravity_on ? case_gravity : Vec2::Zero(); }
-  /// Supports of every particle at its current position; throws SolverError when one has left the grid.
+  /// Supports of every particle at its current position; throws SolverError naming the grid's JSON path when
+  /// one has left the grid (the grid's edges are free: nothing holds a body that reaches them but the
+  /// boundary conditions given).
   void locate_particles() {
     const Index outside = mpm::locate_particles(grid, shape, particles, support);
-    if (outside >= 0) throw particle_error(outside, "left the grid");
+    if (outside < 0) return;
+    const Vec2 x = particles.x[outside], hi = grid.origin + grid.h * Vec2(grid.nx, grid.ny);
+    std::ostringstream os;
+    os << grid_path << ": body '" << name << "': particle " << outside << " left the grid (x " << grid.origin.x()
+       << ".." << hi.x() << ", y " << grid.origin.y() << ".." << hi.y() << ") at (" << x.x() << ", " << x.y()
+       << "), t = " << t << ": the grid's edges are free; a larger grid, or boundary conditions that hold the body";
+    throw SolverError(os.str());
   }
   /// "body 'NAME': particle P WHAT at t = T".
   SolverError particle_error(Index p, const std::string& what) const {

@@ -309,6 +309,7 @@ MpmModel::MpmModel(Params b, const CaseContext& ctx) : ctx_(ctx), body_(std::mak
   b.validate(kMpmKeys);
   MpmBody& B = *body_;
   B.name = b.identifier("name");
+  B.grid_path = b.child_path("grid");
   B.case_gravity = ctx.gravity;
   if (ctx.analysis.type != "dynamic") b.fail("type", "an MPM body needs a dynamic analysis");
   B.material = make_mpm_material(b.at("material"));

@@ -171,10 +171,11 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
   for (Index p = 0; p < n; ++p) {
     const DiscSpec& s = specs[p];
     const double m = sphere ? 4.0 / 3.0 * std::numbers::pi * rho * s.r * s.r * s.r : std::numbers::pi * rho * s.r * s.r;
-    if (!(m > 0 && std::isfinite(1.0 / m) && std::isfinite(m * s.r * s.r)))
+    // The contacts take products of two masses (m_eff = m_i m_j / (m_i + m_j)) and m r^2: 1e-100..1e100 kg.
+    if (!(m > 1e-100 && m < 1e100 && std::isfinite(m * s.r * s.r)))
       body.at("discs").at(s.group).fail("disc " + std::to_string(p) + " of radius " + fmt(s.r) + " m has a mass of " +
                                         fmt(m) + " kg (density " + fmt(rho) +
-                                        " kg/m^3): out of the range of double precision numbers");
+                                        " kg/m^3): out of the range of 1e-100 to 1e100 kg this code computes with");
     D.radius.push_back(s.r);
     D.mass.push_back(m);
     D.inertia.push_back(b.inertia_factor * m * s.r * s.r);
@@ -191,6 +192,12 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
     b.r_min = std::min(b.r_min, s.r);
     b.r_max = std::max(b.r_max, s.r);
   }
+  // Coordinates must resolve the radius (x + r must differ from x by about r): at most 1e9 radii from the origin.
+  for (size_t w = 0; w < b.walls.size(); ++w)
+    for (size_t k = 0; k < b.walls[w].points.size(); ++k)
+      if (!(b.walls[w].points[k].cwiseAbs().maxCoeff() < 1e9 * b.r_min))
+        body.at("walls").at(w).at("points").at(k).fail("more than 1e9 times the smallest radius (" + fmt(b.r_min) +
+                                                       " m) from the origin: the coordinates do not resolve the discs");
   b.where.resize(n);
   for (Index p = 0; p < n; ++p) b.where[p] = p;
   // An overlap of a whole radius puts the disc's centre on the wall line (no contact normal; the smaller disc's
@@ -237,6 +244,15 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
                       " discs, more than 2e13 disc updates (the critical step of the contact "
                       "law is " +
                       fmt(b.dt_critical) + " s): a shorter end_time, fewer or larger discs, or softer contacts");
+  // Gravity alone moving a disc by a sizeable share of its radius in one sub-step (g h^2) is more than the
+  // contacts can resolve.
+  const double h_max = std::min(ctx.analysis.dt, b.dt);
+  const double g = std::hypot(b.gravity.x(), b.gravity.y());  // no overflow in the squares
+  if (!(g * h_max * h_max < 0.1 * b.r_min))
+    Params(Json::array({b.gravity.x(), b.gravity.y()}), ctx.case_file.string(), "/gravity")
+        .fail("|g| = " + fmt(g) + " m/s^2 moves a disc by g h^2 = " + fmt(g * h_max * h_max) +
+              " m in one sub-step of " + fmt(h_max) + " s, more than a tenth of the smallest radius (" + fmt(b.r_min) +
+              " m)");
   b.integrator = make_central_difference();
 
   Params nb = body.at("neighbour");

@@ -46,22 +46,33 @@ bool crosses(const Vec2& p0, const Vec2& p1, const Vec2& a, const Vec2& b) {
 
 void DemModel::substep(double h) {
   DemBody& b = *body_;
-  if (b.needs_rebuild(h)) b.rebuild();
+  if (b.needs_rebuild(h)) {
+    check_finite();  // the cell grid of the lists needs finite positions
+    b.rebuild();
+  }
   b.place_walls(b.state.t + h);
   // The centres of the discs near a wall before the sub-step: a centre that crosses a wall segment in it has
-  // been pushed through the wall (or tunnelled through it), which no contact law of the body can undo.
+  // been pushed through the wall (or tunnelled through it), which no contact law of the body can undo. A disc
+  // that may move more than skin/2 in the sub-step can reach a wall outside its list: it is tested against all.
   near_wall_.clear();
-  if (!b.segments.empty() && b.wall_row.size() == b.size() + 1)
-    for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
-      if (b.wall_row[p + 1] > b.wall_row[p]) near_wall_.push_back({p, b.position(p)});
+  if (!b.segments.empty() && b.wall_row.size() == b.size() + 1) {
+    const double reach2 = 0.25 * b.skin * b.skin;
+    for (Index p = 0; p < static_cast<Index>(b.size()); ++p) {
+      const Vec2 step = h * b.velocity(p) + 0.5 * h * h * Vec2(b.state.a[3 * p], b.state.a[3 * p + 1]);
+      const bool far = step.squaredNorm() > reach2;
+      if (far || b.wall_row[p + 1] > b.wall_row[p]) near_wall_.push_back({p, b.position(p), far});
+    }
+  }
   b.integrator->explicit_step_into(
       [&b, h](const Vec& x, const Vec& v, double t, Vec& f) { b.compute_forces(x, v, t, h, f); }, b.inv_mass, h,
       b.state, b.force);
-  for (const auto& [p, c0] : near_wall_)
-    for (Index e = b.wall_row[p]; e < b.wall_row[p + 1]; ++e) {
-      const auto [w, s] = b.segments[b.wall_seg[e]];
+  for (const NearWall& nw : near_wall_) {
+    const Index p = nw.disc;
+    const Index n_seg = nw.all_walls ? static_cast<Index>(b.segments.size()) : b.wall_row[p + 1] - b.wall_row[p];
+    for (Index k = 0; k < n_seg; ++k) {
+      const auto [w, s] = b.segments[nw.all_walls ? k : b.wall_seg[b.wall_row[p] + k]];
       const Wall& wall = b.walls[w];
-      const Vec2 c1 = b.position(p);
+      const Vec2 c0 = nw.centre, c1 = b.position(p);
       if (!crosses(c0, c1, wall.a(s), wall.b(s))) continue;
       char msg[640];
       std::snprintf(msg, sizeof msg,
@@ -73,6 +84,7 @@ void DemModel::substep(double h) {
                                            "or the disc too fast for the sub-step)");
       throw SolverError(msg);
     }
+  }
   if (dynamic_cast<const Sabatucci*>(b.law.get())) b.apply_marks();
   // The moving walls' work on the discs over the sub-step (the energy guard): force on the disc times the
   // wall's velocity, at the step's end.
@@ -166,6 +178,17 @@ void DemModel::start_energy_guard() {
   b.energy_scale = b.kinetic_energy() + std::abs(elastic0) + mass * b.gravity.norm() * (hi - lo);
 }
 
+void DemModel::check_finite() const {
+  const DemBody& b = *body_;
+  for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
+    if (!std::isfinite(b.state.x[3 * p]) || !std::isfinite(b.state.x[3 * p + 1]) || !std::isfinite(b.state.v[3 * p]))
+      throw SolverError("dem body '" + b.name + "': disc " + std::to_string(b.discs.id[p]) +
+                        " has a non-finite position or velocity at t = " + std::to_string(b.state.t) + " (" +
+                        (b.dt > b.dt_critical ? "the sub-step is above the critical one: the run is unstable"
+                                              : "the forces on it overflowed") +
+                        ")");
+}
+
 void DemModel::check_energy() const {
   const DemBody& b = *body_;
   // Energy: E = kinetic + gravity potential may exceed the initial total (with the contacts' elastic energy)
@@ -216,13 +239,7 @@ IterationReport DemModel::solve_iteration() {
   const double h = span / n;
   for (int k = 0; k < n; ++k) substep(h);
   b.state.t = t_new_;
-  for (Index p = 0; p < static_cast<Index>(b.size()); ++p)
-    if (!std::isfinite(b.state.x[3 * p]) || !std::isfinite(b.state.x[3 * p + 1]) || !std::isfinite(b.state.v[3 * p]))
-      throw SolverError("dem body '" + b.name + "': disc " + std::to_string(b.discs.id[p]) +
-                        " has a non-finite position or velocity at t = " + std::to_string(t_new_) + " (" +
-                        (b.dt > b.dt_critical ? "the sub-step is above the critical one: the run is unstable"
-                                              : "the forces on it overflowed") +
-                        ")");
+  check_finite();
   check_energy();
   const double w = seconds_since(t0);
   wall_time_ += w;

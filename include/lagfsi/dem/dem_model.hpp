@@ -34,7 +34,6 @@
 
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace lagfsi {
@@ -86,6 +85,8 @@ class DemModel final : public PhysicsModel {
  private:
   /// Sets the energy guard's reference and scale at t = 0 (DemBody::energy_ref, energy_scale).
   void start_energy_guard();
+  /// Throws SolverError naming the first disc whose position or velocity is not finite.
+  void check_finite() const;
   /// Throws SolverError when the energy grew past the work put in.
   void check_energy() const;
 
@@ -97,7 +98,14 @@ class DemModel final : public PhysicsModel {
   double t_new_ = 0, dt_ = 0;
   double settle_time_ = 0;
   double wall_time_ = 0;
-  std::vector<std::pair<Index, Vec2>> near_wall_;  // discs near a wall and their centres before a sub-step
+  /// A disc near a wall (or fast enough to reach one outside its list: all_walls) and its centre before a
+  /// sub-step (DemModel::substep).
+  struct NearWall {
+    Index disc;
+    Vec2 centre;
+    bool all_walls;
+  };
+  std::vector<NearWall> near_wall_;
 };
 
 /// Reads a DEM body into `b` (dem_input.cpp). Returns the settling time (0: none).

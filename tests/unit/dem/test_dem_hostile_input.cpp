@@ -95,11 +95,11 @@ TEST(DemHostileInput, ARandomPackThatJamsBelowItsFractionIsAWarningInTheSummary)
 
 TEST(DemHostileInput, AStepAboveTheCriticalOneIsAWarningInTheSummary) {
   json j = base_case();
-  j["bodies"][0]["time_step"] = {{"dt", 1e-2}, {"allow_above_critical", true}};
-  j["analysis"]["dt"] = 1e-2;
-  j["analysis"]["end_time"] = 1e-2;
+  j["bodies"][0]["time_step"] = {{"dt", 4e-3}, {"allow_above_critical", true}};
+  j["analysis"]["dt"] = 4e-3;
+  j["analysis"]["end_time"] = 4e-3;
   const RunResult r = run("above_critical", j, "");
-  EXPECT_NE(r.stderr_text.find("lagfsi: warning: /bodies/0/time_step/dt: sub-steps of 0.01 s, above the critical"),
+  EXPECT_NE(r.stderr_text.find("lagfsi: warning: /bodies/0/time_step/dt: sub-steps of 0.004 s, above the critical"),
             std::string::npos)
       << r.stderr_text;
   EXPECT_TRUE(has_warning(r, "/bodies/0/time_step/dt: sub-steps"));
@@ -176,6 +176,30 @@ TEST(DemHostileInput, AnOverflowIsBlamedOnItsCauseNotOnTheStep) {
   j["bodies"][0]["material"]["density"] = 1e-310;  // m = rho pi r^2 underflows to 0
   r = run("underflow", j);
   expect_one_line(r, "/bodies/0/discs/0", "out of the range");
+}
+
+TEST(DemHostileInput, CoordinatesThatDoNotResolveTheRadiusAreRefused) {
+  // A lattice at x = 1e300: x + pitch rounded back to x and the generator never advanced.
+  json j = base_case();
+  j["bodies"][0]["discs"][0]["region"]["origin"] = {1e300, 0};
+  expect_one_line(run("far_lattice", j), "/bodies/0/discs/0/region", "do not resolve");
+  j = base_case();
+  j["bodies"][0]["walls"][0]["points"][0] = {1e300, 0.2};
+  expect_one_line(run("far_wall", j), "/bodies/0/walls/0/points/0", "do not resolve");
+}
+
+TEST(DemHostileInput, NumbersOutOfRangeAreNamedAtTheirSource) {
+  // A kinetic energy, a mass or a gravity that overflow the contacts' arithmetic: an input error naming the key,
+  // not a run that ends with non-finite positions or an internal error.
+  json j = base_case();
+  j["bodies"][0]["discs"][0]["velocity"] = {1e300, 0};
+  expect_one_line(run("fast", j), "/bodies/0/discs/0/velocity", "kinetic energy");
+  j = base_case();
+  j["bodies"][0]["material"]["density"] = 1e300;
+  expect_one_line(run("heavy", j), "/bodies/0/discs/0", "1e-100 to 1e100 kg");
+  j = base_case();
+  j["gravity"] = {0, -1e300};
+  expect_one_line(run("gravity", j), "/gravity", "smallest radius");
 }
 
 TEST(DemHostileInput, CheckPrintsAnErrorAlone) {

@@ -267,6 +267,44 @@ void read_two_phase(Params tp, bool musl, double gy, MpmBody& body) {
   }
 }
 
+/// What the explicit sub-step dt (at most cfl h / c) cannot follow, each an error naming its key: an initial
+/// velocity that carries a particle across more than a cell in one sub-step (the transfers only see the cells
+/// next to its own), a gravity that does so from rest (|g| dt^2 > h), a mass-proportional damping whose explicit
+/// update v (1 - alpha dt) diverges (alpha dt > 2), an initial stress above the P-wave modulus rho c^2 (a
+/// strain above 1) or not finite.
+void check_initial_state(Params b, const MpmBody& B, double dt, const CaseContext& ctx) {
+  const Grid& grid = B.grid;
+  const Particles& P = B.particles;
+  auto text = [](double v) {
+    std::ostringstream o;
+    o << v;
+    return o.str();
+  };
+  double v_max = 0, s_max = 0;
+  for (size_t q = 0; q < P.size(); ++q) {
+    v_max = std::max(v_max, P.v[q].norm());
+    for (double s : P.stress[q]) s_max = std::max(s_max, std::abs(s));
+    if (!std::isfinite(P.v[q].norm())) v_max = P.v[q].norm();
+    if (!std::isfinite(P.stress[q][0] + P.stress[q][1] + P.stress[q][2] + P.stress[q][3])) s_max = INFINITY;
+  }
+  if (!(v_max * dt <= grid.h))
+    b.fail(b.at("initial_state").string("type") == "given" ? "initial_velocity" : "initial_state",
+           "particles at up to " + text(v_max) + " m/s cross more than a cell (" + text(grid.h) +
+               " m) in one sub-step of " + text(dt) + " s");
+  const double g = std::hypot(B.gravity().x(), B.gravity().y());
+  if (!(g * dt * dt <= grid.h))
+    Params(Json::array({B.case_gravity.x(), B.case_gravity.y()}), ctx.case_file.string(), "/gravity")
+        .fail("|g| = " + text(g) + " m/s^2 carries a particle across more than a cell of body '" + B.name + "' (" +
+              text(grid.h) + " m) in one sub-step of " + text(dt) + " s");
+  if (!(B.damping.mass * dt <= 2))
+    b.at("damping").fail("mass", "alpha dt = " + text(B.damping.mass * dt) + " for the sub-step of " + text(dt) +
+                                     " s: above 2 the explicit damping v (1 - alpha dt) diverges");
+  const double modulus = B.material->density() * B.material->p_wave_speed() * B.material->p_wave_speed();
+  if (!(s_max <= modulus))
+    b.fail("initial_stress", "an initial stress of " + text(s_max) +
+                                 " Pa, above the P-wave modulus rho c^2 = " + text(modulus) + " Pa (a strain above 1)");
+}
+
 /// The explicit scheme of a body ("update" for a single-phase one); a stiff, light or nearly water-filled body
 /// could ask for billions of sub-steps cfl h / c (mpm_scheme.cpp) and the run would look hung: an error.
 std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& update, const MpmBody& B,
@@ -289,6 +327,7 @@ std::unique_ptr<MpmScheme> read_explicit_scheme(Params b, const std::string& upd
        << (B.two_phase ? ", porosity" : "") << " and cell size";
     b.fail("material", os.str());
   }
+  check_initial_state(b, B, std::min(B.cfl * grid.h / c, ctx.analysis.dt), ctx);
   return scheme;
 }
 

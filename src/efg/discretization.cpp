@@ -202,6 +202,11 @@ NodeSearch::NodeSearch(const std::vector<Vec2>& nodes, double cell_size) : nodes
     hi = hi.cwiseMax(p);
   }
   lo_ = lo;
+  // Buckets no smaller than the search radius, and no more than about 4 per node: a radius far below the node
+  // spacing (a tiny alpha) would otherwise ask for billions of empty buckets.
+  const double extent = (hi - lo).maxCoeff();
+  h_ = std::max(h_, extent / (2.0 * std::sqrt(static_cast<double>(nodes.size())) + 1.0));
+  if (!(h_ > 0)) h_ = 1.0;  // a single node
   nx_ = std::max(1, static_cast<int>((hi.x() - lo.x()) / h_) + 1);
   ny_ = std::max(1, static_cast<int>((hi.y() - lo.y()) / h_) + 1);
   bucket_.assign(static_cast<size_t>(nx_) * ny_, {});
@@ -214,10 +219,10 @@ NodeSearch::NodeSearch(const std::vector<Vec2>& nodes, double cell_size) : nodes
 
 void NodeSearch::within(const Vec2& x, double r, std::vector<Index>& out) const {
   out.clear();
-  const int x0 = std::max(0, static_cast<int>(std::floor((x.x() - r - lo_.x()) / h_)));
-  const int x1 = std::min(nx_ - 1, static_cast<int>(std::floor((x.x() + r - lo_.x()) / h_)));
-  const int y0 = std::max(0, static_cast<int>(std::floor((x.y() - r - lo_.y()) / h_)));
-  const int y1 = std::min(ny_ - 1, static_cast<int>(std::floor((x.y() + r - lo_.y()) / h_)));
+  // Bucket indices clamped in floating point first (a radius far beyond the body would overflow an int).
+  auto bucket = [this](double v, int n) { return static_cast<int>(std::clamp(std::floor(v / h_), 0.0, n - 1.0)); };
+  const int x0 = bucket(x.x() - r - lo_.x(), nx_), x1 = bucket(x.x() + r - lo_.x(), nx_);
+  const int y0 = bucket(x.y() - r - lo_.y(), ny_), y1 = bucket(x.y() + r - lo_.y(), ny_);
   for (int by = y0; by <= y1; ++by)
     for (int bx = x0; bx <= x1; ++bx)
       for (Index j : bucket_[static_cast<size_t>(by) * nx_ + bx]) {

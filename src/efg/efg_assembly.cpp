@@ -131,8 +131,12 @@ void EfgModel::factorize() {
     dirichlet_identity(K_, [&](Index i) { return is_fixed_[static_cast<size_t>(i)] != 0; });
   }
   if (!K_.valuePtr() || !Eigen::Map<const Vec>(K_.valuePtr(), K_.nonZeros()).allFinite())
-    throw SolverError("body '" + name_ + "': non-finite stiffness");
-  solver_->factorize(K_);
+    fail_solve("non-finite stiffness", true);
+  try {
+    solver_->factorize(K_);
+  } catch (const SolverError& e) {
+    fail_solve(std::string("the stiffness cannot be factorized: ") + e.what(), true);
+  }
 }
 
 Vec EfgModel::solve(const Vec& rhs, bool with_prescribed) {
@@ -142,7 +146,7 @@ Vec EfgModel::solve(const Vec& rhs, bool with_prescribed) {
     for (size_t i = 0; i < fixed_dofs_.size(); ++i) r[fixed_dofs_[i]] = with_prescribed ? fixed_ref_[i] : 0.0;
   }
   solver_->solve(r, out);
-  if (!out.allFinite()) throw SolverError("body '" + name_ + "': non-finite solution (singular system?)");
+  if (!out.allFinite()) fail_solve("non-finite solution (a singular system)", true);
   return out;
 }
 

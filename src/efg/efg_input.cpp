@@ -5,6 +5,8 @@
 
 #include <lagfsi/error.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -129,10 +131,48 @@ const KeyTable kEfgControlKeys(
 
 namespace {
 Vec2 box_corner(Params p, const std::string& key) { return p.vec2(key); }
+
+/// The two cell counts of a domain: positive integers, checked in floating point before any conversion, and a
+/// number of cells a run can hold (each cell carries gauss^2 points with some 16-40 support nodes each).
+std::vector<double> divisions(const Params& d, const std::string& expected) {
+  const auto div = d.numbers("divisions");
+  if (div.size() != 2 || div[0] < 1 || div[1] < 1 || div[0] != std::floor(div[0]) || div[1] != std::floor(div[1]))
+    d.fail("divisions", expected);
+  if (div[0] * div[1] > 1e6) d.fail("divisions", "more than a million background cells");
+  return div;
+}
+
+/// Why the held components leave the body free to move, or "" when they fix it. A rigid motion
+/// u = (a - theta (y - yc), b + theta (x - xc)) that every held component leaves at zero is free: the body's
+/// stiffness is singular and no load step can be solved.
+std::string rigid_motion_left(const std::vector<Index>& held_dofs, const std::vector<Vec2>& nodes) {
+  Vec2 lo = nodes.front(), hi = lo, c = Vec2::Zero();
+  for (const Vec2& p : nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    c += p;
+  }
+  c /= static_cast<double>(nodes.size());
+  const double L = std::max((hi - lo).norm(), 1e-300);
+  Mat3 M = Mat3::Zero();  // sum of r r^T over the held components' rows r (a, b, theta L)
+  for (Index d : held_dofs) {
+    const Vec2 x = (nodes[d / 2] - c) / L;
+    const Vec3 r = d % 2 == 0 ? Vec3(1, 0, -x.y()) : Vec3(0, 1, x.x());
+    M += r * r.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(M);
+  if (eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2])) return "";
+  // With components held in both directions no translation is free: the free motion is a rotation.
+  if (M(0, 0) == 0) return "a rigid translation in x";
+  if (M(1, 1) == 0) return "a rigid translation in y";
+  return "a rigid rotation";
+}
 }  // namespace
 
 EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   b.validate(kEfgKeys);
+  file_ = b.file();
+  path_ = b.path();
   name_ = b.identifier("name");
   thickness_ = b.positive("thickness");
   if (ctx.analysis.type != "static")
@@ -171,8 +211,14 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   }
   read_discretization(b);
   read_boundary_conditions(b);
-  build_integration_points();
-  read_loads(b);
+  try {
+    // An MLS failure here (a point no influence domain covers, a degenerate moment matrix) comes from the
+    // discretization the input asks for: the domain, the supports' size (alpha) or the protected segments.
+    build_integration_points();
+    read_loads(b);
+  } catch (const SolverError& e) {
+    fail_input("efg", std::string("the shape functions cannot be built: ") + e.what());
+  }
   read_control(b);
   build_pattern();
   const std::string ls = ctx.analysis.linear_solver;
@@ -195,9 +241,7 @@ void EfgModel::read_discretization(Params b) {
       const int order = d.choice("cells", {"q4", "q9"}) == "q9" ? 2 : 1;
       const Vec2 size = d.vec2("size");
       if (!(size.x() > 0 && size.y() > 0)) d.fail("size", "must be positive");
-      const auto div = d.numbers("divisions");
-      if (div.size() != 2 || div[0] < 1 || div[1] < 1 || div[0] != std::floor(div[0]) || div[1] != std::floor(div[1]))
-        d.fail("divisions", "expected [nx, ny], positive integers");
+      const auto div = divisions(d, "expected [nx, ny], positive integers");
       std::vector<std::array<Vec2, 2>> holes;
       Params h = d.at("holes");
       for (size_t i = 0; i < h.size(); ++i) {
@@ -208,8 +252,7 @@ void EfgModel::read_discretization(Params b) {
       mesh_ = rectangle_grid(d.vec2("origin"), size, static_cast<int>(div[0]), static_cast<int>(div[1]), holes, order);
     } else {
       d.validate(kEfgPlateKeys);
-      const auto div = d.numbers("divisions");
-      if (div.size() != 2 || div[0] < 1 || div[1] < 1) d.fail("divisions", "expected [n_arc, n_radial] (each >= 1)");
+      const auto div = divisions(d, "expected [n_arc, n_radial], positive integers");
       mesh_ = plate_with_hole(d.positive("radius"), d.positive("size"), static_cast<int>(div[0]),
                               static_cast<int>(div[1]), d.positive("grading"));
     }
@@ -228,7 +271,11 @@ void EfgModel::read_discretization(Params b) {
   const double alpha = e.positive("alpha");
   gauss_ = e.integer("gauss", 1);
   if (gauss_ > 12) e.fail("gauss", "at most 12 points per direction");
-  mls_ = MlsShape(basis, dom, e.positive("rcond_min"));
+  if (static_cast<double>(mesh_.num_cells()) * gauss_ * gauss_ > 4e6)
+    e.fail("gauss", "more than 4 million integration points (background cells x gauss^2)");
+  const double rcond_min = e.positive("rcond_min");
+  if (!(rcond_min < 1)) e.fail("rcond_min", "a reciprocal condition number: must lie in (0, 1)");
+  mls_ = MlsShape(basis, dom, rcond_min);
   Params segs = e.at("protected_segments");
   for (size_t i = 0; i < segs.size(); ++i) {
     Params s = segs.at(i);
@@ -263,6 +310,10 @@ void EfgModel::read_discretization(Params b) {
       if ((ctr.array() > region_boxes_[r][0].array()).all() && (ctr.array() < region_boxes_[r][1].array()).all())
         cell_material_[c] = static_cast<int>(r);
   }
+  // A region that takes no cell would leave the body's material where the input asks for another.
+  for (size_t r = 0; r < region_boxes_.size(); ++r)
+    if (std::find(cell_material_.begin(), cell_material_.end(), static_cast<int>(r)) == cell_material_.end())
+      b.at("regions").at(r).fail("the region (min, max) contains no background cell's centre");
 }
 
 void EfgModel::read_boundary_conditions(Params b) {
@@ -300,6 +351,12 @@ void EfgModel::read_boundary_conditions(Params b) {
       fixed_dofs_.push_back(d);
       fixed_ref_.push_back(value[d]);
     }
+  // A static analysis of a body its supports do not hold has no unique answer (a singular stiffness).
+  const std::string free_motion = rigid_motion_left(fixed_dofs_, mesh_.nodes);
+  if (!free_motion.empty())
+    bcs.fail("the held components leave the body free to move (" + free_motion +
+             "): hold more components (two in x at different heights, or two in y at different x, and one in the "
+             "other direction)");
   // Active FE nodes that hold nothing (a node selection each; {"type": "all"}: the FE mesh everywhere).
   Params fe = es.at("fe_nodes");
   if (!fe.json().is_array()) es.fail("fe_nodes", "expected an array of node selections");
@@ -409,6 +466,10 @@ void EfgModel::read_loads(Params b) {
     if (used == 0) sel.fail("the selection contains no boundary edge of the background cells");
   }
   Ptr_ = P_;
+  // Nothing to follow: every load step would find the unloaded state (or, under path following, fail).
+  if (!(P_.cwiseAbs().maxCoeff() > 0) &&
+      std::all_of(fixed_ref_.begin(), fixed_ref_.end(), [](double v) { return v == 0.0; }))
+    b.at("loads").fail("the body is neither loaded nor given a displacement (every load and prescribed value is zero)");
   // Prescribed values of the collocation constraints, times lambda like the loads.
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const auto& c = constraints_[k];

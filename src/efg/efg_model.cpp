@@ -14,6 +14,11 @@ namespace lagfsi::efg {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+std::string number_text(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
 }  // namespace
 
 void EfgModel::initialize() {
@@ -44,22 +49,39 @@ IterationReport EfgModel::solve_iteration() {
   rep.residual = Q.norm();
   rep.residual_ref = std::max({(lambda_ * P_).norm(), fint_.norm(), 1e-300});
   times_.assembly += since(t0);
-  if (!std::isfinite(rep.residual)) throw SolverError("body '" + name_ + "': non-finite residual");
+  if (!std::isfinite(rep.residual)) fail_solve("non-finite residual at load factor " + number_text(lambda_), true);
   if (iter_ > 0 && rep.residual <= ctx_.analysis.newton.residual_tolerance * rep.residual_ref) {
     check_runaway();
     rep.converged = true;
     return rep;
   }
-  if (control_.type() == ControlType::load && iter_ + 1 >= ctx_.analysis.newton.max_iterations) {
+  if (iter_ + 1 >= ctx_.analysis.newton.max_iterations) {
     // The last iteration the driver allows, not converged: its correction would never be checked. Under load
-    // control a load step that finds no equilibrium is the mark of a limit point passed.
+    // control a load step that finds no equilibrium is the mark of a limit point passed; under the others, of an
+    // increment too long for the path (or a body its supports do not hold).
     char m[480];
-    std::snprintf(m, sizeof m,
-                  "%s: load control found no equilibrium at load factor %.6g in %d iterations (relative residual "
-                  "%.3g): the load is past the body's limit point (or the step too long); follow the path past the "
-                  "limit point with displacement, generalized_displacement or arc_length control",
-                  control_.where().c_str(), lambda_, iter_ + 1, rep.residual / rep.residual_ref);
-    throw SolverError(m);
+    const double relative = rep.residual / rep.residual_ref;
+    if (relative < 1e-13) {
+      // Equilibrium to round-off, refused by a tolerance below what doubles resolve: the tolerance is the input
+      // at fault, not the step.
+      std::snprintf(m, sizeof m,
+                    "/analysis/newton/residual_tolerance: %.3g is below round-off: the step reached equilibrium to "
+                    "a relative residual of %.3g and can go no further; give a tolerance of at least 1e-12",
+                    ctx_.analysis.newton.residual_tolerance, relative);
+      throw SolverError(m);
+    }
+    if (control_.type() == ControlType::load)
+      std::snprintf(m, sizeof m,
+                    "load control found no equilibrium at load factor %.6g in %d iterations (relative residual "
+                    "%.3g): the load is past the body's limit point (or the step too long); follow the path past the "
+                    "limit point with displacement, generalized_displacement or arc_length control",
+                    lambda_, iter_ + 1, relative);
+    else
+      std::snprintf(m, sizeof m,
+                    "no equilibrium found at load factor %.6g in %d iterations (relative residual %.3g): give a "
+                    "smaller increment, or allow more analysis.newton.max_iterations",
+                    lambda_, iter_ + 1, relative);
+    fail_solve(m);
   }
   t0 = Clock::now();
   factorize();
@@ -78,7 +100,7 @@ IterationReport EfgModel::solve_iteration() {
   }
   times_.solve += since(t0);
   if (!std::isfinite(dl) || !dx.allFinite())
-    throw SolverError("body '" + name_ + "': non-finite load-factor increment");
+    fail_solve("non-finite load-factor increment at load factor " + number_text(lambda_), true);
   x_ += dx;
   lambda_ += dl;
   dx_step_ += dx;
@@ -96,6 +118,16 @@ void EfgModel::finalize_step() {
   fint0_ = fint_;
   lambda_peak_ = std::max(lambda_peak_, lambda0_);
   ++steps_;
+}
+
+void EfgModel::fail_solve(const std::string& reason, bool overflow_hint) const {
+  // Numbers beyond the double range on the way (a stiffness, load or size far from the others) show up as
+  // non-finite values or a failed factorization; the message names the control, where the step was asked for.
+  const char* hint =
+      overflow_hint ? " (a material stiffness, load, size or influence domain far from the others, or supports that "
+                      "leave the body free to move?)"
+                    : "";
+  throw SolverError(control_.where() + ": " + reason + hint);
 }
 
 namespace {
@@ -126,6 +158,13 @@ void EfgModel::check_runaway() const {
                   "%s: the path reached a displacement of %.3g at load factor %.6g, more than the body's size %.6g: "
                   "beyond what a geometrically linear analysis describes; end the run before (fewer load steps)",
                   at.c_str(), u, lambda_, body_size_);
+  } else if (linear_elastic()) {
+    // No damage law to blame: the stiffness itself is far too small for the load (or the load far too large).
+    std::snprintf(m, sizeof m,
+                  "%s: the step to load factor %.6g moved the linear elastic body by %.3g, %.3g times its size %.6g: "
+                  "beyond what a geometrically linear analysis describes (a Young's modulus far too small for the "
+                  "loads, or loads far too large?)",
+                  at.c_str(), lambda_, du, du / body_size_, body_size_);
   } else if (control_.type() == ControlType::load) {
     std::snprintf(m, sizeof m,
                   "%s: load control past the limit point: the step to load factor %.6g found equilibrium only at a "
@@ -141,6 +180,13 @@ void EfgModel::check_runaway() const {
                   at.c_str(), lambda_, du, du / body_size_, body_size_);
   }
   throw SolverError(m);
+}
+
+bool EfgModel::linear_elastic() const {
+  if (!material_->linear()) return false;
+  for (const auto& m : region_materials_)
+    if (!m->linear()) return false;
+  return true;
 }
 
 Vec EfgModel::nodal_displacements() const {

@@ -72,7 +72,7 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
     // Elastic stress D0 B v at a node, averaged over the cells around it (each evaluates its own functions).
     p.validate(kEfgStressProbeKeys);
     Json sel = {{"type", "point"}, {"at", p.json()["at"]}};
-    Params sp(sel, p.file(), p.child_path("at"));
+    Params sp(sel, p.file(), p.path());  // a point selection whose "at" is the probe's: errors name /probes/i/at
     const Index n = select_nodes(sp, mesh_.nodes).front();
     const std::vector<std::string> comps = {"xx", "yy", "xy"};
     const std::string cs = p.choice("component", comps);
@@ -106,7 +106,7 @@ std::unique_ptr<Probe> EfgModel::make_probe(Params p) {
   if (t == "displacement") {
     p.validate(kEfgDisplacementProbeKeys);
     Json sel = {{"type", "point"}, {"at", p.json()["at"]}};
-    Params sp(sel, p.file(), p.child_path("at"));
+    Params sp(sel, p.file(), p.path());  // a point selection whose "at" is the probe's: errors name /probes/i/at
     const Index n = select_nodes(sp, mesh_.nodes).front();
     const int comp = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
     if (p.choice("value", {"displacement", "parameter"}) == "parameter")

@@ -3,6 +3,7 @@
 // See include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/efg/integration.hpp>
+#include <lagfsi/error.hpp>
 
 #include <Eigen/Dense>
 
@@ -114,9 +115,7 @@ void EfgModel::build_integration_points() {
           J.col(1) += deta[a] * p;
         }
         const double det = J.determinant();
-        if (!(det > 0))
-          throw InputError(ctx_.case_file.string(), "/bodies",
-                           "background cell " + std::to_string(c) + " is inverted or degenerate");
+        if (!(det > 0)) fail_input("domain", "background cell " + std::to_string(c) + " is inverted or degenerate");
         ShapeValues& sh = sg[i * gauss_ + j];
         shape_at(c, gx[i], gx[j], sh, true);
         min_rcond_ = std::min(min_rcond_, sh.rcond);
@@ -193,6 +192,10 @@ void EfgModel::build_integration_points() {
         if (sh.N[k] != 0.0) node_eval_[n].emplace_back(sh.nodes[k], sh.N[k]);
     }
   t_shape_ = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void EfgModel::fail_input(const std::string& key, const std::string& reason) const {
+  throw InputError(file_, key.empty() ? path_ : path_ + "/" + key, reason);
 }
 
 void EfgModel::build_pattern() {

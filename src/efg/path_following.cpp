@@ -63,7 +63,10 @@ double PathFollowing::step_predictor(const Vec& dUP, double scale) {
         return inc_ * scale;
       }
       const double den = dUP1_prev_.dot(dUP);
-      if (std::abs(den) < 1e-300) fail("generalized displacement control: GSP undefined");
+      if (std::abs(den) < 1e-300)
+        fail(
+            "generalized displacement control: GSP undefined (the response to the reference load vanishes: a load "
+            "of zero or next to it?)");
       const double gsp = dUP1_first_.squaredNorm() / den;
       sign_cur_ = sign_ * (gsp < 0 ? -1.0 : 1.0);
       return sign_cur_ * inc_ * scale * std::sqrt(std::abs(gsp));

@@ -24,9 +24,12 @@
 /// order sigma / (1e-9 E0), displacements orders of magnitude beyond the body's size. The analysis is geometrically
 /// linear: a converged step whose nodal displacement exceeds the body's size (the diagonal of its bounding box) is
 /// refused with a SolverError naming the control (load control: past the limit point; the others: the increment is far
-/// too large), so the driver cuts the step back and, failing that, the run stops with that message. Under load control
-/// a step that does not converge in the iterations allowed (the tangent operator's way of failing past the peak) is
-/// reported the same way, at the control's path.
+/// too large), so the driver cuts the step back and, failing that, the run stops with that message. A step that does
+/// not converge in the iterations allowed (under load control the tangent operator's way of failing past the peak),
+/// and a non-finite or singular system, are reported the same way, at the control's path; a tolerance below
+/// round-off is reported at /analysis/newton/residual_tolerance. Input the set-up can judge is an InputError at its
+/// path: supports that leave a rigid motion free, shape functions that cannot be built (/bodies/i/efg), a body with
+/// neither load nor prescribed displacement, a region that takes no cell, more cells or points than a run holds.
 ///
 /// Shape functions, derivatives and supports are computed once per Gauss point and cached (thesis §4.4).
 #include <lagfsi/case.hpp>
@@ -109,8 +112,15 @@ class EfgModel final : public PhysicsModel {
   // path following (efg_model.cpp)
   /// Throws SolverError when the converged iterate x_ lies at a displacement beyond the body's size.
   void check_runaway() const;
+  bool linear_elastic() const;  ///< the body's material and every region's are linear elastic
+  /// Throws SolverError "<control's path>: reason" (a step that cannot be solved, named where it was asked for);
+  /// overflow_hint adds the likely causes of non-finite numbers and singular matrices.
+  [[noreturn]] void fail_solve(const std::string& reason, bool overflow_hint = false) const;
+  /// Throws InputError "<body's path>/key: reason" (key empty: the body).
+  [[noreturn]] void fail_input(const std::string& key, const std::string& reason) const;
 
   std::string name_;
+  std::string file_, path_;  // the case file and the body's JSON path (/bodies/i), for messages
   CaseContext ctx_;
   QuadMesh mesh_;
   std::vector<Vec2> rho_;

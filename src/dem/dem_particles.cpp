@@ -52,7 +52,7 @@ const KeyTable kDemRandomKeys(
      {"fraction", 0.5, "Target packing fraction, at most 0.6."},
      {"count", 0, "Number of discs (0: until the fraction)."},
      {"seed", 1, "Seed of the random numbers."},
-     {"attempts", 20000, "Failed placements before the generator stops."},
+     {"attempts", 20000, "Failed placements in a row before the generator stops (at most 1e6; 2e7 in all)."},
      {"velocity", Json::array({0.0, 0.0}), kVelocityDoc},
      {"angular_velocity", 0.0, kAngularDoc}});
 

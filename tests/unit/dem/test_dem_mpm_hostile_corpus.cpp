@@ -1,4 +1,4 @@
-// A corpus of hostile DEM and MPM case files (tests/unit/dem/hostile_corpus, listed with what each must do in its
+// A corpus of hostile DEM and MPM case files (tests/fuzz/dem_mpm_corpus, listed with what each must do in its
 // index.json): mutants of a small DEM and a small MPM case (numbers set to 0, negative, huge, tiny, "nan" or "inf"
 // as strings, wrong types, keys removed or added, objects wrapped in arrays) that once crashed, hung or completed
 // over a wrong answer, and the defect classes they stand for. Each is run by `lagfsi check` or a short run under a
@@ -19,7 +19,7 @@ namespace {
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-const fs::path kCorpus = fs::path(LAGFSI_SOURCE_DIR) / "tests" / "unit" / "dem" / "hostile_corpus";
+const fs::path kCorpus = fs::path(LAGFSI_SOURCE_DIR) / "tests" / "fuzz" / "dem_mpm_corpus";
 
 struct Ran {
   int code;  // exit code; 124: the time limit; 1000 + signal

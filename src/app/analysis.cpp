@@ -7,7 +7,7 @@
 #include "run_observers.hpp"
 #include "simulation.hpp"
 
-#include <lagfsi/analysis.hpp>
+#include <lagfsi/app/analysis.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/output_file.hpp>
 

@@ -1,7 +1,7 @@
 #include "progress.hpp"
 
-#include <lagfsi/analysis.hpp>
-#include <lagfsi/app.hpp>
+#include <lagfsi/app/analysis.hpp>
+#include <lagfsi/app/app.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/text.hpp>
 

@@ -2,9 +2,9 @@
 
 #include "input_checks.hpp"
 
+#include <lagfsi/app/model_registry.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/fsi/dirichlet_neumann.hpp>
-#include <lagfsi/model_registry.hpp>
 
 #include <algorithm>
 #include <functional>

@@ -5,7 +5,7 @@
 #include "analysis_settings.hpp"
 #include "checkpoint.hpp"
 
-#include <lagfsi/analysis.hpp>
+#include <lagfsi/app/analysis.hpp>
 #include <lagfsi/case.hpp>
 #include <lagfsi/model.hpp>
 

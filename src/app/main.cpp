@@ -1,4 +1,4 @@
-#include <lagfsi/app.hpp>
+#include <lagfsi/app/app.hpp>
 
 #include "git_version.hpp"  // LAGFSI_GIT_COMMIT, written at build time (cmake/git_version.cmake)
 

@@ -1,4 +1,4 @@
-// The repeated pieces around a linear solve (include/lagfsi/system_assembly.hpp).
+// The repeated pieces around a linear solve (src/core/include/lagfsi/system_assembly.hpp).
 #include <lagfsi/system_assembly.hpp>
 
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Air-blast load with shadowing (include/lagfsi/dem/dem_blast.hpp): Henrych overpressure, Wu-Hao duration,
+// Air-blast load with shadowing (src/dem/include/lagfsi/dem/dem_blast.hpp): Henrych overpressure, Wu-Hao duration,
 // Rankine-Hugoniot arrival, Friedlander decay, and the angular sweep of Sabatucci et al. (2013), Sec. 4.1.
 #include <lagfsi/dem/dem_blast.hpp>
 

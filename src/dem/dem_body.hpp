@@ -1,5 +1,5 @@
 #pragma once
-// What the DEM body's parts work on (include/lagfsi/dem/dem_model.hpp): the discs and their dofs, the
+// What the DEM body's parts work on (src/dem/include/lagfsi/dem/dem_model.hpp): the discs and their dofs, the
 // contact law, the walls, the neighbour lists with their per-pair state, the blast, the energy counters.
 //
 // Dofs: (x, y, theta) per disc, 3 n entries of the KinematicState, inverse masses 1/m, 1/m, 1/I (1/I = 0

@@ -1,5 +1,5 @@
-// Checkpoints of a DEM body (state_archive.hpp, include/lagfsi/dem/dem_model.hpp): everything a step changes and
-// the next one reads. Taken after finalize_step; a restart builds the body from the case, runs initialize() (the
+// Checkpoints of a DEM body (state_archive.hpp, src/dem/include/lagfsi/dem/dem_model.hpp): everything a step changes
+// and the next one reads. Taken after finalize_step; a restart builds the body from the case, runs initialize() (the
 // settling stage too, which removes the same walls) and reads this over it.
 //
 //  - the discs in their current order (a rebuild reorders them): radius, mass, inertia, id, mark, group, the

@@ -1,4 +1,4 @@
-// Contact laws of the DEM body (include/lagfsi/dem/dem_contact_law.hpp): constructors, the critical
+// Contact laws of the DEM body (src/dem/include/lagfsi/dem/dem_contact_law.hpp): constructors, the critical
 // frequencies, Tsuji's damping constant from a restitution coefficient, and reading a law from the case file.
 #include <lagfsi/dem/dem_contact_law.hpp>
 

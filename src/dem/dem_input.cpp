@@ -1,4 +1,4 @@
-// Reading a DEM body from the case file (include/lagfsi/dem/dem_model.hpp). Keys and defaults:
+// Reading a DEM body from the case file (src/dem/include/lagfsi/dem/dem_model.hpp). Keys and defaults:
 //   "name", "type": "dem",
 //   "material": {"density" (required), "young": 0, "poisson": 0.3}    (young: Hertz-Mindlin only)
 //   "mass": "disc" | "sphere"      m = rho pi r^2 (unit depth), I = m r^2/2 | m = 4/3 rho pi r^3, I = 2/5 m r^2

@@ -1,4 +1,4 @@
-// The lifecycle of a DEM body (include/lagfsi/dem/dem_model.hpp): sub-steps of the shared central
+// The lifecycle of a DEM body (src/dem/include/lagfsi/dem/dem_model.hpp): sub-steps of the shared central
 // difference (explicit_step_into) with the force sweep of dem_forces.cpp as the force callback.
 #include "dem_body.hpp"
 #include "dem_output.hpp"

@@ -1,4 +1,4 @@
-// Cell-grid neighbour search of the DEM body (include/lagfsi/dem/dem_neighbour_grid.hpp): counting sort of
+// Cell-grid neighbour search of the DEM body (src/dem/include/lagfsi/dem/dem_neighbour_grid.hpp): counting sort of
 // the discs by cell, half-stencil pair search (own cell forward, E, NW, N, NE), owner CSR and incidence lists.
 #include <lagfsi/dem/dem_neighbour_grid.hpp>
 

@@ -1,5 +1,5 @@
 #pragma once
-// ParaView output of a DEM body (include/lagfsi/dem/dem_model.hpp): the discs as a .vtp series of vertices
+// ParaView output of a DEM body (src/dem/include/lagfsi/dem/dem_model.hpp): the discs as a .vtp series of vertices
 // (fields radius, velocity, angular_velocity, momentum |m v|, mark, id, group; for ParaView's glyph filter:
 // Glyph type "Sphere", scale by "radius", factor 2) and the walls as polylines (a second series).
 #include "dem_body.hpp"

@@ -1,4 +1,4 @@
-// Disc generators of the DEM body (include/lagfsi/dem/dem_particles.hpp): lists, hexagonal lattices and
+// Disc generators of the DEM body (src/dem/include/lagfsi/dem/dem_particles.hpp): lists, hexagonal lattices and
 // random sequential addition in rectangles and polygons.
 #include <lagfsi/dem/dem_particles.hpp>
 

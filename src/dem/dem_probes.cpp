@@ -1,4 +1,4 @@
-// Probes of a DEM body (include/lagfsi/dem/dem_model.hpp), columns of probes.csv sampled after each driver
+// Probes of a DEM body (src/dem/include/lagfsi/dem/dem_model.hpp), columns of probes.csv sampled after each driver
 // step:
 //  - {"type": "energy", "kind": "kinetic" | "rotational" | "elastic" | "gravity" | "dissipated" | "blast_work" |
 //    "balance"}: kinetic (translation + rotation), elastic (stored in the contacts), gravity (-sum m g.x),

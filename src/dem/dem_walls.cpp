@@ -1,4 +1,4 @@
-// Rigid polyline walls of the DEM body (include/lagfsi/dem/dem_walls.hpp).
+// Rigid polyline walls of the DEM body (src/dem/include/lagfsi/dem/dem_walls.hpp).
 #include <lagfsi/dem/dem_walls.hpp>
 
 namespace lagfsi::dem {

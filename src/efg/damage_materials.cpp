@@ -1,6 +1,6 @@
 // Scalar damage laws of the EFG module: Mazars (1984) and exponential damage with Mazars' equivalent strain
 // (thesis §5.5-5.6, digest shared/spec/003_efg.md §2.10). History: h[0] = kappa (largest equivalent strain so
-// far, at least kappa0), h[1] = damage D. See include/lagfsi/efg/material.hpp.
+// far, at least kappa0), h[1] = damage D. See src/efg/include/lagfsi/efg/material.hpp.
 #include <lagfsi/efg/material.hpp>
 
 #include <algorithm>

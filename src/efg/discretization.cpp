@@ -1,5 +1,5 @@
 // Background quadrilateral meshes, Gauss rules, Q4 functions, visibility and node search for the EFG module
-// (thesis §2.6-2.7, §4.4). See include/lagfsi/efg/discretization.hpp.
+// (thesis §2.6-2.7, §4.4). See src/efg/include/lagfsi/efg/discretization.hpp.
 #include <lagfsi/efg/discretization.hpp>
 
 #include <lagfsi/geometry2d.hpp>

@@ -1,7 +1,7 @@
 // EFG assembly (thesis Algorithms 2-4, Eqs. 4.15-4.16): per background cell, the Gauss points' B^T E B w and
 // B^T sigma w on the union of the cell's supports, scattered into the fixed CSC pattern; the essential-condition
 // terms (penalty, Lagrange rows); elimination of the dofs held directly (coupling) and the solves.
-// See include/lagfsi/efg/efg_model.hpp.
+// See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/system_assembly.hpp>

@@ -1,6 +1,6 @@
 // EFG body input: background cells and nodes, MLS settings, materials and regions, essential conditions
 // (coupling, penalty, Lagrange), loads and the path-following control, read from /bodies/i of type "efg"
-// (the cached integration points and the matrix pattern: efg_setup.cpp). See include/lagfsi/efg/efg_model.hpp.
+// (the cached integration points and the matrix pattern: efg_setup.cpp). See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 
 #include <lagfsi/error.hpp>

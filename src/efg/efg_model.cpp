@@ -1,5 +1,5 @@
 // The EFG body's load steps: predictor and corrector iterations of the path-following control (thesis
-// Algorithms 1 and 6), commit of the material history at convergence. See include/lagfsi/efg/efg_model.hpp.
+// Algorithms 1 and 6), commit of the material history at convergence. See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
 

@@ -1,7 +1,7 @@
 // EFG output: the background cells (each quadrilateral as two triangles) with nodal displacement U = f(V) and the
 // parameters V as a .vtu series; the integration points with damage, stress and strain as a .vtp point cloud;
 // the body's summary.json entry (discretisation, shape-function cost, conditioning, load factor, energy error).
-// See include/lagfsi/efg/efg_model.hpp.
+// See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 
 #include <Eigen/Dense>

@@ -1,6 +1,6 @@
 // EFG probes (probes.csv columns): load factor, total applied load (lambda times the reference load's component,
 // times `scale`), displacement of a node (U = f(V), or its parameter V), reaction of a node selection (internal force
-// minus applied load, summed), largest damage. See include/lagfsi/efg/efg_model.hpp.
+// minus applied load, summed), largest damage. See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
 

@@ -1,6 +1,6 @@
 // EFG body set-up from its input (efg_input.cpp): the shape functions at a point of a background cell (MLS,
 // blended with the finite elements in coupled cells), the cached integration points and the matrix pattern.
-// See include/lagfsi/efg/efg_model.hpp.
+// See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/efg/integration.hpp>
 #include <lagfsi/error.hpp>

@@ -1,4 +1,4 @@
-// Integration-consistent derivative correction on background cells. See include/lagfsi/efg/integration.hpp.
+// Integration-consistent derivative correction on background cells. See src/efg/include/lagfsi/efg/integration.hpp.
 #include <lagfsi/efg/integration.hpp>
 
 #include <Eigen/Dense>

@@ -1,5 +1,5 @@
 // The EFG material interface, the linear elastic law, the finite-difference tangent and the factory.
-// See include/lagfsi/efg/material.hpp.
+// See src/efg/include/lagfsi/efg/material.hpp.
 #include <lagfsi/efg/material.hpp>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // MLS polynomial bases, weight functions and influence domains (thesis Eqs. 2.8-2.11, 2.32-2.36; digest
-// shared/spec/003_efg.md §2.2.1). See include/lagfsi/efg/mls.hpp.
+// shared/spec/003_efg.md §2.2.1). See src/efg/include/lagfsi/efg/mls.hpp.
 #include <lagfsi/efg/mls.hpp>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Load, displacement, generalized displacement control and cylindrical arc length (Yang & Kuo 1994; Crisfield
 // 1981/1983), in the form used by the INSANE EFG thesis, with a remedy for the arc length's complex roots. See
-// include/lagfsi/efg/path_following.hpp.
+// src/efg/include/lagfsi/efg/path_following.hpp.
 #include <lagfsi/efg/path_following.hpp>
 #include <lagfsi/error.hpp>
 

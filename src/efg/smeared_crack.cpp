@@ -3,7 +3,7 @@
 // under the curve is G_f/h (crack band h, fracture energy G_f; the digest's default for the
 // Boone et al. 1986 law the thesis takes from Penna 2011) or Carreira & Chu (1986) tension.
 // History: h[0] = largest tensile equivalent uniaxial strain, h[1] = largest compressive one (magnitude),
-// h[2] = tensile damage 1 - E_s/E0. See include/lagfsi/efg/material.hpp.
+// h[2] = tensile damage 1 - E_s/E0. See src/efg/include/lagfsi/efg/material.hpp.
 #include <lagfsi/efg/material.hpp>
 
 #include <algorithm>

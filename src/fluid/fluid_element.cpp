@@ -1,4 +1,4 @@
-#include <lagfsi/fluid_element.hpp>
+#include <lagfsi/fluid/fluid_element.hpp>
 
 #include <algorithm>
 #include <cmath>

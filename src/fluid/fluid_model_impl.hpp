@@ -1,5 +1,5 @@
 #pragma once
-/// @file fluid_model_impl.hpp (private to src/fluid; the public side is include/lagfsi/fluid/fluid_model.hpp)
+/// @file fluid_model_impl.hpp (private to src/fluid; the public side is src/fluid/include/lagfsi/fluid/fluid_model.hpp)
 /// The PFEM fluid model: a short lifecycle (fluid_model.cpp) over the pieces that own the state: the
 /// particles (particle_cloud.hpp), the step's mesh (fluid_mesh.hpp), the walls (fluid_walls.hpp), the ghost
 /// particles of a coupled structure (ghosts.hpp), the remeshing (remesh_pipeline.hpp), the volume

@@ -13,7 +13,7 @@
 #include "ghosts.hpp"
 #include "volume_correction.hpp"
 
-#include <lagfsi/fluid_element.hpp>
+#include <lagfsi/fluid/fluid_element.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/time_integrator.hpp>
 

@@ -1,4 +1,4 @@
-// Reading an MPM body from the case file (include/lagfsi/mpm/mpm_model.hpp): the MpmModel constructor. The keys
+// Reading an MPM body from the case file (src/mpm/include/lagfsi/mpm/mpm_model.hpp): the MpmModel constructor. The keys
 // are read in this order, so that the first bad one is the one reported: material, grid, options, damping,
 // particles of the regions, initial velocity, state and stress, two-phase properties, loads, grid boundary
 // conditions, the time scheme (with the explicit step's cost check), absorbing and free-field boundaries.

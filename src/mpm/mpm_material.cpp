@@ -1,4 +1,4 @@
-// The MPM material interface (include/lagfsi/mpm/mpm_material.hpp): the elastic constants, the linear elastic
+// The MPM material interface (src/mpm/include/lagfsi/mpm/mpm_material.hpp): the elastic constants, the linear elastic
 // increment without rotation, and the factory that reads a body's "material" object. Mohr-Coulomb's return
 // mapping is in mpm_mohr_coulomb.cpp.
 #include <lagfsi/mpm/mpm_material.hpp>

@@ -1,4 +1,4 @@
-// The lifecycle of an MPM body (include/lagfsi/mpm/mpm_model.hpp): the step is advanced by the body's scheme,
+// The lifecycle of an MPM body (src/mpm/include/lagfsi/mpm/mpm_model.hpp): the step is advanced by the body's scheme,
 // chosen when it was read (mpm_input.cpp); output in mpm_output.cpp, probes in mpm_probes.cpp.
 #include "mpm_body.hpp"
 #include "mpm_output.hpp"

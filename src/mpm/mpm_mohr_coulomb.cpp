@@ -1,4 +1,4 @@
-// Mohr-Coulomb plasticity of the MPM particles (include/lagfsi/mpm/mpm_material.hpp): the return mapping of
+// Mohr-Coulomb plasticity of the MPM particles (src/mpm/include/lagfsi/mpm/mpm_material.hpp): the return mapping of
 // an elastic trial stress in principal stresses (tension positive, s1 >= s2 >= s3),
 //   f = (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi),   g = (s1 - s3) + (s1 + s3) sin(psi),
 // onto the main plane, an edge (two planes active: s1 = s2 or s2 = s3) or the apex c cot(phi), then a tension

@@ -1,4 +1,4 @@
-// Probes of an MPM body (include/lagfsi/mpm/mpm_model.hpp): a particle's displacement, velocity,
+// Probes of an MPM body (src/mpm/include/lagfsi/mpm/mpm_model.hpp): a particle's displacement, velocity,
 // acceleration, stress or pore pressure (the particle nearest a reference position), the body's energies, the
 // run-out front, the height of the material at a vertical line, and the mean pore pressure.
 #include "mpm_body.hpp"

@@ -1,4 +1,4 @@
-// State of an MPM body (include/lagfsi/mpm/mpm_state.hpp): particles, the background grid and the shape
+// State of an MPM body (src/mpm/include/lagfsi/mpm/mpm_state.hpp): particles, the background grid and the shape
 // functions, linear (tent functions of the cells) or uGIMP (Bardenhagen & Kober 2004): the particle's
 // characteristic function of half-width lp (in cells) convolved with the tent function,
 //   S(r) = 1 - (r^2 + lp^2) / (2 lp)          |r| < lp

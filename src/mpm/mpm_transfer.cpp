@@ -1,4 +1,4 @@
-// Particle-grid transfers of a single-phase MPM body (include/lagfsi/mpm/mpm_transfer.hpp), after Sulsky,
+// Particle-grid transfers of a single-phase MPM body (src/mpm/include/lagfsi/mpm/mpm_transfer.hpp), after Sulsky,
 // Chen & Schreyer (1994):
 //   particles -> grid:  m_I = sum_p N_Ip m_p,  (m v)_I = sum_p N_Ip m_p v_p,
 //                       f_I = sum_p [ -V_p sigma_p . grad N_Ip + N_Ip m_p g ]

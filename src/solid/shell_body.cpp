@@ -1,7 +1,7 @@
 // Positional frame/shell elements (shell.hpp).
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
-#include <lagfsi/shell.hpp>
+#include <lagfsi/solid/shell.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include "positional_kernel.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-/// @file solid_model_impl.hpp (private to src/solid; the public side is include/lagfsi/solid/solid_model.hpp)
+/// @file solid_model_impl.hpp (private to src/solid; the public side is src/solid/include/lagfsi/solid/solid_model.hpp)
 /// The solid or shell body as a PhysicsModel (SolidModel): its boundary conditions and loads (read by
 /// solid_input.cpp), the Newton iterations of a step with a time integrator or load stepping for static
 /// analysis (solid_newton.cpp), the lifecycle, output and coupling (solid_model.cpp) and its probes
@@ -9,8 +9,8 @@
 #include <lagfsi/error.hpp>
 #include <lagfsi/interface.hpp>
 #include <lagfsi/linear_solver.hpp>
-#include <lagfsi/shell.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/shell.hpp>
+#include <lagfsi/solid/solid.hpp>
 #include <lagfsi/solid/solid_model.hpp>
 #include <lagfsi/time_function.hpp>
 #include <lagfsi/time_integrator.hpp>

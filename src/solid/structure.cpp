@@ -1,7 +1,7 @@
 // What all structural discretisations share: surface points as linear combinations of dof nodes, dead
 // tractions and follower pressure on surface edges.
 #include <lagfsi/element.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 
 #include <stdexcept>
 

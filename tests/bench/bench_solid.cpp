@@ -5,7 +5,7 @@
 // usage: bench_solid [target_dofs=50000] [repeats=5]
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/meshing/primitives.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 
 #include <algorithm>
 #include <chrono>

@@ -11,7 +11,7 @@
 //  - analytic solutions through the cases: Mattiasson's elastica within 0.5 % with 8 cubic elements, the
 //    cantilever's static deflection within 0.3 % of Timoshenko's value with 6, convergence with the number
 //    of elements, and the step response (peak 2 x static, energy balance).
-#include <lagfsi/shell.hpp>
+#include <lagfsi/solid/shell.hpp>
 
 #include <gtest/gtest.h>
 

@@ -22,7 +22,7 @@
 #include <lagfsi/material.hpp>
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/meshing/primitives.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 
 #include <gtest/gtest.h>
 

@@ -12,7 +12,7 @@
 // elements, so that the general isoparametric path is exercised).
 #include <lagfsi/material.hpp>
 #include <lagfsi/meshing/primitives.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 
 #include <gtest/gtest.h>
 

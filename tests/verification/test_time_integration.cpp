@@ -29,10 +29,10 @@
 //     pulse and balance E - E0 - W_ext ~ 0 to 1e-4;
 //   - the same pulse with mass-proportional damping C = alpha M: the energy decays like exp(-alpha t)
 //     (every mode has the energy decay rate alpha) and the balance E - E0 - W_ext + W_damp stays ~0.
-#include <lagfsi/analysis.hpp>
+#include <lagfsi/app/analysis.hpp>
 #include <lagfsi/material.hpp>
 #include <lagfsi/meshing/primitives.hpp>
-#include <lagfsi/solid.hpp>
+#include <lagfsi/solid/solid.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 #include <gtest/gtest.h>

@@ -10,7 +10,7 @@
 
 Formats: UnstructuredGrid (.vtu) and PolyData (.vtp), pieces with "appended" data (raw or base64, zlib-compressed
 or not, UInt32 or UInt64 headers, either byte order), "binary" (base64) inline data and "ascii" data, which covers
-what VTK's XML writers produce (lagfsi writes binary appended raw, zlib, see src/io/vtk_output.cpp). Collections
+what VTK's XML writers produce (lagfsi writes binary appended raw, zlib, see src/core/vtk_output.cpp). Collections
 (.pvd): read_pvd gives the (time, absolute path) of each data set, sorted by time.
 """
 import base64

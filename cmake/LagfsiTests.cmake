@@ -1,0 +1,47 @@
+# Written by fence.py (/work/tools/fence.py): re-running it regenerates this file.
+# GoogleTest helpers: one executable per test file.
+#
+#   lagfsi_add_test(<source> LABEL <label> TIMEOUT <seconds> [LINK <targets>...] [WHITE_BOX] [RUNS_EXE])
+#   lagfsi_unit_test(<source> <module target> [WHITE_BOX] [RUNS_EXE] [LINK <more>...])   (label unit, 120 s)
+#
+# A unit test (src/<module>/tests, meshing/tests, fsi/tests) links its module alone (and GoogleTest), so it proves
+# the module builds and links on its own. WHITE_BOX adds the module's folder (its private headers) to the test's
+# include path; RUNS_EXE builds the `lagfsi` executable first (tests that run it through tests/support). Every test
+# sees tests/support and the macros LAGFSI_SOURCE_DIR, LAGFSI_BINARY_DIR, LAGFSI_EXE.
+function(lagfsi_add_test source)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "WHITE_BOX;RUNS_EXE" "LABEL;TIMEOUT" "LINK")
+  get_filename_component(name ${source} NAME_WE)
+  add_executable(${name} ${source})
+  target_link_libraries(${name} PRIVATE ${arg_LINK} nlohmann_json::nlohmann_json lagfsi_options GTest::gtest
+                                        GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+  if(arg_WHITE_BOX)
+    get_filename_component(module_dir ${CMAKE_CURRENT_SOURCE_DIR} DIRECTORY)
+    target_include_directories(${name} PRIVATE ${module_dir})
+  endif()
+  # GCC 12 reports a false -Wrestrict inside libstdc++ for "literal" + std::to_string(...) at -O2/-O3
+  # (GCC bug 105329); the test names are built that way.
+  target_compile_options(${name} PRIVATE $<$<AND:$<CXX_COMPILER_ID:GNU>,$<VERSION_LESS:$<CXX_COMPILER_VERSION>,13>>:-Wno-restrict>)
+  target_compile_definitions(${name} PRIVATE
+    LAGFSI_SOURCE_DIR="${PROJECT_SOURCE_DIR}" LAGFSI_BINARY_DIR="${PROJECT_BINARY_DIR}"
+    LAGFSI_EXE="$<TARGET_FILE:lagfsi>")
+  if(arg_RUNS_EXE)
+    add_dependencies(${name} lagfsi)
+  endif()
+  # One OpenMP thread per test: ctest runs tests in parallel on this 2-core machine, and spinning OpenMP
+  # barriers of oversubscribed threads make runs 5-20x slower (speed is measured by tests/bench).
+  gtest_discover_tests(${name}
+    PROPERTIES LABELS ${arg_LABEL} TIMEOUT ${arg_TIMEOUT} ENVIRONMENT "OMP_NUM_THREADS=1"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+function(lagfsi_unit_test source module)
+  cmake_parse_arguments(PARSE_ARGV 2 arg "WHITE_BOX;RUNS_EXE" "" "LINK")
+  set(flags)
+  foreach(flag WHITE_BOX RUNS_EXE)
+    if(arg_${flag})
+      list(APPEND flags ${flag})
+    endif()
+  endforeach()
+  lagfsi_add_test(${source} LABEL unit TIMEOUT 120 LINK ${module} ${arg_LINK} ${flags})
+endfunction()

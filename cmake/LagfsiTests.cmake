@@ -1,4 +1,3 @@
-# Written by fence.py (/work/tools/fence.py): re-running it regenerates this file.
 # GoogleTest helpers: one executable per test file.
 #
 #   lagfsi_add_test(<source> LABEL <label> TIMEOUT <seconds> [LINK <targets>...] [WHITE_BOX] [RUNS_EXE])

@@ -25,22 +25,36 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <span>
+#include <vector>
 
 namespace lagfsi::fluid {
 
 namespace {
-/// Element loops run in parallel (OpenMP, above a size where threads pay) and add into shared nodal arrays.
-inline void atomic_add(double& target, double value) {
-#pragma omp atomic
-  target += value;
-}
 constexpr Index kParallelElements = 2000;
+
+/// Runs body(e, out) for every element, in parallel above a size where threads pay: the body adds into
+/// out[k], the calling thread's array for targets[k] (ThreadScatter: the sums are the same in every run with the
+/// same number of threads, and on one thread those of the serial loop).
+template <class Body>
+void element_loop(Index ne, ThreadScatter& scatter, std::vector<std::span<double>> targets, const Body& body) {
+  scatter.targets(std::move(targets));
+#pragma omp parallel if (ne >= kParallelElements)
+  {
+    const std::span<double* const> out = scatter.arrays();
+#pragma omp for schedule(static)
+    for (Index e = 0; e < ne; ++e) body(e, out);
+  }
+  scatter.merge();
+}
 
 /// Rows and columns of the prescribed unknowns (fixed(i)) become those of the identity; `diag(i)` is added to
 /// the diagonal of the others.
@@ -93,6 +107,7 @@ class FractionalStep final : public FluidScheme {
   ElementPattern poisson_pattern_;
   SparseMatrix poisson_, viscous_, viscous_stiffness_;
   Vec v_new_;
+  ThreadScatter scatter_;                          // the element loops' per-thread sums
   bool step_factorized_ = false;                   // the step's matrices are factorized (reused by re-solves)
   long inverted_in_step_ = 0, inverted_kept_ = 0;  // inverted elements in the last solve / in the accepted
                                                    // steps ("inverted_elements": "remesh")
@@ -135,16 +150,15 @@ IterationReport FractionalStep::iterate() {
   std::vector<double> area(ne);
   std::vector<std::array<Vec2, 3>> grad(ne);
   Vec mass = Vec::Zero(np);
-  Index inverted = -1;
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
-  for (Index e = 0; e < ne; ++e) {
+  Index inverted = ne;  // the lowest inverted element (the one reported, whatever the threads' timing)
+  element_loop(ne, scatter_, {values_of(mass)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     const Vec2 a = x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[1]), c = x.segment<2>(2 * t[2]);
     const double A2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     if (!(A2 > 0.0)) {
 #pragma omp critical(lagfsi_fs_inverted)
-      inverted = e;
-      continue;
+      inverted = std::min(inverted, e);
+      return;
     }
     area[e] = 0.5 * A2;
     for (int k = 0; k < 3; ++k) {
@@ -152,9 +166,9 @@ IterationReport FractionalStep::iterate() {
       const Vec2& q = x.segment<2>(2 * t[(k + 2) % 3]);
       grad[e][k] = Vec2(p.y() - q.y(), q.x() - p.x()) / A2;
     }
-    for (Index i : t) atomic_add(mass[i], f_.c.rho * area[e] / 3.0);
-  }
-  if (inverted >= 0) {
+    for (Index i : t) out[0][i] += f_.c.rho * area[e] / 3.0;
+  });
+  if (inverted < ne) {
     const auto& t = tri[inverted];
     throw SolverError("body '" + f_.c.name + "': element " + std::to_string(inverted) + " (particles " +
                       std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
@@ -207,8 +221,7 @@ IterationReport FractionalStep::iterate() {
   // at u^n (it vanishes for a divergence-free field; keeping it explicit keeps the stress symmetric).
   const bool implicit = viscous_implicit();
   Vec force = Vec::Zero(2 * np);
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
-  for (Index e = 0; e < ne; ++e) {
+  element_loop(ne, scatter_, {values_of(force)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     const double pbar = (pres[t[0]] + pres[t[1]] + pres[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
@@ -217,10 +230,10 @@ IterationReport FractionalStep::iterate() {
     const Mat2 visc = implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
     for (int a = 0; a < 3; ++a) {
       const Vec2 f = area[e] * (pbar * grad[e][a] - f_.c.mu * visc * grad[e][a]);
-      atomic_add(force[2 * t[a]], f.x());
-      atomic_add(force[2 * t[a] + 1], f.y());
+      out[0][2 * t[a]] += f.x();
+      out[0][2 * t[a] + 1] += f.y();
     }
-  }
+  });
   for (Index i = 0; i < np; ++i) force.segment<2>(2 * i) += mass[i] * g;
   f_.times.assembly += seconds_since(t0);
 
@@ -245,13 +258,12 @@ IterationReport FractionalStep::iterate() {
         t0 = Clock::now();
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
-        for (Index e = 0; e < ne; ++e) {
-          if (f_.walls.inviscid(tri[e])) continue;
+        element_loop(ne, scatter_, {values_of(viscous_)}, [&](Index e, std::span<double* const> out) {
+          if (f_.walls.inviscid(tri[e])) return;
           const int* sc = poisson_pattern_.scatter(e);
           for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) atomic_add(kv[sc[b * 3 + a]], f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]));
-        }
+            for (int a = 0; a < 3; ++a) out[0][sc[b * 3 + a]] += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]);
+        });
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
         constrain(
             viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; },
@@ -282,19 +294,20 @@ IterationReport FractionalStep::iterate() {
   double* lv = poisson_.valuePtr();
   if (assemble) std::fill(lv, lv + poisson_.nonZeros(), 0.0);
   Vec rhs = Vec::Zero(np), comp = Vec::Zero(np);
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
-  for (Index e = 0; e < ne; ++e) {
+  std::vector<std::span<double>> pressure_sums{values_of(rhs)};
+  if (assemble) pressure_sums.insert(pressure_sums.end(), {values_of(comp), values_of(poisson_)});
+  element_loop(ne, scatter_, std::move(pressure_sums), [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     double div = f_.volume.c_vol();
     for (int k = 0; k < 3; ++k) div += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
-      atomic_add(rhs[t[a]], -area[e] / 3.0 * div);
+      out[0][t[a]] += -area[e] / 3.0 * div;
       if (!assemble) continue;
-      if (f_.c.bulk > 0) atomic_add(comp[t[a]], area[e] / 3.0 / (f_.c.bulk * dt));
-      for (int b = 0; b < 3; ++b) atomic_add(lv[sc[b * 3 + a]], dt / f_.c.rho * area[e] * grad[e][a].dot(grad[e][b]));
+      if (f_.c.bulk > 0) out[1][t[a]] += area[e] / 3.0 / (f_.c.bulk * dt);
+      for (int b = 0; b < 3; ++b) out[2][sc[b * 3 + a]] += dt / f_.c.rho * area[e] * grad[e][a].dot(grad[e][b]);
     }
-  }
+  });
   // Unknown pressures: connected particles off the free surface (step.fixed from FluidModel::set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
   if (assemble)
@@ -314,15 +327,14 @@ IterationReport FractionalStep::iterate() {
   t0 = Clock::now();
   v_new_ = ustar;
   Vec du = Vec::Zero(2 * np);
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
-  for (Index e = 0; e < ne; ++e) {
+  element_loop(ne, scatter_, {values_of(du)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     const double dpbar = (dp[t[0]] + dp[t[1]] + dp[t[2]]) / 3.0;
     for (int a = 0; a < 3; ++a) {
-      atomic_add(du[2 * t[a]], area[e] * dpbar * grad[e][a].x());
-      atomic_add(du[2 * t[a] + 1], area[e] * dpbar * grad[e][a].y());
+      out[0][2 * t[a]] += area[e] * dpbar * grad[e][a].x();
+      out[0][2 * t[a] + 1] += area[e] * dpbar * grad[e][a].y();
     }
-  }
+  });
   for (Index k = 0; k < 2 * np; ++k)
     if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
   pres += dp;
@@ -424,18 +436,24 @@ IterationReport FractionalStep::iterate() {
     }
   // Report: the divergence left by the correction, relative to that of the predictor (the part the
   // Laplacian stabilization does not remove).
-  double div_star = 0, div_new = 0;
-#pragma omp parallel for schedule(static) if (ne >= kParallelElements) reduction(+ : div_star, div_new)
-  for (Index e = 0; e < ne; ++e) {
-    const auto& t = tri[e];
-    double d0 = 0, d1 = 0;
-    for (int k = 0; k < 3; ++k) {
-      d0 += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
-      d1 += v_new_.segment<2>(2 * t[k]).dot(grad[e][k]);
+  ThreadSums<2> divergence;  // div_star, div_new
+#pragma omp parallel if (ne >= kParallelElements)
+  {
+    double div_star = 0, div_new = 0;
+#pragma omp for schedule(static)
+    for (Index e = 0; e < ne; ++e) {
+      const auto& t = tri[e];
+      double d0 = 0, d1 = 0;
+      for (int k = 0; k < 3; ++k) {
+        d0 += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
+        d1 += v_new_.segment<2>(2 * t[k]).dot(grad[e][k]);
+      }
+      div_star += area[e] * d0 * d0;
+      div_new += area[e] * d1 * d1;
     }
-    div_star += area[e] * d0 * d0;
-    div_new += area[e] * d1 * d1;
+    divergence.mine() = {div_star, div_new};
   }
+  const double div_star = divergence.total(0), div_new = divergence.total(1);
   f_.times.assembly += seconds_since(t0);
   IterationReport rep;
   rep.residual = std::sqrt(div_new);

@@ -16,6 +16,7 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 
 #include <algorithm>
@@ -100,7 +101,8 @@ class PspgScheme final : public FluidScheme {
   std::unique_ptr<LinearSolver> solver_;
   ElementPattern pattern_;
   SparseMatrix J_;
-  int iter_in_step_ = 0;  // iterations of the step (all coupling passes)
+  ThreadScatter scatter_;  // the element loop's per-thread sums
+  int iter_in_step_ = 0;   // iterations of the step (all coupling passes)
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
 };
 
@@ -131,54 +133,66 @@ IterationReport PspgScheme::iterate() {
   double* jv = J_.valuePtr();
   std::fill(jv, jv + J_.nonZeros(), 0.0);
   std::vector<char> has_mass(np, 0);
-  double inertia2 = 0, gravity2 = 0;
   std::string failure;
 
   const Index ne = mesh.num_elements();
-  // One parallel loop over all elements with atomic additions (no colour barriers: on a loaded 2-core
-  // machine each OpenMP barrier of busy-waiting threads can cost a time slice).
-#pragma omp parallel for schedule(static) if (ne >= 2000) reduction(+ : inertia2, gravity2)
-  for (Index e = 0; e < ne; ++e) {
-    const auto& t = mesh.tri[e];
-    const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
-    Eigen::Matrix<double, 9, 1> r;
-    Eigen::Matrix<double, 9, 9> K;
-    double i2 = 0, g2 = 0;
-    if (!pspg_element(in, r, K, i2, g2)) {
-      // Turned over by a structure's boundary sliding past another prescribed particle (see
-      // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
-      if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
+  // One parallel loop over all elements (no colour barriers: on a loaded 2-core machine each OpenMP barrier of
+  // busy-waiting threads can cost a time slice), each thread adding into its own copy of R and of the matrix's
+  // values, merged in thread order (parallel_sum.hpp: the same sums in every run with the same threads).
+  scatter_.targets({values_of(R), values_of(J_)});
+  ThreadSums<2> scales;  // inertia2, gravity2
+  std::vector<char> assembled(ne, 0);
+  Index failed = ne;  // the lowest element that failed (the one reported, whatever the threads' timing)
+#pragma omp parallel if (ne >= 2000)
+  {
+    const auto out = scatter_.arrays();
+    double* const Rt = out[0];
+    double* const jt = out[1];
+    double inertia2 = 0, gravity2 = 0;
+#pragma omp for schedule(static)
+    for (Index e = 0; e < ne; ++e) {
+      const auto& t = mesh.tri[e];
+      const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
+      Eigen::Matrix<double, 9, 1> r;
+      Eigen::Matrix<double, 9, 9> K;
+      double i2 = 0, g2 = 0;
+      if (!pspg_element(in, r, K, i2, g2)) {
+        // Turned over by a structure's boundary sliding past another prescribed particle (see
+        // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
+        if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
 #pragma omp critical(lagfsi_fluid_failure)
-      failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
-                ", " + std::to_string(t[2]) + ") inverted during the step at t = " + std::to_string(step.t_new) +
-                " (area " + std::to_string(mesh.element_area(ev.x, e)) + ")";
-      continue;
-    }
-    inertia2 += i2;
-    gravity2 += g2;
-    // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
-    if (!f_.walls.frames().empty())
-      for (int a = 0; a < 3; ++a)
-        if (f_.walls.rotated(t[a])) {
-          const Mat2 Q = f_.walls.frame(t[a]);
-          r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
-          K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
-          K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
+        if (e < failed) {
+          failed = e;
+          failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
+                    std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+                    ") inverted during the step at t = " + std::to_string(step.t_new) + " (area " +
+                    std::to_string(mesh.element_area(ev.x, e)) + ")";
         }
-    for (int a = 0; a < 3; ++a) {
-      for (int c = 0; c < 3; ++c) {
-#pragma omp atomic
-        R[3 * t[a] + c] += r[3 * a + c];
+        continue;
       }
-      has_mass[t[a]] = 1;
+      inertia2 += i2;
+      gravity2 += g2;
+      // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
+      if (!f_.walls.frames().empty())
+        for (int a = 0; a < 3; ++a)
+          if (f_.walls.rotated(t[a])) {
+            const Mat2 Q = f_.walls.frame(t[a]);
+            r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
+            K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
+            K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
+          }
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) Rt[3 * t[a] + c] += r[3 * a + c];
+      assembled[e] = 1;
+      pattern_.add(e, K, jt);
     }
-    const int* sc = pattern_.scatter(e);
-    for (int j = 0; j < 9; ++j)
-      for (int i = 0; i < 9; ++i) {
-#pragma omp atomic
-        jv[sc[j * 9 + i]] += K(i, j);
-      }
+    scales.mine() = {inertia2, gravity2};
   }
+  scatter_.merge();
+  const double inertia2 = scales.total(0), gravity2 = scales.total(1);
+  for (Index e = 0; e < ne; ++e)
+    if (assembled[e])
+      for (Index i : mesh.tri[e]) has_mass[i] = 1;
   if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
 
   // "volume_correction": "particle": each particle's share of the area grows at the rate owed to it.

@@ -113,18 +113,18 @@ Index locate_particles(const Grid& grid, const ShapeFunctions& shape, const Part
                        std::vector<Support>& support) {
   const Index np = static_cast<Index>(particles.size());
   support.resize(np);
-  Index outside = -1;
+  Index outside = np;  // the first particle outside (the one reported, whatever the threads' timing)
 #pragma omp parallel for schedule(static) if (np >= 20000)
   for (Index p = 0; p < np; ++p) {
     const Vec2& x = particles.x[p];
     if (!grid.contains(x)) {
 #pragma omp critical(lagfsi_mpm_outside)
-      outside = p;
+      outside = std::min(outside, p);
       continue;
     }
     evaluate_support(grid, shape.gimp, shape.particles_per_cell, x, support[p]);
   }
-  return outside;
+  return outside < np ? outside : -1;
 }
 
 }  // namespace lagfsi::mpm

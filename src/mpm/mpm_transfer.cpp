@@ -4,6 +4,7 @@
 //                       f_I = sum_p [ -V_p sigma_p . grad N_Ip + N_Ip m_p g ]
 //   grid -> particles:  v_p += dt sum_I N_Ip f_I / m_I (FLIP),  x_p += dt sum_I N_Ip v_I
 #include <lagfsi/mpm/mpm_transfer.hpp>
+#include <lagfsi/parallel_sum.hpp>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -14,8 +15,9 @@ namespace lagfsi::mpm {
 void particles_to_grid(const Particles& P, const std::vector<Support>& support, bool momentum, bool force,
                        const Vec2& g, const StiffnessDamping& damping, Grid& grid, ScatterBuffers& buffers) {
   // Particles to grid, in parallel: each thread accumulates its share of the particles into its own copy of
-  // the grid arrays, then the copies are summed node by node (a particle's nodes are shared with its
-  // neighbours', so a direct parallel scatter would race).
+  // the grid arrays, then the copies are summed node by node in thread order (a particle's nodes are shared
+  // with its neighbours', so a direct parallel scatter would race, and atomic additions would add in a different
+  // order from run to run; parallel_sum.hpp).
   const Index np = static_cast<Index>(P.size());
   const Index nn = static_cast<Index>(grid.mass.size());
   const double beta = damping.beta;
@@ -102,26 +104,32 @@ void velocities_from_momentum(Grid& grid) {
 
 double grid_to_particles(const Grid& grid, const std::vector<Support>& support, double dt, double flip, const Vec2& g,
                          Particles& P) {
-  // Grid to particles: FLIP velocity, positions with the grid velocity.
+  // Grid to particles: FLIP velocity, positions with the grid velocity. The work of gravity is summed per
+  // thread and added in thread order (parallel_sum.hpp): the same in every run with the same threads.
   const Index np = static_cast<Index>(P.size());
-  double gw = 0;
-#pragma omp parallel for schedule(static) if (np >= 20000) reduction(+ : gw)
-  for (Index p = 0; p < np; ++p) {
-    const Support& s = support[p];
-    Vec2 a = Vec2::Zero(), v = Vec2::Zero();
-    for (int k = 0; k < s.n; ++k) {
-      const Index I = s.node[k];
-      if (!(grid.mass[I] > 0)) continue;
-      a += s.N[k] * grid.force[I] / grid.mass[I];
-      v += s.N[k] * grid.velocity[I];
+  ThreadSums<> work;
+#pragma omp parallel if (np >= 20000)
+  {
+    double gw = 0;
+#pragma omp for schedule(static)
+    for (Index p = 0; p < np; ++p) {
+      const Support& s = support[p];
+      Vec2 a = Vec2::Zero(), v = Vec2::Zero();
+      for (int k = 0; k < s.n; ++k) {
+        const Index I = s.node[k];
+        if (!(grid.mass[I] > 0)) continue;
+        a += s.N[k] * grid.force[I] / grid.mass[I];
+        v += s.N[k] * grid.velocity[I];
+      }
+      P.v[p] = flip * (P.v[p] + dt * a) + (1.0 - flip) * v;
+      P.acceleration[p] = a;
+      const Vec2 dx = dt * v;
+      P.x[p] += dx;
+      gw += P.mass[p] * g.dot(dx);
     }
-    P.v[p] = flip * (P.v[p] + dt * a) + (1.0 - flip) * v;
-    P.acceleration[p] = a;
-    const Vec2 dx = dt * v;
-    P.x[p] += dx;
-    gw += P.mass[p] * g.dot(dx);
+    work.mine()[0] = gw;
   }
-  return gw;
+  return work.total();
 }
 
 }  // namespace lagfsi::mpm

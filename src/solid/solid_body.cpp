@@ -1,5 +1,6 @@
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/solid/solid.hpp>
 #include <lagfsi/vtk_output.hpp>
 
@@ -99,53 +100,61 @@ double SolidBody::assemble(const Vec& x, Vec& f, SparseMatrix* K, bool need_forc
   if (need_force) f.setZero(num_dofs());
   double* kval = K ? K->valuePtr() : nullptr;
   if (K) std::fill(kval, kval + K->nonZeros(), 0.0);
-  double energy = 0.0;
-  std::atomic<bool> failed{false};
+  ThreadSums<> energy_sum;
+  const Index ne = mesh_.num_elements();
+  std::atomic<Index> failed{ne};  // the lowest element that failed (the one reported, whatever the timing)
   std::string failure;
 
   // One parallel region for all colours (a barrier between colours); small meshes run serially, where
-  // forking threads costs more than the work.
-#pragma omp parallel if (mesh_.num_elements() >= 256) reduction(+ : energy)
-  for (const auto& elems : assembly_.colors()) {
-    const Index nce = static_cast<Index>(elems.size());
+  // forking threads costs more than the work. The elements of a colour share no node, so their additions
+  // into f and K do not race and each entry gets its terms in colour order; the strain energy is summed per
+  // thread and added in thread order (parallel_sum.hpp): the same in every run with the same threads.
+#pragma omp parallel if (ne >= 256)
+  {
+    double energy = 0.0;
+    for (const auto& elems : assembly_.colors()) {
+      const Index nce = static_cast<Index>(elems.size());
 #pragma omp for schedule(static)
-    for (Index ie = 0; ie < nce; ++ie) {
-      if (failed) continue;
-      const Index e = elems[ie];
-      const Index* c = mesh_.element(e);
-      MatN2 Xe, xe;
-      for (int a = 0; a < NPE; ++a) {
-        Xe.row(a) = mesh_.nodes[c[a]].transpose();
-        xe.row(a) = x.segment<2>(2 * c[a]).transpose();
-      }
-      Eigen::Matrix<double, M, 1> fe = Eigen::Matrix<double, M, 1>::Zero();
-      MatM Ke = MatM::Zero();
-      try {
-        for (size_t q = 0; q < nq; ++q) {
-          const MatN2 dN = qdN_[q];
-          const Mat2 A0 = Xe.transpose() * dN;
-          const double detA0 = A0.determinant();
-          const MatN2 G = dN * A0.inverse();
-          const double dV = qw_[q] * detA0 * thickness_;
-          const Mat2 F = xe.transpose() * G;
-          const MaterialResponse r = material_->evaluate(F);
-          energy += r.psi * dV;
-          detail::add_positional_point<NPE>(G, F, r.S, r.D, dV, need_force ? &fe : nullptr, K ? &Ke : nullptr);
+      for (Index ie = 0; ie < nce; ++ie) {
+        const Index e = elems[ie];
+        if (failed.load(std::memory_order_relaxed) < e) continue;
+        const Index* c = mesh_.element(e);
+        MatN2 Xe, xe;
+        for (int a = 0; a < NPE; ++a) {
+          Xe.row(a) = mesh_.nodes[c[a]].transpose();
+          xe.row(a) = x.segment<2>(2 * c[a]).transpose();
         }
-      } catch (const std::exception& ex) {
+        Eigen::Matrix<double, M, 1> fe = Eigen::Matrix<double, M, 1>::Zero();
+        MatM Ke = MatM::Zero();
+        try {
+          for (size_t q = 0; q < nq; ++q) {
+            const MatN2 dN = qdN_[q];
+            const Mat2 A0 = Xe.transpose() * dN;
+            const double detA0 = A0.determinant();
+            const MatN2 G = dN * A0.inverse();
+            const double dV = qw_[q] * detA0 * thickness_;
+            const Mat2 F = xe.transpose() * G;
+            const MaterialResponse r = material_->evaluate(F);
+            energy += r.psi * dV;
+            detail::add_positional_point<NPE>(G, F, r.S, r.D, dV, need_force ? &fe : nullptr, K ? &Ke : nullptr);
+          }
+        } catch (const std::exception& ex) {
 #pragma omp critical(lagfsi_solid_failure)
-        {
-          failed = true;
-          failure = "element " + std::to_string(e) + ": " + ex.what();
+          if (e < failed) {
+            failed = e;
+            failure = "element " + std::to_string(e) + ": " + ex.what();
+          }
+          continue;
         }
-        continue;
+        if (need_force)
+          for (int a = 0; a < NPE; ++a) f.segment<2>(2 * c[a]) += fe.template segment<2>(2 * a);
+        if (K) assembly_.add(e, Ke, kval);
       }
-      if (need_force)
-        for (int a = 0; a < NPE; ++a) f.segment<2>(2 * c[a]) += fe.template segment<2>(2 * a);
-      if (K) assembly_.add(e, Ke, kval);
     }
+    energy_sum.mine()[0] = energy;
   }
-  if (failed) throw SolverError(failure);
+  if (failed < ne) throw SolverError(failure);
+  const double energy = energy_sum.total();
   if (!std::isfinite(energy)) throw SolverError("non-finite strain energy");
   return energy;
 }

@@ -72,10 +72,10 @@ class ThreadSums {
 
 /// Additions of a parallel loop into shared arrays, in an order that depends only on the number of threads.
 /// Usage:
-///   ThreadScatter scatter({R, values});            // the arrays the loop adds into
+///   ThreadScatter scatter({values_of(R), values_of(K)});  // the arrays the loop adds into
 ///   #pragma omp parallel if (...)
 ///   {
-///     const auto out = scatter.arrays();           // this thread's arrays, in the order given
+///     const auto out = scatter.arrays();                  // this thread's arrays, in the order given
 ///   #pragma omp for schedule(static)
 ///     for (...) out[0][i] += ...;
 ///   }

@@ -76,11 +76,13 @@ class ThreadSums {
 ///   #pragma omp parallel if (...)
 ///   {
 ///     const auto out = scatter.arrays();                  // this thread's arrays, in the order given
-///   #pragma omp for schedule(static)
+///   #pragma omp for schedule(static) nowait                // the region's end is the one barrier
 ///     for (...) out[0][i] += ...;
 ///   }
 ///   scatter.merge();
-/// A ThreadScatter kept between calls reuses its copies (set the arrays again with targets()).
+/// A ThreadScatter kept between calls reuses its copies (set the arrays again with targets()). A loop followed by
+/// nothing but the end of its region takes `nowait`: on a loaded machine each barrier of spinning threads (the
+/// loop's, then the region's) can cost a time slice.
 class ThreadScatter {
  public:
   ThreadScatter() = default;

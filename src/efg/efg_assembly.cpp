@@ -34,7 +34,7 @@ void EfgModel::assemble(const Vec& x, Vec& fint, bool with_matrix) {
     double* const kt = with_matrix ? out[1] : nullptr;
     Eigen::MatrixXd Kc, B;
     Eigen::VectorXd fc, ue;
-#pragma omp for schedule(static, 4)
+#pragma omp for schedule(static, 4) nowait
     for (Index c = 0; c < nc; ++c) {
       const auto& cn = cell_nodes_[c];
       const int m = 2 * static_cast<int>(cn.size());

@@ -50,7 +50,7 @@ void element_loop(Index ne, ThreadScatter& scatter, std::vector<std::span<double
 #pragma omp parallel if (ne >= kParallelElements)
   {
     const std::span<double* const> out = scatter.arrays();
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (Index e = 0; e < ne; ++e) body(e, out);
   }
   scatter.merge();
@@ -440,7 +440,7 @@ IterationReport FractionalStep::iterate() {
 #pragma omp parallel if (ne >= kParallelElements)
   {
     double div_star = 0, div_new = 0;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (Index e = 0; e < ne; ++e) {
       const auto& t = tri[e];
       double d0 = 0, d1 = 0;

@@ -149,7 +149,7 @@ IterationReport PspgScheme::iterate() {
     double* const Rt = out[0];
     double* const jt = out[1];
     double inertia2 = 0, gravity2 = 0;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (Index e = 0; e < ne; ++e) {
       const auto& t = mesh.tri[e];
       const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);

@@ -111,7 +111,7 @@ double grid_to_particles(const Grid& grid, const std::vector<Support>& support, 
 #pragma omp parallel if (np >= 20000)
   {
     double gw = 0;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (Index p = 0; p < np; ++p) {
       const Support& s = support[p];
       Vec2 a = Vec2::Zero(), v = Vec2::Zero();

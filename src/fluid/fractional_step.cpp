@@ -96,6 +96,25 @@ class FractionalStep final : public FluidScheme {
   void serialize(StateArchive& ar) override { ar.io(inverted_kept_); }
 
  private:
+  /// What the stages of a step share: the step mesh's element areas and shape-function gradients, the lumped
+  /// masses, the prescribed velocity components (vfixed, their values in ustar) and the walls' friction, the
+  /// predictor's explicit forces, the pressure increment dp and its force du.
+  struct Work {
+    std::vector<double> area;
+    std::vector<std::array<Vec2, 3>> grad;
+    Vec mass, ustar, friction, friction_force, force, dp, du;
+    std::vector<char> vfixed;
+    bool implicit = false;
+  };
+  /// The stages of a step: the mesh's geometry and masses, the prescribed velocities, the predictor u*, the
+  /// pressure increment, the correction u^{n+1} with the forces of the prescribed particles, and the new
+  /// positions with their checks and the step's report.
+  void geometry(Work& wk);
+  void prescribe_velocities(Work& wk);
+  void predict_velocities(Work& wk);
+  void pressure_increment(Work& wk);
+  void correct(Work& wk);
+  IterationReport move_and_check(Work& wk);
   /// The viscous predictor is implicit (the automatic choice: when the explicit one would exceed its
   /// stability limit dt <= rho h_min^2 / (8 mu), h_min = 0.3 h).
   bool viscous_implicit() const;
@@ -132,26 +151,29 @@ bool FractionalStep::viscous_implicit() const {
 }
 
 IterationReport FractionalStep::iterate() {
-  auto t0 = Clock::now();
+  Work wk;
+  const auto t0 = Clock::now();
+  geometry(wk);
+  prescribe_velocities(wk);
+  f_.times.assembly += seconds_since(t0);
+  predict_velocities(wk);
+  pressure_increment(wk);
+  correct(wk);
+  return move_and_check(wk);
+}
+
+void FractionalStep::geometry(Work& wk) {
   const Index np = f_.cloud.n();
   const Index ne = f_.mesh.num_elements();
   const double dt = f_.step.dt;
-  const Vec2 g = f_.c.gravity;
   const Vec& x = f_.cloud.x();
-  const Vec& v = f_.cloud.v();
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
-  const std::vector<ParticleKind>& kind = f_.cloud.kind();
-  const std::vector<char>& fixed = f_.step.fixed;
-  Vec& pres = f_.cloud.p();
-  Vec& x_new = f_.step.x;  // the step's new positions
-  Vec& ghost_force = f_.ghosts.forces();
-
   // Geometry of the step's mesh and lumped masses.
-  std::vector<double> area(ne);
-  std::vector<std::array<Vec2, 3>> grad(ne);
-  Vec mass = Vec::Zero(np);
+  wk.area.assign(ne, 0.0);
+  wk.grad.assign(ne, {});
+  wk.mass = Vec::Zero(np);
   Index inverted = ne;  // the lowest inverted element (the one reported, whatever the threads' timing)
-  element_loop(ne, scatter_, {values_of(mass)}, [&](Index e, std::span<double* const> out) {
+  element_loop(ne, scatter_, {values_of(wk.mass)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     const Vec2 a = x.segment<2>(2 * t[0]), b = x.segment<2>(2 * t[1]), c = x.segment<2>(2 * t[2]);
     const double A2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
@@ -160,13 +182,13 @@ IterationReport FractionalStep::iterate() {
       inverted = std::min(inverted, e);
       return;
     }
-    area[e] = 0.5 * A2;
+    wk.area[e] = 0.5 * A2;
     for (int k = 0; k < 3; ++k) {
       const Vec2& p = x.segment<2>(2 * t[(k + 1) % 3]);
       const Vec2& q = x.segment<2>(2 * t[(k + 2) % 3]);
-      grad[e][k] = Vec2(p.y() - q.y(), q.x() - p.x()) / A2;
+      wk.grad[e][k] = Vec2(p.y() - q.y(), q.x() - p.x()) / A2;
     }
-    for (Index i : t) out[0][i] += f_.c.rho * area[e] / 3.0;
+    for (Index i : t) out[0][i] += f_.c.rho * wk.area[e] / 3.0;
   });
   if (inverted < ne) {
     const auto& t = tri[inverted];
@@ -174,36 +196,45 @@ IterationReport FractionalStep::iterate() {
                       std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
                       ") is inverted at t = " + std::to_string(f_.step.t_new - dt));
   }
+}
 
+void FractionalStep::prescribe_velocities(Work& wk) {
+  const Index np = f_.cloud.n();
+  const double dt = f_.step.dt;
+  const Vec2 g = f_.c.gravity;
+  const Vec& x = f_.cloud.x();
+  const Vec& v = f_.cloud.v();
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
   // Velocity components that are prescribed: wall particles (the wall's velocity), slip
   // constraints of fixed meshes (zero), fluid particles in no element (ballistic).
-  std::vector<char> vfixed(2 * np, 0);
-  Vec ustar = v;
+  wk.vfixed.assign(2 * np, 0);
+  wk.ustar = v;
   for (Index i = 0; i < np; ++i) {
     if (kind[i] != ParticleKind::Fluid) {
-      vfixed[2 * i] = vfixed[2 * i + 1] = 1;
-      ustar.segment<2>(2 * i) = Vec2::Zero();
-    } else if (!(mass[i] > 0)) {
-      vfixed[2 * i] = vfixed[2 * i + 1] = 1;
-      ustar.segment<2>(2 * i) = v.segment<2>(2 * i) + dt * g;
+      wk.vfixed[2 * i] = wk.vfixed[2 * i + 1] = 1;
+      wk.ustar.segment<2>(2 * i) = Vec2::Zero();
+    } else if (!(wk.mass[i] > 0)) {
+      wk.vfixed[2 * i] = wk.vfixed[2 * i + 1] = 1;
+      wk.ustar.segment<2>(2 * i) = v.segment<2>(2 * i) + dt * g;
     }
   }
   for (const auto& w : f_.walls.all())  // moving walls: the prescribed velocity at the end of the step
     if (w.fn)
-      for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) ustar.segment<2>(2 * j) = vw;
+      for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) wk.ustar.segment<2>(2 * j) = vw;
   for (const auto& k : f_.boundaries.constraints()) {  // particles on walls: the wall's velocity component
-    vfixed[2 * k.i + k.c] = 1;
-    ustar[2 * k.i + k.c] = f_.boundaries.velocity(k, f_.step.t_new);
+    wk.vfixed[2 * k.i + k.c] = 1;
+    wk.ustar[2 * k.i + k.c] = f_.boundaries.velocity(k, f_.step.t_new);
   }
   // No-slip walls with "navier" friction (fluid_walls.hpp): the force -k (u*_t - v_wall,t) on the free
   // tangential component of a particle on one, taken at u* (implicit: unconditionally stable). The walls
   // are horizontal or vertical here (FluidScheme::wall_frames), so the component is x or y.
-  Vec friction = Vec::Zero(2 * np), friction_force = Vec::Zero(2 * np);  // k, k v_wall,t per component
+  wk.friction = Vec::Zero(2 * np);
+  wk.friction_force = Vec::Zero(2 * np);  // k, k v_wall,t per component
   for (const WallFriction& w : f_.walls.frictions()) {
     const Index dof = 2 * w.i + w.c;
-    if (vfixed[dof]) continue;
-    friction[dof] = f_.walls.friction_coefficient();
-    friction_force[dof] = friction[dof] * f_.walls.friction_velocity(w, f_.step.t_new);
+    if (wk.vfixed[dof]) continue;
+    wk.friction[dof] = f_.walls.friction_coefficient();
+    wk.friction_force[dof] = wk.friction[dof] * f_.walls.friction_velocity(w, f_.step.t_new);
   }
   // Ghost particles: the mean velocity of the structure's boundary over the step, (x_new{n+1} - x_n)/dt. The
   // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
@@ -212,37 +243,48 @@ IterationReport FractionalStep::iterate() {
   for (size_t gi = 0; gi < f_.ghosts.count() && f_.ghosts.x().size() > 0; ++gi)
     if (!f_.ghosts.merged(gi)) {
       const Index i = f_.ghosts.index(gi);
-      ustar.segment<2>(2 * i) = (f_.ghosts.x().segment<2>(2 * gi) - x.segment<2>(2 * i)) / dt;
+      wk.ustar.segment<2>(2 * i) = (f_.ghosts.x().segment<2>(2 * gi) - x.segment<2>(2 * i)) / dt;
     }
+}
 
+void FractionalStep::predict_velocities(Work& wk) {
+  const Index np = f_.cloud.n();
+  const Index ne = f_.mesh.num_elements();
+  const double dt = f_.step.dt;
+  const Vec2 g = f_.c.gravity;
+  const Vec& v = f_.cloud.v();
+  const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
+  Vec& pres = f_.cloud.p();
+  auto t0 = Clock::now();
   // 1. Predictor: gravity, the pressure of the last step and the viscous force. Explicit: all of
   // mu A (L + L^T) grad N_a at u^n. Implicit: the Laplacian part mu A (grad N_a . grad N_b) u_b at u*
   // (the stiff part, one scalar matrix for both components) and the transposed part mu A L^T grad N_a
   // at u^n (it vanishes for a divergence-free field; keeping it explicit keeps the stress symmetric).
-  const bool implicit = viscous_implicit();
-  Vec force = Vec::Zero(2 * np);
-  element_loop(ne, scatter_, {values_of(force)}, [&](Index e, std::span<double* const> out) {
+  wk.implicit = viscous_implicit();
+  wk.force = Vec::Zero(2 * np);
+  element_loop(ne, scatter_, {values_of(wk.force)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     const double pbar = (pres[t[0]] + pres[t[1]] + pres[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
     if (f_.c.mu > 0 && !f_.walls.inviscid(tri[e]))
-      for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * grad[e][k].transpose();
-    const Mat2 visc = implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
+      for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * wk.grad[e][k].transpose();
+    const Mat2 visc = wk.implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
     for (int a = 0; a < 3; ++a) {
-      const Vec2 f = area[e] * (pbar * grad[e][a] - f_.c.mu * visc * grad[e][a]);
+      const Vec2 f = wk.area[e] * (pbar * wk.grad[e][a] - f_.c.mu * visc * wk.grad[e][a]);
       out[0][2 * t[a]] += f.x();
       out[0][2 * t[a] + 1] += f.y();
     }
   });
-  for (Index i = 0; i < np; ++i) force.segment<2>(2 * i) += mass[i] * g;
+  for (Index i = 0; i < np; ++i) wk.force.segment<2>(2 * i) += wk.mass[i] * g;
   f_.times.assembly += seconds_since(t0);
 
-  if (!implicit) {
+  if (!wk.implicit) {
     for (Index k = 0; k < 2 * np; ++k) {
-      if (vfixed[k]) continue;
-      const double m = mass[k / 2];
-      ustar[k] = friction[k] == 0 ? v[k] + dt * force[k] / m
-                                  : (m * v[k] / dt + force[k] + friction_force[k]) / (m / dt + friction[k]);
+      if (wk.vfixed[k]) continue;
+      const double m = wk.mass[k / 2];
+      wk.ustar[k] = wk.friction[k] == 0
+                        ? v[k] + dt * wk.force[k] / m
+                        : (m * v[k] / dt + wk.force[k] + wk.friction_force[k]) / (m / dt + wk.friction[k]);
     }
   } else {
     // Per component c: (M / dt + K) u*_c = M u^n_c / dt + f_c, K_ab = sum_e mu A grad N_a . grad N_b, the
@@ -251,7 +293,7 @@ IterationReport FractionalStep::iterate() {
     // (slip walls, a fixed mesh's or the constraints') or a friction acts on one, then each gets its own.
     bool same = true;
     for (Index i = 0; i < np && same; ++i)
-      same = vfixed[2 * i] == vfixed[2 * i + 1] && friction[2 * i] == friction[2 * i + 1];
+      same = wk.vfixed[2 * i] == wk.vfixed[2 * i + 1] && wk.friction[2 * i] == wk.friction[2 * i + 1];
     for (int c = 0; c < 2; ++c) {
       // The matrix depends on the step's mesh only: a re-solve of the step (a coupling pass) reuses it.
       if ((c == 0 && !step_factorized_) || !same) {
@@ -262,32 +304,41 @@ IterationReport FractionalStep::iterate() {
           if (f_.walls.inviscid(tri[e])) return;
           const int* sc = poisson_pattern_.scatter(e);
           for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) out[0][sc[b * 3 + a]] += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]);
+            for (int a = 0; a < 3; ++a)
+              out[0][sc[b * 3 + a]] += f_.c.mu * wk.area[e] * wk.grad[e][a].dot(wk.grad[e][b]);
         });
         viscous_stiffness_ = viscous_;  // kept for the elimination of prescribed values below
         constrain(
-            viscous_, [&](Index i) { return vfixed[2 * i + c] != 0; },
-            [&](Index i) { return mass[i] / dt + friction[2 * i + c]; });
+            viscous_, [&](Index i) { return wk.vfixed[2 * i + c] != 0; },
+            [&](Index i) { return wk.mass[i] / dt + wk.friction[2 * i + c]; });
         f_.times.assembly += seconds_since(t0);
         factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
       t0 = Clock::now();
       Vec known = Vec::Zero(np), rhs(np);
       for (Index i = 0; i < np; ++i)
-        if (vfixed[2 * i + c]) known[i] = ustar[2 * i + c];
+        if (wk.vfixed[2 * i + c]) known[i] = wk.ustar[2 * i + c];
       const Vec moved = viscous_stiffness_ * known;
       for (Index i = 0; i < np; ++i)
-        rhs[i] = vfixed[2 * i + c]
-                     ? ustar[2 * i + c]
-                     : mass[i] * v[2 * i + c] / dt + force[2 * i + c] + friction_force[2 * i + c] - moved[i];
+        rhs[i] = wk.vfixed[2 * i + c]
+                     ? wk.ustar[2 * i + c]
+                     : wk.mass[i] * v[2 * i + c] / dt + wk.force[2 * i + c] + wk.friction_force[2 * i + c] - moved[i];
       Vec u;
       viscous_solver_->solve(rhs, u);
       for (Index i = 0; i < np; ++i)
-        if (!vfixed[2 * i + c]) ustar[2 * i + c] = u[i];
+        if (!wk.vfixed[2 * i + c]) wk.ustar[2 * i + c] = u[i];
       f_.times.solve += seconds_since(t0);
     }
   }
+}
 
+void FractionalStep::pressure_increment(Work& wk) {
+  const Index np = f_.cloud.n();
+  const Index ne = f_.mesh.num_elements();
+  const double dt = f_.step.dt;
+  const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
+  const std::vector<char>& fixed = f_.step.fixed;
+  auto t0 = Clock::now();
   // 2. Pressure increment (the matrix, like the viscous one, only once per step's mesh).
   t0 = Clock::now();
   const bool assemble = !step_factorized_;
@@ -299,13 +350,14 @@ IterationReport FractionalStep::iterate() {
   element_loop(ne, scatter_, std::move(pressure_sums), [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     double div = f_.volume.c_vol();
-    for (int k = 0; k < 3; ++k) div += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
+    for (int k = 0; k < 3; ++k) div += wk.ustar.segment<2>(2 * t[k]).dot(wk.grad[e][k]);
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
-      out[0][t[a]] += -area[e] / 3.0 * div;
+      out[0][t[a]] += -wk.area[e] / 3.0 * div;
       if (!assemble) continue;
-      if (f_.c.bulk > 0) out[1][t[a]] += area[e] / 3.0 / (f_.c.bulk * dt);
-      for (int b = 0; b < 3; ++b) out[2][sc[b * 3 + a]] += dt / f_.c.rho * area[e] * grad[e][a].dot(grad[e][b]);
+      if (f_.c.bulk > 0) out[1][t[a]] += wk.area[e] / 3.0 / (f_.c.bulk * dt);
+      for (int b = 0; b < 3; ++b)
+        out[2][sc[b * 3 + a]] += dt / f_.c.rho * wk.area[e] * wk.grad[e][a].dot(wk.grad[e][b]);
     }
   });
   // Unknown pressures: connected particles off the free surface (step.fixed from FluidModel::set_dirichlet); the others
@@ -319,38 +371,48 @@ IterationReport FractionalStep::iterate() {
   if (assemble) factorize_step_matrix(*solver_, poisson_, "pressure step");
   step_factorized_ = true;
   t0 = Clock::now();
-  Vec dp;
-  solver_->solve(rhs, dp);
+  solver_->solve(rhs, wk.dp);
   f_.times.solve += seconds_since(t0);
+}
 
+void FractionalStep::correct(Work& wk) {
+  const Index np = f_.cloud.n();
+  const Index ne = f_.mesh.num_elements();
+  const double dt = f_.step.dt;
+  const Vec& v = f_.cloud.v();
+  const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
+  Vec& pres = f_.cloud.p();
+  Vec& ghost_force = f_.ghosts.forces();
+  auto t0 = Clock::now();
   // 3. Correction and new positions.
   t0 = Clock::now();
-  v_new_ = ustar;
-  Vec du = Vec::Zero(2 * np);
-  element_loop(ne, scatter_, {values_of(du)}, [&](Index e, std::span<double* const> out) {
+  v_new_ = wk.ustar;
+  wk.du = Vec::Zero(2 * np);
+  element_loop(ne, scatter_, {values_of(wk.du)}, [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
-    const double dpbar = (dp[t[0]] + dp[t[1]] + dp[t[2]]) / 3.0;
+    const double dpbar = (wk.dp[t[0]] + wk.dp[t[1]] + wk.dp[t[2]]) / 3.0;
     for (int a = 0; a < 3; ++a) {
-      out[0][2 * t[a]] += area[e] * dpbar * grad[e][a].x();
-      out[0][2 * t[a] + 1] += area[e] * dpbar * grad[e][a].y();
+      out[0][2 * t[a]] += wk.area[e] * dpbar * wk.grad[e][a].x();
+      out[0][2 * t[a] + 1] += wk.area[e] * dpbar * wk.grad[e][a].y();
     }
   });
   for (Index k = 0; k < 2 * np; ++k)
-    if (!vfixed[k]) v_new_[k] += dt * du[k] / mass[k / 2];
-  pres += dp;
+    if (!wk.vfixed[k]) v_new_[k] += dt * wk.du[k] / wk.mass[k / 2];
+  pres += wk.dp;
   // The implicit viscous predictor's K u* in the rows of the particles `wanted` selects (ghost, wall and
   // constrained particles: the forces they apply), K_ab = sum_e mu A grad N_a . grad N_b over the viscous
   // elements; zero with the explicit predictor, whose viscous term is in `force`.
   auto viscous_rows = [&](auto wanted) {
     Vec Ku = Vec::Zero(2 * np);
-    if (!implicit) return Ku;
+    if (!wk.implicit) return Ku;
     for (Index e = 0; e < ne; ++e) {
       const auto& t = tri[e];
       if (f_.walls.inviscid(t) || !(wanted(t[0]) || wanted(t[1]) || wanted(t[2]))) continue;
       for (int a = 0; a < 3; ++a)
         if (wanted(t[a]))
           for (int b = 0; b < 3; ++b)
-            Ku.segment<2>(2 * t[a]) += f_.c.mu * area[e] * grad[e][a].dot(grad[e][b]) * ustar.segment<2>(2 * t[b]);
+            Ku.segment<2>(2 * t[a]) +=
+                f_.c.mu * wk.area[e] * wk.grad[e][a].dot(wk.grad[e][b]) * wk.ustar.segment<2>(2 * t[b]);
     }
     return Ku;
   };
@@ -364,8 +426,9 @@ IterationReport FractionalStep::iterate() {
         ghost_force.segment<2>(2 * gi).setZero();
         continue;
       }
-      const Vec2 inertia = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt;
-      ghost_force.segment<2>(2 * gi) = force.segment<2>(2 * i) + du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
+      const Vec2 inertia = wk.mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt;
+      ghost_force.segment<2>(2 * gi) =
+          wk.force.segment<2>(2 * i) + wk.du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia;
     }
   }
   if (f_.step.energy) {
@@ -376,8 +439,8 @@ IterationReport FractionalStep::iterate() {
     Vec& boundary_force = f_.step.boundary_force;
     boundary_force.resize(2 * nb);
     for (Index i = 0; i < nb; ++i)
-      boundary_force.segment<2>(2 * i) = mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
-                                         force.segment<2>(2 * i) - du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
+      boundary_force.segment<2>(2 * i) = wk.mass[i] * (v_new_.segment<2>(2 * i) - v.segment<2>(2 * i)) / dt -
+                                         wk.force.segment<2>(2 * i) - wk.du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
   }
   if (!f_.boundaries.constraints().empty()) {
     // The same for the constrained components of the particles on walls (the energy balance, and whether the
@@ -389,9 +452,22 @@ IterationReport FractionalStep::iterate() {
     const Vec Kw = viscous_rows([&](Index i) { return on_wall[i] != 0; });
     for (size_t k = 0; k < ks.size(); ++k) {
       const Index j = 2 * ks[k].i + ks[k].c;
-      kf[static_cast<Index>(k)] = mass[ks[k].i] * (v_new_[j] - v[j]) / dt - force[j] - du[j] + Kw[j];
+      kf[static_cast<Index>(k)] = wk.mass[ks[k].i] * (v_new_[j] - v[j]) / dt - wk.force[j] - wk.du[j] + Kw[j];
     }
   }
+  f_.times.assembly += seconds_since(t0);
+}
+
+IterationReport FractionalStep::move_and_check(Work& wk) {
+  const Index np = f_.cloud.n();
+  const Index ne = f_.mesh.num_elements();
+  const double dt = f_.step.dt;
+  const Vec& x = f_.cloud.x();
+  const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
+  Vec& pres = f_.cloud.p();
+  Vec& x_new = f_.step.x;  // the step's new positions
+  auto t0 = Clock::now();
   for (Index i = 0; i < np; ++i)
     if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
   for (const auto& k : f_.boundaries.constraints()) x_new[2 * k.i + k.c] = f_.boundaries.position(k, f_.step.t_new);
@@ -404,7 +480,7 @@ IterationReport FractionalStep::iterate() {
   // corner was marked; FluidWalls::on_a_segment). The step fails and is retried with a smaller one; a
   // resolved flow moves a fraction of a spacing.
   for (Index i = 0; i < np; ++i)
-    if (kind[i] == ParticleKind::Fluid && mass[i] > 0 &&
+    if (kind[i] == ParticleKind::Fluid && wk.mass[i] > 0 &&
         (x_new.segment<2>(2 * i) - x.segment<2>(2 * i)).norm() > 5.0 * f_.cloud.h(i))
       throw SolverError("body '" + f_.c.name + "': particle " + std::to_string(i) + " moved " +
                         std::to_string((x_new.segment<2>(2 * i) - x.segment<2>(2 * i)).norm() / f_.cloud.h(i)) +
@@ -430,7 +506,7 @@ IterationReport FractionalStep::iterate() {
           std::fprintf(stderr,
                        "  particle %d kind %d free %d x_n (%.5f %.5f) x_new (%.5f %.5f) u (%.3f %.3f) u* (%.3f %.3f)\n",
                        int(i), int(kind[i]), int(f_.mesh.free[i]), x[2 * i], x[2 * i + 1], x_new[2 * i],
-                       x_new[2 * i + 1], v_new_[2 * i], v_new_[2 * i + 1], ustar[2 * i], ustar[2 * i + 1]);
+                       x_new[2 * i + 1], v_new_[2 * i], v_new_[2 * i + 1], wk.ustar[2 * i], wk.ustar[2 * i + 1]);
       throw SolverError("body '" + f_.c.name + "': element " + std::to_string(e) +
                         " turned inside out within the step at t = " + std::to_string(f_.step.t_new));
     }
@@ -445,11 +521,11 @@ IterationReport FractionalStep::iterate() {
       const auto& t = tri[e];
       double d0 = 0, d1 = 0;
       for (int k = 0; k < 3; ++k) {
-        d0 += ustar.segment<2>(2 * t[k]).dot(grad[e][k]);
-        d1 += v_new_.segment<2>(2 * t[k]).dot(grad[e][k]);
+        d0 += wk.ustar.segment<2>(2 * t[k]).dot(wk.grad[e][k]);
+        d1 += v_new_.segment<2>(2 * t[k]).dot(wk.grad[e][k]);
       }
-      div_star += area[e] * d0 * d0;
-      div_new += area[e] * d1 * d1;
+      div_star += wk.area[e] * d0 * d0;
+      div_new += wk.area[e] * d1 * d1;
     }
     divergence.mine() = {div_star, div_new};
   }

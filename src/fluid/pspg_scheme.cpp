@@ -96,6 +96,16 @@ class PspgScheme final : public FluidScheme {
   }
 
  private:
+  /// The stages of an iteration: the element loop (residual R and Jacobian J_ at the evaluation point ev, the
+  /// force scales, which particles have mass), the rows of particles in no element and of the walls' friction,
+  /// the Dirichlet rows with the reactions they give (ghost, wall and constraint forces; returns the squared
+  /// momentum residual), and the Newton correction (factorize, solve, update).
+  void assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2, double& gravity2,
+                         std::vector<char>& has_mass);
+  void add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,
+                                  const std::vector<char>& has_mass);
+  double apply_dirichlet(Vec& R, double sp);
+  void correct(const Vec& R, double sp, const IterationReport& rep);
   PspgSettings s_;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
@@ -108,12 +118,8 @@ class PspgScheme final : public FluidScheme {
 
 IterationReport PspgScheme::iterate() {
   auto t0 = Clock::now();
-  const FluidMesh& mesh = f_.mesh;
-  const std::vector<ParticleKind>& kind = f_.cloud.kind();
   FluidStep& step = f_.step;
   Vec& x_new = step.x;
-  Vec& p = f_.cloud.p();
-  const std::vector<char>& fixed = step.fixed;
   const double h = f_.c.h;
   const Index np = f_.cloud.n();
   // Ghost particles: their velocity and acceleration are the structure's at t_{n+1}. They are written into the
@@ -128,11 +134,43 @@ IterationReport PspgScheme::iterate() {
   EvalPoint ev = integrator_->evaluation(end);
   f_.boundaries.set_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
-  const Vec2 g = f_.c.gravity;  // ballistic particles below
   Vec R = Vec::Zero(3 * np);
   double* jv = J_.valuePtr();
   std::fill(jv, jv + J_.nonZeros(), 0.0);
   std::vector<char> has_mass(np, 0);
+  double inertia2 = 0, gravity2 = 0;
+  assemble_elements(ev, cf, R, inertia2, gravity2, has_mass);
+
+  add_free_and_friction_rows(ev, cf, R, has_mass);
+  // Pressure columns scaled by s_p (apply_dirichlet).
+  const double sp = 3.0 * f_.c.rho * h * cf.c_m;
+  const double rm2 = apply_dirichlet(R, sp);
+  IterationReport rep;
+  rep.residual = std::sqrt(rm2);
+  rep.residual_ref = std::max(std::sqrt(inertia2), std::sqrt(gravity2));
+  rep.increment = last_dx_;
+  rep.increment_ref = h;
+  if (!std::isfinite(rep.residual)) throw SolverError("body '" + f_.c.name + "': non-finite residual");
+  f_.times.assembly += seconds_since(t0);
+  // Converged: the last corrections of positions and pressures are below tolerance; or the momentum
+  // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
+  // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
+  // pressure corrections of a few particles from ever reaching tol * p_scale).
+  const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
+  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * step.p_scale) || stalled) {
+    rep.converged = true;
+    return rep;
+  }
+
+  correct(R, sp, rep);
+  return rep;
+}
+
+void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2_out,
+                                   double& gravity2_out, std::vector<char>& has_mass) {
+  const FluidMesh& mesh = f_.mesh;
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
+  const FluidStep& step = f_.step;
   std::string failure;
 
   const Index ne = mesh.num_elements();
@@ -189,18 +227,27 @@ IterationReport PspgScheme::iterate() {
     scales.mine() = {inertia2, gravity2};
   }
   scatter_.merge();
-  const double inertia2 = scales.total(0), gravity2 = scales.total(1);
+  inertia2_out = scales.total(0);
+  gravity2_out = scales.total(1);
   for (Index e = 0; e < ne; ++e)
     if (assembled[e])
       for (Index i : mesh.tri[e]) has_mass[i] = 1;
   if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
+}
 
+void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,
+                                            const std::vector<char>& has_mass) {
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
+  const std::vector<char>& fixed = f_.step.fixed;
+  const Index np = f_.cloud.n();
+  const Vec2 g = f_.c.gravity;
+  double* jv = J_.valuePtr();
   // "volume_correction": "particle": each particle's share of the area grows at the rate owed to it.
   if (f_.volume.type() == VolumeCorrection::Type::particle)
     for (Index i = 0; i < np; ++i)
       if (has_mass[i]) R[3 * i + 2] -= f_.volume.owed_rate(i);
   // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.
-  const double m0 = f_.c.rho * h * h;
+  const double m0 = f_.c.rho * f_.c.h * f_.c.h;
   const int* op = J_.outerIndexPtr();
   const int* ip = J_.innerIndexPtr();
   auto diag = [&](Index dof) -> double& {
@@ -224,11 +271,16 @@ IterationReport PspgScheme::iterate() {
     R[dof] += kf * (f_.walls.component(ev.v, w.i, w.c) - f_.walls.friction_velocity(w, ev.t));
     diag(dof) += kf * cf.c_c;
   }
+}
+
+double PspgScheme::apply_dirichlet(Vec& R, double sp) {
+  FluidStep& step = f_.step;
+  const std::vector<char>& fixed = step.fixed;
+  const Index np = f_.cloud.n();
   // Dirichlet: rows and columns of prescribed dofs become identity. Pressure columns are scaled by
   // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
   // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
-  const double sp = 3.0 * f_.c.rho * h * cf.c_m;
   dirichlet_identity(
       J_, [&](Index i) { return fixed[i] != 0; },
       [&](Index, Index col, double& value) {
@@ -260,24 +312,17 @@ IterationReport PspgScheme::iterate() {
     else if (i % 3 != 2)
       rm2 += R[i] * R[i];
   }
-  IterationReport rep;
-  rep.residual = std::sqrt(rm2);
-  rep.residual_ref = std::max(std::sqrt(inertia2), std::sqrt(gravity2));
-  rep.increment = last_dx_;
-  rep.increment_ref = h;
-  if (!std::isfinite(rep.residual)) throw SolverError("body '" + f_.c.name + "': non-finite residual");
-  f_.times.assembly += seconds_since(t0);
-  // Converged: the last corrections of positions and pressures are below tolerance; or the momentum
-  // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
-  // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
-  // pressure corrections of a few particles from ever reaching tol * p_scale).
-  const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
-  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * step.p_scale) || stalled) {
-    rep.converged = true;
-    return rep;
-  }
+  return rm2;
+}
 
-  t0 = Clock::now();
+void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
+  const FluidStep& step = f_.step;
+  Vec& x_new = f_.step.x;
+  Vec& p = f_.cloud.p();
+  const std::vector<char>& fixed = step.fixed;
+  const double h = f_.c.h;
+  const Index np = f_.cloud.n();
+  auto t0 = Clock::now();
   if (s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0) {
     try {
       solver_->factorize(J_);
@@ -311,9 +356,8 @@ IterationReport PspgScheme::iterate() {
       if (std::abs(d[3 * i]) + std::abs(d[3 * i + 1]) > std::abs(d[3 * worst]) + std::abs(d[3 * worst + 1])) worst = i;
     std::fprintf(stderr, "  t=%.6g res=%.3e ref=%.3e dx=%.3e (h %.3e) dp=%.3e (p %.3e) worst %d kind %d free %d\n",
                  step.t_new, rep.residual, rep.residual_ref, last_dx_, h, last_dp_, step.p_scale, worst,
-                 int(kind[worst]), int(mesh.free[worst]));
+                 int(f_.cloud.kind()[worst]), int(f_.mesh.free[worst]));
   }
-  return rep;
 }
 
 }  // namespace

@@ -131,6 +131,56 @@ void check_overlaps(Params body, DemBody& b, double tol) {
       }
 }
 
+/// /bodies/i/time_step: the sub-step from the contact law's critical step, with the checks that name what is at
+/// fault (an overflowing law, a step above the critical one, a run too long, a gravity the sub-step cannot follow).
+void read_time_step(Params body, const CaseContext& ctx, DemBody& b) {
+  const Discs& D = b.discs;
+  const Index n = static_cast<Index>(D.mass.size());
+  Params ts = body.at("time_step");
+  ts.validate(kDemTimeStepKeys);
+  double m_min = D.mass[0];
+  for (double m : D.mass) m_min = std::min(m_min, m);
+  const double omega = b.law->max_frequency(m_min, b.r_min, b.inertia_factor, b.rotation);
+  b.dt_critical = 2.0 / omega;
+  // An overflow or underflow in the law's stiffness, the density or the radius, not the step, is then at fault.
+  if (!(b.dt_critical > 0 && std::isfinite(b.dt_critical)))
+    body.fail("contact", "the contact law's highest frequency omega_max = " + fmt(omega) +
+                             " rad/s for the lightest disc (m = " + fmt(m_min) + " kg, r = " + fmt(b.r_min) +
+                             " m) is not a finite positive number: check the stiffness, density and radii");
+  const double dt = ts.non_negative("dt"), fraction = ts.positive("fraction");
+  if (fraction > 1) ts.fail("fraction", "must lie in (0, 1]");
+  b.dt = dt > 0 ? dt : fraction * b.dt_critical;
+  if (b.dt > b.dt_critical) {
+    if (!ts.boolean("allow_above_critical"))
+      ts.fail("dt", "dt = " + fmt(b.dt) + " s is above the critical step 2/omega_max = " + fmt(b.dt_critical) +
+                        " s of the contact law (set allow_above_critical to force it)");
+    // The sub-steps are no longer than the driver's step either (DemModel::solve_iteration).
+    const double h = std::min(b.dt, ctx.analysis.dt);
+    if (h > b.dt_critical)
+      b.warnings.push_back(ts.child_path("dt") + ": sub-steps of " + fmt(h) + " s, above the critical step " +
+                           fmt(b.dt_critical) +
+                           " s (allow_above_critical): the central difference is unstable "
+                           "there, and a run whose energy grows past the work put in stops");
+  }
+  const double steps = ctx.analysis.end_time / std::min(b.dt, ctx.analysis.dt);
+  if (!(steps * n <= 2e13))
+    ts.fail("dt", "the run needs " + fmt(steps) + " sub-steps of " + fmt(std::min(b.dt, ctx.analysis.dt)) + " s for " +
+                      std::to_string(n) +
+                      " discs, more than 2e13 disc updates (the critical step of the contact "
+                      "law is " +
+                      fmt(b.dt_critical) + " s): a shorter end_time, fewer or larger discs, or softer contacts");
+  // Gravity alone moving a disc by a sizeable share of its radius in one sub-step (g h^2) is more than the
+  // contacts can resolve.
+  const double h_max = std::min(ctx.analysis.dt, b.dt);
+  const double g = std::hypot(b.gravity.x(), b.gravity.y());  // no overflow in the squares
+  if (!(g * h_max * h_max < 0.1 * b.r_min))
+    Params(Json::array({b.gravity.x(), b.gravity.y()}), ctx.case_file.string(), "/gravity")
+        .fail("|g| = " + fmt(g) + " m/s^2 moves a disc by g h^2 = " + fmt(g * h_max * h_max) +
+              " m in one sub-step of " + fmt(h_max) + " s, more than a tenth of the smallest radius (" + fmt(b.r_min) +
+              " m)");
+  b.integrator = make_central_difference();
+}
+
 }  // namespace
 
 double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
@@ -210,50 +260,7 @@ double read_dem_body(Params body, const CaseContext& ctx, DemBody& b) {
                          fmt(b.initial_overlap) + " of the radius were accepted (overlap_tolerance " + fmt(tol) +
                          "): their elastic energy is released as motion at the start");
 
-  // time step
-  Params ts = body.at("time_step");
-  ts.validate(kDemTimeStepKeys);
-  double m_min = D.mass[0];
-  for (double m : D.mass) m_min = std::min(m_min, m);
-  const double omega = b.law->max_frequency(m_min, b.r_min, b.inertia_factor, b.rotation);
-  b.dt_critical = 2.0 / omega;
-  // An overflow or underflow in the law's stiffness, the density or the radius, not the step, is then at fault.
-  if (!(b.dt_critical > 0 && std::isfinite(b.dt_critical)))
-    body.fail("contact", "the contact law's highest frequency omega_max = " + fmt(omega) +
-                             " rad/s for the lightest disc (m = " + fmt(m_min) + " kg, r = " + fmt(b.r_min) +
-                             " m) is not a finite positive number: check the stiffness, density and radii");
-  const double dt = ts.non_negative("dt"), fraction = ts.positive("fraction");
-  if (fraction > 1) ts.fail("fraction", "must lie in (0, 1]");
-  b.dt = dt > 0 ? dt : fraction * b.dt_critical;
-  if (b.dt > b.dt_critical) {
-    if (!ts.boolean("allow_above_critical"))
-      ts.fail("dt", "dt = " + fmt(b.dt) + " s is above the critical step 2/omega_max = " + fmt(b.dt_critical) +
-                        " s of the contact law (set allow_above_critical to force it)");
-    // The sub-steps are no longer than the driver's step either (DemModel::solve_iteration).
-    const double h = std::min(b.dt, ctx.analysis.dt);
-    if (h > b.dt_critical)
-      b.warnings.push_back(ts.child_path("dt") + ": sub-steps of " + fmt(h) + " s, above the critical step " +
-                           fmt(b.dt_critical) +
-                           " s (allow_above_critical): the central difference is unstable "
-                           "there, and a run whose energy grows past the work put in stops");
-  }
-  const double steps = ctx.analysis.end_time / std::min(b.dt, ctx.analysis.dt);
-  if (!(steps * n <= 2e13))
-    ts.fail("dt", "the run needs " + fmt(steps) + " sub-steps of " + fmt(std::min(b.dt, ctx.analysis.dt)) + " s for " +
-                      std::to_string(n) +
-                      " discs, more than 2e13 disc updates (the critical step of the contact "
-                      "law is " +
-                      fmt(b.dt_critical) + " s): a shorter end_time, fewer or larger discs, or softer contacts");
-  // Gravity alone moving a disc by a sizeable share of its radius in one sub-step (g h^2) is more than the
-  // contacts can resolve.
-  const double h_max = std::min(ctx.analysis.dt, b.dt);
-  const double g = std::hypot(b.gravity.x(), b.gravity.y());  // no overflow in the squares
-  if (!(g * h_max * h_max < 0.1 * b.r_min))
-    Params(Json::array({b.gravity.x(), b.gravity.y()}), ctx.case_file.string(), "/gravity")
-        .fail("|g| = " + fmt(g) + " m/s^2 moves a disc by g h^2 = " + fmt(g * h_max * h_max) +
-              " m in one sub-step of " + fmt(h_max) + " s, more than a tenth of the smallest radius (" + fmt(b.r_min) +
-              " m)");
-  b.integrator = make_central_difference();
+  read_time_step(body, ctx, b);
 
   Params nb = body.at("neighbour");
   nb.validate(kDemNeighbourKeys);

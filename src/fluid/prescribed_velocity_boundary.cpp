@@ -23,7 +23,8 @@ const KeyTable kPrescribedVelocityKeys(
      {"name", "boundary", "Boundary name (summary.json); default: boundary<index>.", kDerived},
      {"segment", nullptr, "The segment [[x0, y0], [x1, y1]] (m)."},
      {"velocity", nullptr, "The velocity [u, v] (m/s) of the particles on it, scaled by the function."},
-     {"function", Json::object(), "A time function f(t) scaling the velocity (see time function (type ...)); default {}: 1."},
+     {"function", Json::object(),
+      "A time function f(t) scaling the velocity (see time function (type ...)); default {}: 1."},
      {"tolerance", 1e-6, "A fluid particle within this times h of the segment is on it."}});
 
 class PrescribedVelocity final : public FluidBoundary {

@@ -1,8 +1,8 @@
 // Runs on more than one thread are reproducible: the same case on the same number of threads gives the same
 // probes.csv (and output series) to the last bit, because every sum of a parallel loop is taken in an order
-// fixed by the number of threads (src/core/include/lagfsi/parallel_sum.hpp), and so a two-thread run stopped and restarted
-// ends as the uninterrupted one does. The dam break runs fine enough for the fluid's element loop to be parallel
-// from the first step (it is above 2000 elements); unordered sums changed the last digits there within a few
+// fixed by the number of threads (src/core/include/lagfsi/parallel_sum.hpp), and so a two-thread run stopped and
+// restarted ends as the uninterrupted one does. The dam break runs fine enough for the fluid's element loop to be
+// parallel from the first step (it is above 2000 elements); unordered sums changed the last digits there within a few
 // steps, and the flow soon carried them into the probes' printed digits.
 #include <gtest/gtest.h>
 

@@ -238,7 +238,6 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
                           {"wall_friction", d.wall_friction}});
   c_.name = b.identifier("name");
   c_.gravity = ctx_.gravity;
-  c_.analysis_dt = ctx_.analysis.dt;
   if (ctx_.analysis.type != "dynamic") b.fail("type", "a fluid needs a dynamic analysis");
   c_.rho = b.positive("density");
   c_.mu = b.non_negative("viscosity");

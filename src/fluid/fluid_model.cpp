@@ -49,6 +49,8 @@ void FluidModel::set_dirichlet(double t_start) {
 // ------------------------------------------------------------------------------------------ lifecycle
 
 void FluidModel::initialize() {
+  // The step the driver will take (the analysis' nominal one): what the kernels see before the first predict().
+  step_.dt = ctx_.analysis.dt;
   const auto t0 = Clock::now();
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();

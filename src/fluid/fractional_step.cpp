@@ -146,7 +146,7 @@ bool FractionalStep::viscous_implicit() const {
   if (s_.viscous_step != "automatic") return s_.viscous_step == "implicit";
   if (f_.c.mu <= 0) return false;
   const double hmin = 0.3 * f_.c.h;
-  const double dt = f_.step.dt > 0 ? f_.step.dt : f_.c.analysis_dt;
+  const double dt = f_.step.dt;
   return dt > f_.c.rho * hmin * hmin / (8.0 * f_.c.mu);
 }
 

@@ -42,7 +42,7 @@ PspgElementInput FluidScheme::element_input(Index e, const Vec& x, const Vec& v,
   }
   in.rho = f_.c.rho;
   in.mu = f_.walls.inviscid(t) ? 0.0 : f_.c.mu;
-  in.dt = f_.step.dt > 0 ? f_.step.dt : f_.c.analysis_dt;
+  in.dt = f_.step.dt;
   in.tau_U = tau_U_;
   in.bulk = f_.c.bulk;
   in.c_vol = f_.volume.c_vol();

@@ -19,7 +19,6 @@ struct FluidConstants {
   bool remesh = true;   // PFEM mode (remeshed every step) or fixed connectivity
   double bulk = 2.2e9;  // bulk modulus of the slight compressibility (0: incompressible)
   Vec2 gravity = Vec2::Zero();
-  double analysis_dt = 0;           // the analysis' time step (what the kernels use before the first step)
   double wall_snap_fraction = 0.1;  // "wall_model": "constraints": a particle approaching a wall closer than
                                     // this * h is put on it (FluidWalls::snap_to_walls)
 };

@@ -3,6 +3,7 @@
 // tank. The particles on the lid (not those the side walls already hold) move at the lid's velocity from the
 // first step on, under either scheme, and a lid at rest leaves the water at rest.
 #include "case_runner.hpp"
+#include "process.hpp"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +67,21 @@ TEST(FluidBoundaries, ALidAtRestLeavesTheWaterAtRest) {
   const Csv p = read_csv(r.out_dir / "probes.csv");
   const auto& v = p["max_speed"];
   EXPECT_LT(*std::max_element(v.begin(), v.end()), 1e-4 * std::sqrt(9.81 * 0.1));
+}
+
+TEST(FluidBoundaries, ARunWithABoundaryRestartsBitForBit) {
+  // The same run uninterrupted and stopped after step 7 (checkpoints every 5 steps), then restarted: the
+  // boundary's step start and counters come back from the checkpoint.
+  const std::string text = lid_over_water("monolithic_pspg", 0.05);
+  const std::string opts = "--quiet --threads 1 --set output.checkpoint.every_steps=5";
+  const RunResult full = run_case_text(fresh_dir("lid_full"), text, opts);
+  ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
+  const fs::path dir = fresh_dir("lid_part");
+  ASSERT_EQ(run_case_text(dir, text, opts + " --stop-after-step 7").exit_code, 0);
+  const RunResult part = run_case_text(dir, text, opts + " --restart \"" + (dir / "out").string() + "\"");
+  ASSERT_EQ(part.exit_code, 0) << part.stderr_text;
+  EXPECT_EQ(file_text(part.out_dir / "probes.csv"), file_text(full.out_dir / "probes.csv"));
+  EXPECT_EQ(summary_of(part)["bodies"][0]["boundaries"], summary_of(full)["bodies"][0]["boundaries"]);
 }
 
 TEST(FluidBoundaries, AnUnknownBoundaryTypeIsAnErrorListingTheTypes) {

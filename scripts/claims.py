@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What every case claims, in one place: cases/<case>/expected.json (issue #17).
+"""What every case claims, in one place: cases/<case>/expected.json.
 
 Each case's expected.json lists the runs that produce its numbers, and its headline quantities: where each comes
 from (a probe of a run, a number its plot.py records, a field of summary.json), the value the current code

@@ -1,4 +1,4 @@
-"""Cantilever under a step load (seed 5.5.1) with shell elements: the free end's deflection against the
+"""Cantilever under a step load (Avancini 2018, sec. 5.5.1) with shell elements: the free end's deflection against the
 Timoshenko static value and twice it, and against the T10 run of cantilever_step_load when its output folder
 is given. Usage: /usr/bin/python3 cases/cantilever_step_load_shell/plot.py OUTDIR [T10_OUTDIR]"""
 import os

@@ -1,7 +1,8 @@
-"""Dam break with a rigid obstacle (Koshizuka, Tamako & Oka 1995; seed 6.9.4): reach of the jet (largest x of
-connected fluid) and floor front against time, with the time the jet reaches the right wall; pressures on the
-right wall and on the obstacle's upstream face; fluid area; and, if the VTK Python module is available,
-snapshots at 0.1-0.5 s (the seed's Figs. 39-43). Usage: /usr/bin/python3 cases/dam_break_obstacle/plot.py OUTDIR"""
+"""Dam break with a rigid obstacle (Koshizuka, Tamako & Oka 1995; Avancini 2018 sec. 6.9.4): reach of the jet
+(largest x of connected fluid) and floor front against time, with the time the jet reaches the right wall;
+pressures on the right wall and on the obstacle's upstream face; fluid area; and, if the VTK Python module is
+available, snapshots at 0.1-0.5 s (Avancini 2018, Figs. 39-43).
+Usage: /usr/bin/python3 cases/dam_break_obstacle/plot.py OUTDIR"""
 import json
 import os
 import sys

@@ -58,8 +58,8 @@ record("best_delay_pysph", best[1])
 record("area_drift_end", drift[-1] / 100)
 record("area_drift_max", max(abs(d) for d in drift) / 100)
 # The energy above the rest state (KE + PE - PE of the still layer of the same area in the 4L tank) at 0.25 s,
-# before the wall impact, over its start (issue #16; viscosity alone takes 0.02 %), and the change of area split
-# into what the steps made and what the remeshing made (summary.json).
+# before the wall impact, over its start (docs/decisions/0005-particle-volumes.md; viscosity alone takes 0.02 %),
+# and the change of area split into what the steps made and what the remeshing made (summary.json).
 e_rest = [ke + pe - 1000.0 * g * a * a / (2 * 4 * L)
           for ke, pe, a in zip(p["kinetic_energy"], p["potential_energy"], p["fluid_area"])]
 i25 = min(range(len(p["time"])), key=lambda k: abs(p["time"][k] - 0.25))

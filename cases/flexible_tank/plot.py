@@ -1,4 +1,4 @@
-"""Flexible tank (seed 7.3.1): tip displacement of the flexible wall and the pressure in the bottom-right
+"""Flexible tank (Avancini 2018, sec. 7.3.1): tip displacement of the flexible wall and the pressure in the bottom-right
 corner. No digitized reference exists for this case: the script prints the first peak, the first trough, the
 mean deflection after the start-up (against the static beam-theory deflection under the initial hydrostatic
 load) and the coupling statistics.

@@ -1,5 +1,5 @@
-"""Flexible tank (seed 7.3.1) with the wall as shell elements, against the same case with the wall meshed by
-T10 elements (cases/flexible_tank) when its output folder is given: tip displacement histories, their largest
+"""Flexible tank (Avancini 2018, sec. 7.3.1) with the wall as shell elements, against the same case with the wall
+meshed by T10 elements (cases/flexible_tank) when its output folder is given: tip displacement histories, their largest
 difference relative to the peak, and the wall time per body.
 Usage: /usr/bin/python3 cases/flexible_tank_shell/plot.py OUTDIR [T10_OUTDIR]"""
 import os

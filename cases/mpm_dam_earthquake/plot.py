@@ -1,4 +1,4 @@
-"""Earth dam under an earthquake (MPM, seed 000 example 3): crest acceleration and displacement histories, the
+"""Earth dam under an earthquake (MPM, Ludeña 2016 ch. 4): crest acceleration and displacement histories, the
 base motion, and the permanent horizontal displacements caused by the earthquake alone (at the end minus at the
 end of the static phase, t = 20 s) of the crest and the downstream slope points, against the thesis's
 Makdisi-Seed estimates (0.11-0.62 m for sliding masses from the crest down to the full height); the

@@ -1,4 +1,4 @@
-"""Saturated square (two-phase MPM, seed 000 example 2): pore pressure of the control particles over time and the
+"""Saturated square (two-phase MPM, Ludeña 2016 sec. 3.6): pore pressure of the control particles over time and the
 final profile against hydrostatic gamma_w depth. The pressure is uniform within each cell (the grid's
 velocity divergence is), so it is compared at the cell centres; the base value is extrapolated from the two
 lowest cells.

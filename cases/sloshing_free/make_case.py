@@ -52,7 +52,7 @@ remesh["analysis"]["end_time"] = round(10 * T1, 4)
 body = remesh["bodies"][0]
 del body["remesh"]
 # The classic alpha shape, which brings wall particles and the surface correction with it (the monolithic scheme's
-# defaults until issue #16's conservative package; the README's "remeshed" rows).
+# defaults before the conservative defaults of docs/decisions/0001-0006; the README's "remeshed" rows).
 body["domain_detection"] = "alpha"
 body["scheme"] = {"free_surface_pressure": "natural"}
 remesh["probes"] = remesh["probes"][2:] + [
@@ -65,7 +65,7 @@ write_generated_case(__file__, remesh, "case_remesh.json")
 
 # The same twin with the conservative remeshing: the advected previous domain decides the new mesh, particle
 # management keeps area and momentum, no volume correction, and the slip walls hold the particles on them by
-# constraints instead of a layer of wall particles (issue #16).
+# constraints instead of a layer of wall particles (docs/decisions/0002-walls-as-constraints.md).
 advected = json.loads(json.dumps(remesh))
 advected["name"] = "sloshing_free_advected"
 advected["description"] = ("The remeshed twin (case_remesh.json) with the advected domain detection, walls as "

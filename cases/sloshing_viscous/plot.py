@@ -1,4 +1,4 @@
-"""Sloshing of a viscous fluid (seed 6.9.5, after Franci 2016): free-surface elevation next to both walls,
+"""Sloshing of a viscous fluid (Avancini 2018 sec. 6.9.5, after Franci 2016): free-surface elevation next to both walls,
 kinetic energy (log scale) and fluid area against time; if the VTK Python module is available, snapshots of
 the particles coloured by pressure. Usage: /usr/bin/python3 cases/sloshing_viscous/plot.py OUTDIR"""
 import json

@@ -1,6 +1,7 @@
 """Writes case.json of the solitary-wave case: the fluid region is a polygon whose top follows the Laitone
 free surface eta(x) = d + H sech^2(k (x - x0)) (sampled at the particle spacing). Run with /usr/bin/python3.
-Parameters (seed 6.9.2, scaled as the digest infers): d = 1 m, H = 0.2 m, tank 16 m, crest at mid-tank."""
+Parameters (Avancini 2018 sec. 6.9.2, scaled as the case README infers):
+d = 1 m, H = 0.2 m, tank 16 m, crest at mid-tank."""
 import math
 import os
 import sys

@@ -1,4 +1,4 @@
-"""Runs every study of cases/studies/ one after the other, the cheapest first (issue #7).
+"""Runs every study of cases/studies/ one after the other, the cheapest first.
 
 Usage: /usr/bin/python3 cases/studies/run_all.py [--quick] [--exe PATH] [--out DIR] [--publish] [--rerun]
                                                 [--cases DIR] [--only NAME ...]

@@ -1,4 +1,4 @@
-"""Numbers a plot script hands to scripts/claims.py (issue #17): record(name, value) adds them to the JSON file
+"""Numbers a plot script hands to scripts/claims.py: record(name, value) adds them to the JSON file
 named by the environment variable LAGFSI_METRICS, which claims.py sets when it runs the script; without it,
 record() does nothing. The script prints its numbers as before; these are the same numbers, unrounded."""
 import json

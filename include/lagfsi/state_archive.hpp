@@ -1,7 +1,7 @@
 #pragma once
 /// @file state_archive.hpp
 /// The state of a run in binary form, for checkpoints (`output.checkpoint`) and `lagfsi run --restart`
-/// (issue #21). One method per class, serialize(StateArchive& ar), names every field that the time loop
+/// (docs/running.md). One method per class, serialize(StateArchive& ar), names every field that the time loop
 /// needs to continue bit for bit; the same method writes (ar.loading() false) and reads (true) them, so the
 /// two directions cannot drift apart. Numbers are stored as their bytes (the checkpoint is read back by the
 /// same build on the same machine), containers with their sizes.

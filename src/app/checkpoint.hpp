@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoints of a run and `lagfsi run CASE --restart OUTDIR` (checkpoint.cpp; issue #21). The case's
+// Checkpoints of a run and `lagfsi run CASE --restart OUTDIR` (checkpoint.cpp). The case's
 // "output": {"checkpoint": {"every_steps": N, "every_minutes": M, "keep": 2}} writes OUTDIR/checkpoint.bin
 // every N steps and/or every M minutes of wall time, and when a signal (or --stop-after-step) ends the run
 // early. A checkpoint holds where the run is (step, time, the sizes of probes.csv and log.csv at that step,

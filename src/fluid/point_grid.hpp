@@ -18,7 +18,7 @@ namespace lagfsi::fluid {
 /// The cells are an open-addressing table (linear probing, power-of-two capacity) of integer cell coordinates,
 /// each the head of a list of the points in it, kept in one array: an add is one probe and one push, a find
 /// nine probes. (A std::unordered_map of a vector per cell, hashing the cells' coordinates as doubles, took
-/// 40 % of the package's remesh at 5e4 particles.)
+/// 40 % of the remesh with the fluid's conservative defaults at 5e4 particles.)
 class PointGrid {
  public:
   /// `expected`: the number of points about to be added (sizes the table; it grows as needed).

@@ -2,12 +2,11 @@
 // particles against the left wall of a tank made of two lines of wall particles). Times, best of
 // `repeats`, the Delaunay triangulation alone (delaunay_triangles: range insertion + listing the faces)
 // and the whole remesh() (triangulation + alpha test + wall-only removal + free surface), single thread;
-// and the advected domain detection (issue #16): the last mesh carried by the particles (here: the alpha
-// mesh, with every particle then moved by up to 0.05 h) built into a PreviousDomain with its topology, and
-// remesh() with it as the predicate (point location of every new element's centroid, restored boundary
-// edges). The fluid's particle management on the advected mesh (merges, splits, inserts: O(n) passes over
-// the elements in src/fluid) is not in it.
-// Goal: remesh <= 2 us per particle for 1e4 - 1e5 particles.
+// and the advected domain detection (docs/decisions/0001-advected-domain.md): the last mesh carried by the particles
+// (here: the alpha mesh, with every particle then moved by up to 0.05 h) built into a PreviousDomain with its topology,
+// and remesh() with it as the predicate (point location of every new element's centroid, restored boundary edges). The
+// fluid's particle management on the advected mesh (merges, splits, inserts: O(n) passes over the elements in
+// src/fluid) is not in it. Goal: remesh <= 2 us per particle for 1e4 - 1e5 particles.
 //
 // usage: bench_remesh [repeats=5] [n1 n2 ...]   (default sizes 1e4 1e5 4e5)
 #include <lagfsi/meshing/previous_domain.hpp>

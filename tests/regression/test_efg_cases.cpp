@@ -1,4 +1,4 @@
-// Regression runs of the EFG cases at CI size (issue #20): the cantilever's energy-norm error and tip deflection
+// Regression runs of the EFG cases at CI size: the cantilever's energy-norm error and tip deflection
 // against the exact solution, sigma_xx at the hole against Kirsch's 3 sigma0, the Mazars tension plate's peak
 // against the homogeneous solution (lambda = 2.0), and a coarse L-panel (probes load and node_A_uy, the limit point
 // passed), plus a bad-input check.

@@ -1,8 +1,8 @@
-// Regression: the PFEM fluid cases of cases/ at CI size (issue #3). Tolerances: hydrostatic as stated in the
-// issue; for the dam break, the values this code reaches (see cases/dam_break_tank/README.md), not the
-// issue's goals, which are not met yet (front RMS 0.10, impact 0.30 +- 0.02 s). These are physical sanity bounds
+// Regression: the PFEM fluid cases of cases/ at CI size. Tolerances: hydrostatic as its README states; for the
+// dam break, the values this code reaches (see cases/dam_break_tank/README.md), not the original targets, which
+// are not met yet (front RMS 0.10, impact 0.30 +- 0.02 s). These are physical sanity bounds
 // at a reduced size; the numbers the READMEs state are checked at full size, against their references and
-// against the recorded values, by the `cases` tier (cases/<case>/expected.json, scripts/claims.py; issue #17).
+// against the recorded values, by the `cases` tier (cases/<case>/expected.json, scripts/claims.py).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,8 +27,8 @@ TEST(Hydrostatic, PressureStaysHydrostaticAndFluidAtRest) {
 TEST(DamBreakTank, FrontReachesTheWallAndAreaIsKept) {
   // Koshizuka & Oka (1996): column L = 0.146 m, 2L high, tank 4L. CI size: the default resolution over
   // 0.35 s (through the wall impact). Measured: front RMS 0.348, impact 0.249 s (the alpha shape with wall
-  // particles: 0.270, 0.266 s). The front leads the experiment by its unmodelled release (issue #16 retired the
-  // 0.10 target): delayed by the best-fitting 31 ms it is 0.113 (cases/dam_break_tank, plot.py).
+  // particles: 0.270, 0.266 s). The front leads the experiment by its unmodelled release (so the 0.10 target
+  // was retired): delayed by the best-fitting 31 ms it is 0.113 (cases/dam_break_tank, plot.py).
   const Csv c =
       probes_of(run_case_file("cases/dam_break_tank/case.json", "dam_break_tank", {"analysis.end_time=0.35"}));
   const auto [rms, t_impact] = dam_break_tank_front(c);
@@ -42,14 +42,14 @@ TEST(DamBreakTank, FrontReachesTheWallAndAreaIsKept) {
 }
 
 TEST(DamBreakTank, WaterAndEnergyAreKeptThroughTheSplash) {
-  // The whole second of the default case (the monolithic scheme's conservative package: advected domain, no-slip
+  // The whole second of the default case (the monolithic scheme's conservative defaults: advected domain, no-slip
   // walls as constraints sliding against their Navier friction, Robin free-surface pressure, particle volumes).
-  // Issue #16: the energy above the rest state at 0.25 s, before the wall impact, keeps at least 97 % of the
-  // initial (measured 0.998; the alpha shape with its surface correction, the default before, 0.896), and the
-  // water, the mesh plus the drops in flight that carry their own area, stays within 0.5 % through the impact,
-  // the run-up and the plunging wave (measured 0.275 %, the issue's 0.3 %, with the tuned relaxation time of the
-  // particle volumes and generalized-alpha; 0.32 % at dt = 1.1 ms, README). The mesh's own area drifts by what is
-  // in flight (2.3 %). A change that lets particles through the walls gives several %.
+  // Checks (docs/decisions/0005-particle-volumes.md): the energy above the rest state at 0.25 s, before the wall
+  // impact, keeps at least 97 % of the initial (measured 0.998; the alpha shape with its surface correction, the
+  // default before, 0.896), and the water, the mesh plus the drops in flight that carry their own area, stays within
+  // 0.5 % through the impact, the run-up and the plunging wave (measured 0.275 %, target 0.3 %, with the tuned
+  // relaxation time of the particle volumes and generalized-alpha; 0.32 % at dt = 1.1 ms, README). The mesh's own area
+  // drifts by what is in flight (2.3 %). A change that lets particles through the walls gives several %.
   const RunResult r = run_case_1thread("cases/dam_break_tank/case.json", "dam_break_tank_1s", {"output.every=1000"});
   const Csv c = probes_of(r);
   ASSERT_GT(c.rows(), 900u);
@@ -112,16 +112,16 @@ TEST(SolitaryWave, CrestReachesTheRightWall) {
 }
 
 // ------------------------------------------------------------------------------------------------------------
-// Cases of issue #3's second batch: dam_break_floor (seed 6.9.1), dam_break_obstacle (6.9.4), sloshing_viscous
-// (6.9.5). Tolerances: the issue's where the code meets them, otherwise the values reached (each case's
+// More fluid cases: dam_break_floor (Avancini 2018, 6.9.1), dam_break_obstacle (6.9.4), sloshing_viscous
+// (6.9.5). Tolerances: the original targets where the code meets them, otherwise the values reached (each case's
 // README says which). These runs pass --threads 1 (as ctest's OMP_NUM_THREADS=1, but also when the test binary
 // is run by hand): one thread is faster on this shared two-core machine, and the remeshed dam break's front is
 // sensitive to round-off, which a fixed summation order keeps reproducible.
 
 TEST(DamBreakFloor, FixedConnectivitySlipWalls) {
-  // Seed 6.9.1 as in the seed: fixed mesh, slip left wall and floor, natural free-surface pressure (with
+  // Avancini (2018) sec. 6.9.1 as there: fixed mesh, slip left wall and floor, natural free-surface pressure (with
   // p = 0 imposed the toe tangles at T = 1.8). CI size h = a/15 through T = 4.1. Measured: front RMS 0.362
-  // (issue 0.10: not met, converged in h), height RMS 0.012, area drift 0.000 %.
+  // (target 0.10: not met, converged in h), height RMS 0.012, area drift 0.000 %.
   const Csv c = probes_of(
       run_case_1thread("cases/dam_break_floor/case.json", "dam_break_floor_fixed", {"bodies.0.spacing=0.00381"}));
   EXPECT_NEAR(c["time"].back(), 0.22, 1e-9) << "the fixed mesh must stay valid to T = 4";
@@ -160,11 +160,11 @@ TEST(DamBreakFloor, RemeshedNoSlipWalls) {
 TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
   // Seed 6.9.4, the full case (1 s). The jet is at the right wall when the largest x of meshed fluid is
   // within 1.5 h of it (issue: 0.30-0.35 s; measured 0.298 s); the wall pressure sensor (y < 0.2 m) gets
-  // wet within the issue's window (measured 0.307 s). The jet's tip is a film a few particles thick and its
+  // wet within the target window (measured 0.307 s). The jet's tip is a film a few particles thick and its
   // arrival scatters by about 5 ms with small changes (0.298-0.308 s over recent versions), so the jet is
-  // checked within 0.29-0.35 s. Measured with the default package (walls as constraints sliding against their
+  // checked within 0.29-0.35 s. Measured with the conservative defaults (walls as constraints sliding against their
   // Navier friction, particle volumes, generalized-alpha): jet 0.318 s, sensor 0.336 s; the alpha shape with wall
-  // particles: 0.304 and 0.305 s. The water (mesh + drops in flight): within issue #3's 1 % (measured 0.39 %,
+  // particles: 0.304 and 0.305 s. The water (mesh + drops in flight): within the 1 % target (measured 0.39 %,
   // 0.31-0.70 % around its settings; under Newmark 0.65 %; 1.58 % while particles sliding along the floor went through
   // the obstacle's downstream face, whose fluid side was taken from the water facing it through the obstacle); the
   // mesh's own area drifts by what is in flight (2.35 %).
@@ -209,7 +209,7 @@ TEST(SloshingForced, ShakenTankFollowsLinearTheory) {
   // A 1 m tank with 0.5 m of water shaken by 0.01 sin(0.7 omega_1 t) m from rest, CI size: the case's
   // resolution over 3 s (advected domain, slip walls as constraints, no volume correction). Measured over
   // 0-3 s: RMS error / linear peak 0.029 (left) and 0.032 (right) (with wall particles and the alpha shape:
-  // 0.148, 0.168); area drift below 1e-6. Issue #16's target: 0.05.
+  // 0.148, 0.168); area drift below 1e-6. Target: 0.05.
   const Csv c =
       probes_of(run_case_1thread("cases/sloshing_forced/case.json", "sloshing_forced", {"analysis.end_time=3.0"}));
   EXPECT_NEAR(c["time"].back(), 3.0, 1e-9);

@@ -1,6 +1,6 @@
-// Regression: the fluid cases with the fractional-step scheme (issue #3), at CI size. The same checks as the
+// Regression: the fluid cases with the fractional-step scheme, at CI size. The same checks as the
 // monolithic scheme's (test_fluid_cases.cpp) on the same case files, with the scheme switched by --set; the
-// tolerances are the issue's where this scheme meets them, otherwise the values it reaches (stated per test;
+// tolerances are the original targets where this scheme meets them, otherwise the values it reaches (stated per test;
 // cases/dam_break_tank/README.md compares the schemes).
 #include <gtest/gtest.h>
 

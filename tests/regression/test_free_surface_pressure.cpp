@@ -1,5 +1,5 @@
 // The free-surface pressure condition of the monolithic scheme, the particles' own volumes, and the area a splash
-// keeps (issue #16).
+// keeps (docs/decisions/0004-robin-free-surface-pressure.md, 0005-particle-volumes.md).
 // With p = 0 prescribed ("dirichlet", the alpha shape's default), the free-surface particles have no continuity row,
 // and in a splash, where most particles lie on a surface, the steps lose area (cases/studies/conservation: 4-17 % of
 // the dam break's area by 1 s in every domain detection but the level set's). The Robin condition ("robin",

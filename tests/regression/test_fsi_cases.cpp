@@ -122,7 +122,7 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
       peak = c["tip_ux"][i];
       t_peak = c["time"][i];
     }
-  // Bounds (issue #17): the published solutions' own spread, as the README and expected.json state it: peaks
+  // Bounds: the published solutions' own spread, as the README and expected.json state it: peaks
   // 45.0-48.3 mm at 0.217-0.260 s (the peak within 2.5 % above the largest), and 3.5-5.3 mm RMS among
   // themselves over 0-0.45 s.
   EXPECT_GE(peak, 0.045);

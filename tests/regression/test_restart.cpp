@@ -1,4 +1,4 @@
-// Interrupt and resume (issue #21, item 3): a run with "output": {"checkpoint": ...} stopped part way
+// Interrupt and resume: a run with "output": {"checkpoint": ...} stopped part way
 // (--stop-after-step, or Ctrl-C) and continued with `lagfsi run CASE --restart OUTDIR` ends with the probes.csv of
 // the run that was not stopped, to the last digit (one thread), for a solid, a remeshed PFEM fluid (with wall
 // particles, and with the walls as constraints), an FSI case

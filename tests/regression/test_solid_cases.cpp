@@ -15,14 +15,14 @@ using namespace lagfsi::testing;
 
 double rel_err(double value, double ref) { return std::abs(value / ref - 1.0); }
 
-// ---------------------------------------------------------------- cantilever_step_load (seed 5.5.1)
+// ---------------------------------------------------------------- cantilever_step_load (Avancini 2018, 5.5.1)
 // Timoshenko: delta = P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6, G = E/2 (nu = 0), b = 1 m.
 double cantilever_timoshenko() {
   const double E = 210e9, L = 1.2, h = 0.18566, P = 5e6, I = h * h * h / 12.0, A = h;
   return P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * 0.5 * E * A);
 }
 
-// Bounds are the agreements the case READMEs state (cases/<case>/expected.json, issue #17); where this file runs a
+// Bounds are the agreements the case READMEs state (cases/<case>/expected.json); where this file runs a
 // reduced size, the full size is checked by the `cases` tier (ctest -L cases).
 TEST(CantileverStepLoad, StaticWithinHalfAPercentOfTimoshenko) {
   const Csv c = probes_of(run_case_file("cases/cantilever_step_load/case.json", "cantilever_static",
@@ -54,7 +54,7 @@ TEST(CantileverStepLoad, DampedSettlesOnStatic) {
   EXPECT_LT(rel_err(-c["tip_uy_axis"].back(), cantilever_timoshenko()), 0.02) << c["tip_uy_axis"].back();
 }
 
-// ---------------------------------------------------------------- clamped_beam_nonlinear (seed 5.5.2)
+// ---------------------------------------------------------------- clamped_beam_nonlinear (Avancini 2018, 5.5.2)
 TEST(ClampedBeamNonlinear, LinearStaticMatchesBeamTheory) {
   // A load 1000x smaller than the case's keeps the response linear: delta = P L^3 / (192 E I).
   const double P = 0.64, L = 20, E = 30e6, I = 0.125 * 0.125 * 0.125 / 12.0;

@@ -1,4 +1,4 @@
-// Still water stays still under remeshing (issue #16, item 5): a tank at rest, remeshed every step for 20 s;
+// Still water stays still under remeshing: a tank at rest, remeshed every step for 20 s;
 // the largest particle speed stays below 1e-4 sqrt(g H). Run with the monolithic scheme's defaults (the
 // advected domain, walls as constraints sliding against their Navier friction, the Robin free-surface pressure and
 // particle volumes), and with each domain detection: the alpha shape with its surface volume correction (the

@@ -1,4 +1,5 @@
-// Walls as constraints on the fluid particles on them ("wall_model": "constraints", issue #16): the PFEM wall
+// Walls as constraints on the fluid particles on them ("wall_model": "constraints",
+// docs/decisions/0002-walls-as-constraints.md): the PFEM wall
 // particles have zero velocity, and fluid sliding past them has a discrete divergence that the continuity
 // equation resists, a numerical friction that drained 1.2 % of a standing wave's energy a period. With the
 // particles on a slip wall held in the normal direction only, the wave keeps its energy as a fixed mesh does.
@@ -104,8 +105,8 @@ TEST(WallConstraints, ABlobLandsAndStaysInTheTank) {
     for (double a : c["area"]) drift = std::max(drift, std::abs(a / c["area"][0] - 1));
     // A sanity bound only: the impact of a 5 x 5 particle blob is not resolved (measured 49.0 % and 31.6 %; with
     // wall particles, monolithic scheme, 85 % of the blob's area is lost by 0.5 s). With "contact_gap": 0 (the
-    // advected detection's default before issue #16's contact gap) 35.4 % and 18.4 %: pieces of the film that
-    // separate rejoin it with a gap element of up to 1.5 h, which gave back some of what the steps lose.
+    // advected detection's default before its contact gap, docs/decisions/0001) 35.4 % and 18.4 %: pieces of the film
+    // that separate rejoin it with a gap element of up to 1.5 h, which gave back some of what the steps lose.
     EXPECT_LT(drift, 0.55) << scheme;
     std::printf("%s: %ld put on a wall, %ld put back from beyond one, largest area drift %.2f %%\n", scheme.c_str(),
                 b["wall_snaps"].get<long>(), b["wall_crossings"].get<long>(), 100 * drift);

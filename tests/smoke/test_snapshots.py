@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Smoke test of scripts/snapshots.py (pictures without ParaView, issue #21 item 2).
+"""Smoke test of scripts/snapshots.py (pictures without ParaView).
 
 usage: tests/smoke/test_snapshots.py --exe BUILD/lagfsi --out DIR
 

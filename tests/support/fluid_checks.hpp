@@ -83,7 +83,7 @@ inline double max_area_drift(const Csv& c) {
   return m;
 }
 
-/// The hydrostatic case's checks (issue #3): at every sample the bottom pressure within 1 % of rho g H, the
+/// The hydrostatic case's checks: at every sample the bottom pressure within 1 % of rho g H, the
 /// kinetic energy that of speeds below 1e-3 sqrt(g H), the fluid area within 0.1 %; the run reaches 1 s.
 inline void check_hydrostatic(const Csv& c) {
   const double rho = 1000, g = 9.81, H = 0.2, area0 = c["fluid_area"].front();

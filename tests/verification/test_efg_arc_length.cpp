@@ -1,4 +1,4 @@
-// Cylindrical arc length through a sharp snap-back (issue #20): two springs in series, the model of the EFG defect
+// Cylindrical arc length through a sharp snap-back: two springs in series, the model of the EFG defect
 // beam's localisation in two dofs. Spring 1 (ground - dof 0) is a damage spring, stiffness K, exponential softening
 // after e0: on loading its force is F(e) = K e (e <= e0), F(e) = K e0 exp(-(e - e0)/ef) (e > e0); it unloads with
 // the secant stiffness (1 - d)K of its largest strain so far. Spring 2 (dof 0 - dof 1) is elastic, stiffness k; the

@@ -1,4 +1,4 @@
-// EFG patch tests (issue #20): a linear field with the linear and bilinear bases and a quadratic field (with its
+// EFG patch tests: a linear field with the linear and bilinear bases and a quadratic field (with its
 // body force) with the quadratic bases, on the unit square loaded by the exact tractions and held at three dofs.
 // With the integration-consistent derivatives (efg.integration = "consistent") the nodal parameters equal the
 // exact nodal values to round-off for rho = 2h and 3h; plain Gauss passes to round-off only where EFG is

@@ -6,8 +6,8 @@
 //
 // Measured (h = 0.01 m, L = 0.2 m, U = 0.05 m/s, dt = 1 ms, 1.5 s): kinetic energy 2.500e-2 J at the start,
 // 2.481e-2 (monolithic) and 2.471e-2 (fractional step) at 1.5 s, never above the initial value. With gravity
-// and walls (a tank) the same flow gains energy: see the closing notes of issue #3 (numerical compaction of the
-// remeshed fluid releases potential energy); that defect is documented, not tested here.
+// and walls (a tank) the same flow gains energy: see docs/decisions/0001-advected-domain.md (numerical
+// compaction of the remeshed fluid releases potential energy); that defect is documented, not tested here.
 #include <gtest/gtest.h>
 
 #include <string>

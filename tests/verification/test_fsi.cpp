@@ -1,5 +1,5 @@
-// Verification of the fluid-structure coupling (fsi/dirichlet_neumann) on the flexible tank of seed 7.3.1
-// with the fractional-step fluid (seconds per run):
+// Verification of the fluid-structure coupling (fsi/dirichlet_neumann) on the flexible tank of Avancini (2018)
+// sec. 7.3.1 with the fractional-step fluid (seconds per run):
 //  - a stiff wall carries the hydrostatic force rho g H^2 / 2, through a matching and a non-matching
 //    interface, and the clamp's reaction balances it (forces reach the structure whole);
 //  - the converged step does not depend on the accelerator nor on the augmented mass (they only change how
@@ -129,7 +129,7 @@ TEST(FsiCoupling, TheCoupledEnergyBalanceCloses) {
   // the first 0.3 s (the plate's first swing) |B| stays below 4 % of the largest energy the plate takes
   // (measured 3.3 % with the default "surface" volume correction, whose own energy is 0.23 %; 3.75 % with no
   // correction, 2.2 % with the "source" one); over 1 s it reaches 11 %, the energy gain of the remeshed free
-  // surface (issue #3), so the test stops at 0.3 s. A coupling that lost or made interface work would show
+  // surface, so the test stops at 0.3 s. A coupling that lost or made interface work would show
   // the plate's whole energy here.
   const std::string probes =
       R"(probes=[{"name": "ke_f", "type": "kinetic_energy", "body": "water"},

@@ -507,7 +507,7 @@ TEST_P(FreeVibration, NewmarkConservesEnergyOver20Periods) {
   EXPECT_LT(drift, 5e-3);
   EXPECT_LT(bal, 5e-3);
   EXPECT_NEAR(Tm / T, 1.0, 0.05);
-  // The run time is printed, not asserted: speed lives in tests/bench (issue #17).
+  // The run time is printed, not asserted: speed lives in tests/bench.
 }
 
 INSTANTIATE_TEST_SUITE_P(Elements, FreeVibration, ::testing::Values(2, 3), [](const ::testing::TestParamInfo<int>& i) {

@@ -1,4 +1,4 @@
-"""Study 1 (issue #7): accuracy against wall time of the two fluid schemes on the two dam breaks.
+"""Study 1: accuracy against wall time of the two fluid schemes on the two dam breaks.
 
 dam_break_tank (Koshizuka & Oka 1996) and dam_break_floor/case_remesh.json (Martin & Moyce 1952, PFEM
 remeshing) at h = L/20, L/40, L/80 with both fluid schemes (bodies.0.scheme.type = monolithic_pspg,
@@ -23,8 +23,8 @@ from common import plt  # noqa: E402
 
 S = common.Study("accuracy_walltime", __doc__.splitlines()[0])
 # Series: the two schemes with the alpha shape, wall particles and the surface correction (as the tables were
-# first measured: the monolithic scheme's defaults until issue #16's conservative package, the fractional step's
-# still), and the monolithic scheme with its defaults now ("package": the advected domain, walls as constraints
+# first measured: the monolithic scheme's defaults before its conservative defaults, the fractional step's
+# still), and the monolithic scheme with its defaults now (series "package": the advected domain, walls as constraints
 # with Navier friction, the Robin surface, particle volumes and generalized-alpha).
 SCHEMES = ["monolithic_pspg", "fractional_step", "package"]
 COLORS = {"monolithic_pspg": "C0", "fractional_step": "C1", "package": "C2"}
@@ -42,13 +42,13 @@ else:
             for n in (80, 160)}
 
 # The alpha shape with wall particles and the surface correction, as the tables were measured: the monolithic
-# scheme's default until issue #16's conservative package (the fractional step's still; cases/studies/conservation
-# compares the packages).
+# scheme's default before its conservative defaults (docs/decisions/0001-0006; the fractional step's still;
+# cases/studies/conservation compares the domain detections).
 BASE = {"output.vtk": False, "bodies.0.domain_detection": "alpha"}
 
 
 def settings(scheme, extra):
-    """The run's overrides: the series' scheme, the alpha shape unless it is the package."""
+    """The run's overrides: the series' scheme, the alpha shape unless the series is "package" (the defaults)."""
     s = dict(BASE, **extra)
     s["bodies.0.scheme.type"] = SCHEME_TYPE[scheme]
     if scheme == "package":
@@ -66,7 +66,7 @@ def run_row(r, scheme, h, h_label, dt, f, errors):
     if r.has_probes():
         row.update(errors(r))
         row["area_drift_end_pct"], row["area_drift_max_pct"] = common.area_drift(r)
-        # The water (mesh + drops in flight) where the run keeps particle volumes (the package); the mesh's area
+        # The water (mesh + drops in flight) where the run keeps particle volumes (series "package"); the mesh's area
         # otherwise (the alpha shape's surface correction holds it).
         area = ((r.summary.get("bodies") or [{}])[0]).get("fluid_area", {})
         w = area.get("water_drift_max")

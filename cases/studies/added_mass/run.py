@@ -1,4 +1,4 @@
-"""Study 5 (issue #7): the added-mass effect on the Dirichlet-Neumann coupling of cases/flexible_tank.
+"""Study 5: the added-mass effect on the Dirichlet-Neumann coupling of cases/flexible_tank.
 
 The plate density is swept so that rho_s/rho_f in {10, 3, 1, 0.3, 0.1} (rho_f = 1000), for the interface
 accelerators {constant relaxation 0.5, Aitken, IQN-ILS} and the augmented structure mass (factor 10, no other

@@ -1,4 +1,4 @@
-"""Study 4 (issue #7): sensitivity of the dam break in a tank to the alpha-shape parameter.
+"""Study 4: sensitivity of the dam break in a tank to the alpha-shape parameter.
 
 cases/dam_break_tank (L/20, dt = 1 ms, 1 s) with bodies.0.alpha in {1.0, 1.1, 1.2, 1.3, 1.5, 2.0}, both fluid
 schemes. Per run: fluid-area drift (end, largest), front RMS against Koshizuka & Oka (as the case's plot.py),

@@ -1,4 +1,4 @@
-"""Study (issue #16): what each PFEM domain detection keeps of the fluid's area and energy, and what it costs.
+"""Study: what each PFEM domain detection keeps of the fluid's area and energy, and what it costs.
 
 Domain detections: "alpha" (the classic alpha shape, with its default "surface" volume correction), "advected" and
 "level_set" (the previous mesh as the predicate, no volume correction), "advected" with 30 degrees of hysteresis

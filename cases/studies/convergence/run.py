@@ -1,4 +1,4 @@
-"""Study 2 (issue #7): observed orders of convergence of the solid, the fluid and the coupled solver.
+"""Study 2: observed orders of convergence of the solid, the fluid and the coupled solver.
 
 - solid, cases/turek_csm3 (3 s instead of 10 s): tip u_y amplitude (Turek & Hron convention, the last full
   period) and frequency, against the mesh size (T10 elements, dt = 5 ms) and against dt (mesh size 0.01);

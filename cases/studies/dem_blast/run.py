@@ -1,4 +1,4 @@
-"""Study (issue #19): the air-blast crater runs of Sabatucci et al. (CILAMCE 2013) beyond the seed case A2.
+"""Study: the air-blast crater runs of Sabatucci et al. (CILAMCE 2013) beyond the paper's model A2.
 
 cases/dem_blast_crater (1 kg TNT 0.5 m above a 1.2 m x 0.427 m bed, the paper's contact law, 40 ms) with
   A1: kn = 2.75e5 N/m, A2: 2.75e4 (the case), A3: 1.1e4 (4 mm discs);

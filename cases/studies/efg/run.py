@@ -1,4 +1,4 @@
-"""Study (issue #20): accuracy against cost of the EFG module on the Timoshenko cantilever.
+"""Study: accuracy against cost of the EFG module on the Timoshenko cantilever.
 
 cases/efg_timoshenko_cantilever (L = 48, D = 12, parabolic end shear; exact displacements on x = 0 through the FE-EFG
 coupling, the exact traction on x = L) with one parameter varied at a time around the case's settings (bilinear

@@ -1,4 +1,4 @@
-"""Study 3 (issue #7): stability maps.
+"""Study 3: stability maps.
 
 Fluid: cases/dam_break_tank (0.5 s: the surge, the wall impact at 0.26 s and the run-up) for each fluid scheme
 on an (h, dt) grid, without step halving (analysis.max_step_halvings = 0, so that a failed step ends the run

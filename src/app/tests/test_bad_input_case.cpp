@@ -1,4 +1,4 @@
-// Whole-case checks at input (issue #21, classes 6, 7, 8 and 10): body names against the run's output files,
+// Whole-case checks at input: body names against the run's output files,
 // overlapping bodies, MPM regions outside their grid and MPM bodies leaving it, and time integrators that are
 // only conditionally stable.
 #include <gtest/gtest.h>
@@ -224,8 +224,8 @@ TEST(BadInputCase, IntegratorStability) {
 
 TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   // `check` prints the case with every default filled in. With the monolithic scheme and remeshing the defaults
-  // are issue #16's conservative package; the fractional step, a fixed mesh and a chosen "alpha" keep the
-  // classic PFEM's (src/fluid/fluid_input.cpp). A Robin free surface with the walls as constraints makes
+  // are the conservative ones (docs/decisions/0001-0006); the fractional step, a fixed mesh and a chosen "alpha" keep
+  // the classic PFEM's (src/fluid/fluid_input.cpp). A Robin free surface with the walls as constraints makes
   // generalized-alpha the analysis' default integrator (fluid_preferred_integrator); any other case, wall particles
   // with a Robin surface included, gets Newmark.
   struct Expected {

@@ -1,4 +1,4 @@
-// The command line (issue #21, classes 2 and 12): --threads bounded by the machine; usage errors on one line;
+// The command line: --threads bounded by the machine; usage errors on one line;
 // --help for every command, exit 0; echoed keys and values cut to about 80 characters.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Input files and text (issue #21, classes 3, 9 and 11): only regular files are read, with a size bound (a
+// Input files and text: only regular files are read, with a size bound (a
 // FIFO, /dev/zero or /dev/urandom is refused at once instead of hanging or reading gigabytes); all text is
 // UTF-8 (case file, --set values, file names), checked at input with a one-line error; table rows are parsed
 // strictly (';', decimal commas and malformed rows are errors naming FILE:LINE).

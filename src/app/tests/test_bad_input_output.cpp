@@ -1,4 +1,4 @@
-// The output of a run (issue #21, classes 1, 4 and 5): every write is checked, so that a full disk, a file-size
+// The output of a run: every write is checked, so that a full disk, a file-size
 // limit or a folder in a file's place ends the run with exit code 5 and one line naming the file, never
 // "completed"; an output folder is locked while a run writes into it; the output folder is never the case
 // file's own folder.

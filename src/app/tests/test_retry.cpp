@@ -1,4 +1,4 @@
-// Retry-safe predict (issue #18): the driver retries a failed step from the same state with half the step
+// Retry-safe predict: the driver retries a failed step from the same state with half the step
 // (analysis.cpp: predict again before finalize_step). For each model the test makes an attempt that fails
 // part of the way (a first predict with dt and one solve_iteration, which for the solid and the fluid is one
 // Newton correction and for the MPM and the DEM the whole sub-stepped step: the most the attempt can have

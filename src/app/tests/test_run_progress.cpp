@@ -1,4 +1,4 @@
-// Watching and interrupting a run (issue #21, items 1 and 3): progress on stderr as a status line redrawn in
+// Watching and interrupting a run: progress on stderr as a status line redrawn in
 // place (bar) or as a line at each tenth of the run (lines; also every 5 s of wall time), a table of where the
 // time went at the end, nothing with --quiet; SIGINT and SIGTERM end the current step, write the output and
 // summary.json ("interrupted") and exit with 128 + the signal's number.

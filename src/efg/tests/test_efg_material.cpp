@@ -1,4 +1,4 @@
-// EFG materials and path following (issue #20): Mazars' uniaxial peak (E kappa0) and residual stress, the
+// EFG materials and path following (docs/theory/efg.md): Mazars' uniaxial peak (E kappa0) and residual stress, the
 // exponential damage law, the smeared crack's tensile strength and fracture energy per unit band, the tangent
 // against central differences of the stress, rollback (the committed history is never changed by an evaluation),
 // and the generalized-displacement direction flip at a limit point.

@@ -1,6 +1,6 @@
 // EFG moving-least-squares shape functions: partition of unity, reproduction of the basis and of its derivatives
 // to round-off, derivatives against finite differences, the FE-EFG coupled correction, the Q4 limit (rho = h,
-// bilinear basis) and the ill-conditioning report (issue #20).
+// bilinear basis) and the ill-conditioning report.
 #include <lagfsi/efg/discretization.hpp>
 #include <lagfsi/efg/mls.hpp>
 #include <lagfsi/error.hpp>

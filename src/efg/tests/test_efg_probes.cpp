@@ -1,4 +1,4 @@
-// EFG displacement probe (issue #20, the path-following tables 5.1-5.2 of the thesis): "value": "parameter" reads the
+// EFG displacement probe (the path-following tables 5.1-5.2 of the INSANE EFG thesis): "value": "parameter" reads the
 // MLS nodal parameter v of a node, "value": "displacement" (the default) the displacement u = sum_j N_j(x_k) v_j. On
 // a small cantilever (rho = 3h, bilinear basis, linear elastic, one load step) the displacement of an interior
 // particle equals that sum with the shape functions computed here independently by MlsShape, and differs from its

@@ -1,4 +1,4 @@
-// Fluid particles that leave the domain box are removed (issue #3: "drop particles that leave the domain's
+// Fluid particles that leave the domain box are removed ("drop particles that leave the domain's
 // bounding box"). A blob translating at 2 m/s without gravity over a 1 m floor: the box is the floor and the
 // initial blob enlarged by 10 % of its larger side (x <= 1.1 m here), so the particles past it are gone; when
 // none is left the run stops with a message and exit code 3, its output valid. With gravity the box is open

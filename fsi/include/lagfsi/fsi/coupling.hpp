@@ -1,6 +1,6 @@
 #pragma once
 /// @file coupling.hpp
-/// The Dirichlet–Neumann fixed-point loop of a strongly coupled partitioned time step (seed §2.5; the coupling
+/// The Dirichlet–Neumann fixed-point loop of a strongly coupled partitioned time step (docs/theory/fsi.md; the coupling
 /// verbs follow preCICE: write data, advance, read data, check convergence, accelerate).
 ///
 /// Within one time step, from an interface guess x_0 (e.g. the solid's predicted interface positions):

@@ -1,6 +1,6 @@
 #pragma once
 /// @file dirichlet_neumann.hpp
-/// A fluid and a structure coupled through ghost particles (seed §2.5, Quadro 6), as one composite
+/// A fluid and a structure coupled through ghost particles (docs/theory/fsi.md; Avancini 2018, ch. 7), as one composite
 /// PhysicsModel that the driver steps like any body:
 ///
 ///  - set-up: the structure's wet boundary (a node selection) gets ghost particles in the fluid, either one

@@ -1,5 +1,5 @@
-"""Solitary wave: free-surface elevation on the left wall, mid-tank and the right wall, with the seed's event
-times. Usage: /usr/bin/python3 cases/solitary_wave/plot.py OUTDIR"""
+"""Solitary wave: free-surface elevation on the left wall, mid-tank and the right wall, with the event times
+of Avancini (2018) sec. 6.9.2. Usage: /usr/bin/python3 cases/solitary_wave/plot.py OUTDIR"""
 import os
 import sys
 

@@ -1,5 +1,5 @@
 // Explicit single-phase MPM (mpm_scheme.hpp), after Sulsky, Chen & Schreyer (1994) and the "modified
-// Lagrangian" (MUSL) algorithm of the seed (Ludeña 2016, ch. 3; Al-Kafaji 2013); one sub-step:
+// Lagrangian" (MUSL) algorithm of Ludeña (2016, ch. 3; Al-Kafaji 2013); one sub-step:
 //
 //   particles -> grid:  m_I, (m v)_I, f_I (mpm_transfer.cpp)
 //   grid update:        v_I <- v_I + dt f_I / m_I (fixed components zeroed; local damping f -= alpha |f| sign(v)),
@@ -15,7 +15,7 @@
 //                       sigma_p += C : dt sym(L_p) (small strain rate; the material's return mapping)
 //
 // with the grid velocity of the stress update taken, as chosen by "update":
-//  - "musl": re-mapped from the updated particle velocities (the seed's algorithm; the most robust);
+//  - "musl": re-mapped from the updated particle velocities (Ludeña's algorithm; the most robust);
 //  - "usl":  the grid velocity of the grid update;
 //  - "usf":  the stress is updated first, from the grid velocity of the mapped momentum.
 // Damping: Cundall local and Rayleigh (mass-proportional on the grid, stiffness-proportional as a viscous

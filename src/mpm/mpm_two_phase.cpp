@@ -1,5 +1,5 @@
-// Explicit saturated two-phase MPM, the v-w formulation of the seed (000 sec. 3.5-3.6; digest 2.8), one
-// sub-step (mpm_scheme.hpp). Seed 000 eqs. 3.52-3.84 with the digest's sign fixes: p is tension positive,
+// Explicit saturated two-phase MPM, the v-w formulation of Ludeña (2016, sec. 3.5-3.6; digest 2.8),
+// one sub-step (mpm_scheme.hpp). Ludeña's eqs. 3.52-3.84 with the digest's sign fixes: p is tension positive,
 // sigma = sigma' + p I.
 //   water:  m_w a_w = F_w,grav - F_w,int - Q (w - v),   F_w,int = sum V_p p_p grad N,  q = sum n m_w g / k N
 //   solid:  m_s a_s = -mbar_w a_w + F_grav + F_trac - F_int,   F_int = sum V_p sigma_p grad N (total stress)

@@ -7,7 +7,7 @@ Two runs of the same flow with --threads 1, measured in this one invocation:
   rigid:   the same fluid with the obstacle as part of the tank's wall polyline (no solid, no coupling).
 For the window [T0, T1] (default 0.15-0.45 s: impact and first swing, every step coupled) it reports the mean
 wall time per step of each run, their ratio, and the mean FSI iterations per coupled step k of the coupled
-run; the issue's goal is ratio <= k + 1 (each coupling pass re-solves the fluid step, whose matrices are
+run; the target is ratio <= k + 1 (each coupling pass re-solves the fluid step, whose matrices are
 factorized once per step and reused, and the solid). Also the split of the coupled step by phase.
 
 usage: /usr/bin/python3 tests/bench/bench_fsi.py [OUTDIR] [--build DIR] [--t0 0.15] [--t1 0.45]

@@ -2,7 +2,7 @@
 """Benchmark (not a test): MPM particle-updates per second (one particle through one full explicit sub-step:
 particles to grid, grid update, grid to particles, MUSL re-map and stress update) for an elastic block of about
 100 000 particles settling under gravity, with linear and GIMP shape functions, on 1 and 2 threads, measured in
-one invocation. The issue's goal: at least 5 million particle-updates per second with linear shape functions on
+one invocation. The target: at least 5 million particle-updates per second with linear shape functions on
 2 threads.
 
 usage: /usr/bin/python3 tests/bench/bench_mpm.py [OUTDIR] [--build DIR] [--steps 20]

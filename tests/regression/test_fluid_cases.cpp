@@ -158,8 +158,8 @@ TEST(DamBreakFloor, RemeshedNoSlipWalls) {
 }
 
 TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
-  // Seed 6.9.4, the full case (1 s). The jet is at the right wall when the largest x of meshed fluid is
-  // within 1.5 h of it (issue: 0.30-0.35 s; measured 0.298 s); the wall pressure sensor (y < 0.2 m) gets
+  // Avancini (2018) sec. 6.9.4, the full case (1 s). The jet is at the right wall when the largest x of meshed fluid is
+  // within 1.5 h of it (target: 0.30-0.35 s; measured 0.298 s); the wall pressure sensor (y < 0.2 m) gets
   // wet within the target window (measured 0.307 s). The jet's tip is a film a few particles thick and its
   // arrival scatters by about 5 ms with small changes (0.298-0.308 s over recent versions), so the jet is
   // checked within 0.29-0.35 s. Measured with the conservative defaults (walls as constraints sliding against their
@@ -193,8 +193,8 @@ TEST(DamBreakObstacle, StableToOneSecondJetReachesTheWall) {
 }
 
 TEST(SloshingViscous, DecaysAndKeepsArea) {
-  // Seed 6.9.5 at CI size (h = 0.015 m, dt = 2 ms, 2 s; the full case is h = 0.01 m, 1 ms, 10 s, 16 min).
-  // Issue: stable, kinetic energy decays, area drift <= 1 % (measured 0.20 %). Also the first sloshing period
+  // Avancini (2018) sec. 6.9.5 at CI size (h = 0.015 m, dt = 2 ms, 2 s; the full case is h = 0.01 m, 1 ms, 10 s, 16
+  // min). Targets: stable, kinetic energy decays, area drift <= 1 % (measured 0.20 %). Also the first sloshing period
   // against linear theory, omega^2 = g k tanh(k d), k = pi/L: 0.836 s (measured 0.848 s).
   const Csv c = probes_of(run_case_1thread("cases/sloshing_viscous/case.json", "sloshing_viscous",
                                            {"bodies.0.spacing=0.015", "analysis.dt=2e-3", "analysis.end_time=2.0"}));

@@ -54,12 +54,11 @@ double rms_against(const Csv& c, const std::string& col, const std::vector<std::
 
 /// The flexible tank's run (with `sets`) against beam theory; returns the mean FSI iterations per coupled step.
 double check_flexible_tank(const std::string& name, const std::vector<std::string>& sets) {
-  // Seed 7.3.1, monolithic PSPG fluid, matching interface, IQN-IMVJ, 1 s. No digitized reference: the wall
-  // must oscillate about its static deflection under the water load, 9.77 mm by beam theory (README), up to
-  // the amplification by the plate's own weight (P-delta, at most 1.35) and the drop of the water level as
-  // the wall leans: the mean after the start-up lies in [1.0, 1.3] x 9.77 mm (measured 11.1 mm). The first
-  // overshoot, about twice the static value for a suddenly applied load, lies in [1.8, 2.8] x 9.77 mm
-  // (measured 23.3 mm at 0.169 s).
+  // Avancini (2018) sec. 7.3.1, monolithic PSPG fluid, matching interface, IQN-IMVJ, 1 s. No digitized reference: the
+  // wall must oscillate about its static deflection under the water load, 9.77 mm by beam theory (README), up to the
+  // amplification by the plate's own weight (P-delta, at most 1.35) and the drop of the water level as the wall leans:
+  // the mean after the start-up lies in [1.0, 1.3] x 9.77 mm (measured 11.1 mm). The first overshoot, about twice the
+  // static value for a suddenly applied load, lies in [1.8, 2.8] x 9.77 mm (measured 23.3 mm at 0.169 s).
   std::vector<std::string> all = {"output.every=50"};
   all.insert(all.end(), sets.begin(), sets.end());
   const auto r = run_case_1thread("cases/flexible_tank/case.json", name, all);
@@ -109,7 +108,7 @@ TEST(ElasticObstacleWalhorn, PeakDeflectionMatchesIdelsohn2008) {
   // within 10 % and 0.04 s; RMS difference over 0-0.45 s <= 8 mm (measured 3.0 mm; over the whole
   // reference, 0-0.69 s, 8.6 mm). Against each of the three other published solutions (Bogaers et al. 2016,
   // Liu et al. 2013, Sun et al. 2019) over 0-0.45 s: <= 6 mm (measured 4.3 / 2.4 / 4.0 mm; the four published
-  // solutions are 3.5-5.3 mm from the mean of the others). Iterations: the goal is at most 5 per
+  // solutions are 3.5-5.3 mm from the mean of the others). Iterations: the target is at most 5 per
   // coupled step (measured 4.04 over 0.45 s, 4.09 over 1 s).
   const auto r = run_case_1thread("cases/elastic_obstacle_walhorn/case.json", "fsi_walhorn",
                                   {"analysis.end_time=0.45", "output.every=50"});

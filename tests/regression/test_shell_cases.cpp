@@ -1,5 +1,5 @@
 // Regression of the shell (positional frame) versions of the FSI cases against the same cases with the wall
-// meshed by T10 continuum elements (issue: tip histories within 3 % of the peak), and of a shell that
+// meshed by T10 continuum elements (target: tip histories within 3 % of the peak), and of a shell that
 // separates two fluid regions (they must stay apart: no fluid element may cross it).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 // Regression: the solid cases of cases/ at CI size against their references (analytic values computed
 // here from the case parameters, or the published tables shipped in cases/<case>/reference/).
-// Tolerances are those of the issue that introduced each case; the measured errors are far smaller
+// Tolerances are the targets set when each case was added; the measured errors are far smaller
 // (see each case's README), so a failure means a real change of behaviour.
 #include <gtest/gtest.h>
 
@@ -62,13 +62,13 @@ TEST(ClampedBeamNonlinear, LinearStaticMatchesBeamTheory) {
       probes_of(run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_linear",
                               {"analysis.type=static", "analysis.load_steps=1", "bodies.0.loads.0.value=[0,-0.64]"}));
   const double expected = P * L * L * L / (192 * E * I);
-  EXPECT_NEAR(expected, 5.4613e-3, 1e-6);  // the seed's number, scaled by 1/1000
+  EXPECT_NEAR(expected, 5.4613e-3, 1e-6);  // Avancini (2018) sec. 5.5.2's number, scaled by 1/1000
   EXPECT_LT(rel_err(-c["mid_uy"].back(), expected), 0.002) << c["mid_uy"].back();  // README: within 0.2 %
 }
 
 TEST(ClampedBeamNonlinear, NonlinearAmplitudeAboutSevenPercentOfLinear) {
-  // First peak (about 1.1 ms): the seed reports the nonlinear amplitude is about 7 % of the linear one
-  // (linear dynamic peak = 2 x 5.4613 in). The README states 7.0 %, within 5 % of the seed's 7 %.
+  // First peak (about 1.1 ms): Avancini (2018) reports the nonlinear amplitude is about 7 % of the linear one
+  // (linear dynamic peak = 2 x 5.4613 in). The README states 7.0 %, within 5 % of Avancini's 7 %.
   const Csv c = probes_of(
       run_case_file("cases/clamped_beam_nonlinear/case.json", "clamped_nonlinear", {"analysis.end_time=1.5e-3"}));
   const auto& u = c["mid_uy"];
@@ -111,7 +111,7 @@ TEST(TurekCsm1, StaticTipWithinFiveHundredthsOfAPercent) {
 TEST(TurekCsm3, MeanAmplitudeFrequency) {
   // CI size: dt = 0.01 s over 5 s (about 5 periods); the full case uses dt = 0.005 s over 10 s, and the `cases` tier
   // checks it against the README's agreement (0.05 % on mean and amplitude, 0.6 % on the frequency). At this size
-  // the bounds are the issue's (2 %, 1 %): the coarser step lengthens the period.
+  // the bounds are the original targets (2 %, 1 %): the coarser step lengthens the period.
   const Csv c =
       probes_of(run_case_file("cases/turek_csm3/case.json", "csm3", {"analysis.dt=0.01", "analysis.end_time=5.0"}));
   for (const auto& [col, q] : {std::pair{"tip_ux", "ux_A"}, std::pair{"tip_uy", "uy_A"}}) {

@@ -247,8 +247,8 @@ TEST(MpmTwoPhase, TerzaghiConsolidation) {
 }
 
 TEST(MpmTwoPhase, SaturatedSquareReachesHydrostatic) {
-  // Seed 000 example 2: after 1 s the pore pressure is hydrostatic at the cell centres (measured within 0.02 %
-  // of gamma_w H) and extrapolates to 10 kPa at the base within 2 % (measured 10 001 Pa).
+  // Ludeña (2016) sec. 3.6, the saturated square: after 1 s the pore pressure is hydrostatic at the cell centres
+  // (measured within 0.02 % of gamma_w H) and extrapolates to 10 kPa at the base within 2 % (measured 10 001 Pa).
   const auto r =
       run_case_1thread("cases/mpm_saturated_square/case.json", "mpm_saturated_square", {"output.every=1000"});
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;

@@ -4,7 +4,7 @@
 /// PhysicsModel that the driver steps like any body:
 ///
 ///  - set-up: the structure's wet boundary (a node selection) gets ghost particles in the fluid, either one
-///    per boundary node (a matching interface, as in the seed) or along the boundary edges at a chosen
+///    per boundary node (a matching interface, as in Avancini 2018) or along the boundary edges at a chosen
 ///    spacing (a non-matching interface). Ghost g sits at x_g = sum_a N_a(s_g) x_a over the nodes a of its
 ///    edge (1D Lagrange shape functions of the edge's order at its parameter s_g); the force F_g the fluid
 ///    exerts on it goes to the nodes as f_a = sum_g N_a(s_g) F_g (the transpose: consistent, and the total

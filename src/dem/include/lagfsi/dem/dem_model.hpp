@@ -1,7 +1,7 @@
 #pragma once
 /// @file dem/dem_model.hpp
 /// The Discrete Element Method body ("type": "dem"): 2D discs of unit depth (Cundall & Strack 1979) with
-/// contact laws, rigid polyline walls, gravity and an optional air-blast load, after the seed of Sabatucci et
+/// contact laws, rigid polyline walls, gravity and an optional air-blast load, after Sabatucci et
 /// al. (CILAMCE 2013; shared/spec/004_dem.md).
 ///
 /// The module (public headers in src/dem/include/lagfsi/dem, the rest in src/dem), one concern per file:

@@ -1,7 +1,7 @@
 #pragma once
 /// @file mpm/mpm_model.hpp
 /// The Material Point Method body ("type": "mpm"): particles on a regular background grid, after Sulsky,
-/// Chen & Schreyer (1994) and the "modified Lagrangian" (MUSL) algorithm of the seed (Ludeña 2016, ch. 3;
+/// Chen & Schreyer (1994) and the "modified Lagrangian" (MUSL) algorithm of Ludeña (2016, ch. 3;
 /// Al-Kafaji 2013). Plane strain, unit thickness.
 ///
 /// The module (public headers in src/mpm/include/lagfsi/mpm, the rest in src/mpm), one concern per file:

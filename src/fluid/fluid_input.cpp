@@ -321,12 +321,9 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
   if (vc == "particle" && rs.detection == meshing::DomainDetection::Alpha)
     s.fail("volume_correction", "\"particle\" needs \"domain_detection\": \"advected\" or \"level_set\"");
   // The particles return their area through their continuity rows, which the fractional step's p = 0 on the
-  // free surface takes from the surface particles. Measured on the dam break (advected, no-slip walls as
-  // constraints): held, the area the remeshing adds outruns what the interior returns (the water +19 % by
-  // 0.98 s, then it fails); with "navier" friction +15 % by 1 s, where without particle volumes it drifts
-  // 3-8 %. A Robin surface condition on the Poisson equation (the monolithic scheme's) was tried: its weak form
-  // is a porous wall, not a free surface, and it blew up unless close to p = 0 (robin_factor 3-30: the water
-  // within 1.0-2.7 % in seven runs of nine, two blew up near 1 s).
+  // free surface takes from the surface particles: with that scheme the remeshing's added area outruns what the
+  // interior returns, and a Robin condition on its Poisson equation acts as a porous wall. The measurements are in
+  // docs/decisions/0007-fractional-step.md.
   if (vc == "particle" && !pspg)
     s.fail("volume_correction",
            "\"particle\" needs the monolithic scheme (with the fractional step it does not "

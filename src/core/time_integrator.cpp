@@ -154,6 +154,39 @@ std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf) {
 
 std::unique_ptr<TimeIntegrator> make_central_difference() { return std::make_unique<CentralDifference>(); }
 
+namespace {
+class SymplecticEulerIntegrator final : public TimeIntegrator {
+ public:
+  std::string type() const override { return "symplectic_euler"; }
+  bool is_explicit() const override { return true; }
+  void begin_step(const KinematicState& s, double dt) override {
+    old_ = s;
+    dt_ = dt;
+  }
+  Vec predictor() const override { return old_.x + dt_ * (old_.v + dt_ * old_.a); }
+  EvalPoint kinematics(const Vec& x_new) const override { return {old_.t, x_new, old_.v, old_.a}; }
+  EvalPoint evaluation(const KinematicState& end) const override { return {old_.t, end.x, old_.v, old_.a}; }
+  TangentCoefficients coefficients() const override { return {0.0, 0.0, 0.0}; }
+  void end_step(const Vec& x_new, KinematicState& s) const override {
+    s.x = x_new;
+    s.t = old_.t + dt_;
+  }
+  void explicit_step(const ForceFunction& force, const Vec& inv_mass, double dt, KinematicState& s) const override {
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be positive and finite");
+    s.a = inv_mass.cwiseProduct(force(s.x, s.v, s.t));
+    SymplecticEuler::kick(s.v, s.a, dt);
+    SymplecticEuler::drift(s.x, s.v, dt);
+    s.t += dt;
+  }
+
+ private:
+  KinematicState old_;
+  double dt_ = 0.0;
+};
+}  // namespace
+
+std::unique_ptr<TimeIntegrator> make_symplectic_euler() { return std::make_unique<SymplecticEulerIntegrator>(); }
+
 const std::vector<std::string>& time_integrator_types() {
   static const std::vector<std::string> types = {"newmark", "generalized_alpha", "central_difference"};
   return types;

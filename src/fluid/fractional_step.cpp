@@ -27,6 +27,7 @@
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
+#include <lagfsi/time_integrator.hpp>
 
 #include <algorithm>
 #include <array>
@@ -469,7 +470,10 @@ IterationReport FractionalStep::move_and_check(Work& wk) {
   Vec& x_new = f_.step.x;  // the step's new positions
   auto t0 = Clock::now();
   for (Index i = 0; i < np; ++i)
-    if (kind[i] == ParticleKind::Fluid) x_new.segment<2>(2 * i) = x.segment<2>(2 * i) + dt * v_new_.segment<2>(2 * i);
+    if (kind[i] == ParticleKind::Fluid) {  // symplectic Euler's drift: x^{n+1} = x^n + dt u^{n+1}
+      x_new.segment<2>(2 * i) = x.segment<2>(2 * i);
+      SymplecticEuler::drift(x_new.segment<2>(2 * i), v_new_.segment<2>(2 * i), dt);
+    }
   for (const auto& k : f_.boundaries.constraints()) x_new[2 * k.i + k.c] = f_.boundaries.position(k, f_.step.t_new);
   if (!x_new.allFinite() || !pres.allFinite() || !v_new_.allFinite())
     throw SolverError("body '" + f_.c.name +

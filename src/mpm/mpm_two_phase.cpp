@@ -8,6 +8,8 @@
 // Linear elastic skeleton; particle loads act on the mixture.
 #include "mpm_scheme.hpp"
 
+#include <lagfsi/time_integrator.hpp>
+
 #include <cmath>
 
 namespace lagfsi::mpm {
@@ -118,8 +120,8 @@ void TwoPhase::substep(MpmBody& b, double dt) {
       as += sp.N[k] * G.solid_acceleration[sp.node[k]];
       aw += sp.N[k] * G.water_acceleration[sp.node[k]];
     }
-    P.v[q] += dt * as;
-    P.water_velocity[q] += dt * aw;
+    SymplecticEuler::kick(P.v[q], as, dt);  // the particles' velocities, then (below) their positions
+    SymplecticEuler::kick(P.water_velocity[q], aw, dt);
   }
   // MUSL re-map of both velocities from the updated particles.
   zero(G.solid_momentum), zero(G.water_momentum);
@@ -148,9 +150,8 @@ void TwoPhase::substep(MpmBody& b, double dt) {
       Ls += G.solid_velocity[sp.node[k]] * sp.dN[k].transpose();
       divw += G.water_velocity[sp.node[k]].dot(sp.dN[k]);
     }
-    const Vec2 dx = dt * v;
-    P.x[q] += dx;
-    gw += P.mass[q] * g.dot(dx);
+    SymplecticEuler::drift(P.x[q], v, dt);
+    gw += P.mass[q] * g.dot(dt * v);
     // Effective stress (linear elastic), pore pressure, porosity, volume.
     const double n = P.porosity[q];
     P.pore_pressure[q] += dt * (K_w / n) * ((1 - n) * (Ls(0, 0) + Ls(1, 1)) + n * divw);

@@ -146,4 +146,23 @@ std::unique_ptr<TimeIntegrator> make_generalized_alpha(double rho_inf);
 /// Explicit central difference (velocity-Verlet form; conditionally stable, dt < 2/omega_max).
 std::unique_ptr<TimeIntegrator> make_central_difference();
 
+/// Symplectic (semi-implicit) Euler, the update of the models whose new velocity comes before the new position
+/// (the fractional-step fluid, whose v_{n+1} is the projection's; the two-phase MPM, whose particles take the
+/// grid's accelerations): v_{n+1} = v_n + dt a_n (kick), then x_{n+1} = x_n + dt v_{n+1} (drift). First order,
+/// symplectic (no numerical damping of an undamped oscillator), conditionally stable: dt <= 2 / omega_max
+/// (Hairer, Lubich & Wanner, Geometric Numerical Integration, 2006, sec. I.1.2). The stages are static so that a
+/// model applies them to its own storage (a particle's 2-vector or a whole state); make_symplectic_euler() is the
+/// same update behind the TimeIntegrator contract (explicit_step: a_n = inv_mass f(x_n, v_n, t_n)).
+struct SymplecticEuler {
+  template <class V, class A>
+  static void kick(V&& v, const A& a, double dt) {
+    v += dt * a;
+  }
+  template <class X, class V>
+  static void drift(X&& x, const V& v, double dt) {
+    x += dt * v;
+  }
+};
+std::unique_ptr<TimeIntegrator> make_symplectic_euler();
+
 }  // namespace lagfsi

@@ -207,48 +207,36 @@ void DemModel::check_energy() const {
   }
 }
 
-void DemModel::predict(double t_new, double dt) {
-  DemBody& b = *body_;
-  if (!step_open_) {
-    if (snapshot_)
-      *snapshot_ = b;
-    else
-      snapshot_ = std::make_unique<DemBody>(b);
-  } else {
-    // a retry: back to the start of the step; the work counters keep the failed attempt's work
-    const long substeps = b.substeps, rebuilds = b.rebuilds;
-    const double t_force = b.t_force, t_rebuild = b.t_rebuild, t_blast = b.t_blast;
-    b = *snapshot_;
-    b.substeps = substeps;
-    b.rebuilds = rebuilds;
-    b.t_force = t_force;
-    b.t_rebuild = t_rebuild;
-    b.t_blast = t_blast;
-  }
-  step_open_ = true;
-  t_new_ = t_new;
-  dt_ = dt;
+void DemModel::save_step_start() {
+  if (snapshot_)
+    *snapshot_ = *body_;
+  else
+    snapshot_ = std::make_unique<DemBody>(*body_);
 }
 
-IterationReport DemModel::solve_iteration() {
+void DemModel::restore_step_start() {
+  // Back to the start of the step; the work counters keep the failed attempt's work.
   DemBody& b = *body_;
-  const auto t0 = Clock::now();
-  const double t_old = b.state.t;
-  const double span = t_new_ - t_old;
+  const long substeps = b.substeps, rebuilds = b.rebuilds;
+  const double t_force = b.t_force, t_rebuild = b.t_rebuild, t_blast = b.t_blast;
+  b = *snapshot_;
+  b.substeps = substeps;
+  b.rebuilds = rebuilds;
+  b.t_force = t_force;
+  b.t_rebuild = t_rebuild;
+  b.t_blast = t_blast;
+}
+
+int DemModel::advance(double t_new, double) {
+  DemBody& b = *body_;
+  const double span = t_new - b.state.t;
   const int n = std::max(1, static_cast<int>(std::ceil(span / b.dt * (1 - 1e-12))));
   const double h = span / n;
   for (int k = 0; k < n; ++k) substep(h);
-  b.state.t = t_new_;
+  b.state.t = t_new;
   check_finite();
   check_energy();
-  const double w = seconds_since(t0);
-  wall_time_ += w;
-  times_.assembly += w;
-  IterationReport r;
-  r.converged = true;
-  r.residual_ref = 1;
-  r.inner_iterations = n;
-  return r;
+  return n;
 }
 
 void DemModel::write_output(double t) {

@@ -47,28 +47,17 @@ double MpmModel::strain_energy() const {
 
 void MpmModel::initialize() { body_->t = 0; }
 
-void MpmModel::predict(double t_new, double dt) {
+void MpmModel::save_step_start() {
   if (!snapshot_) snapshot_ = std::make_unique<MpmStepSnapshot>();
-  if (step_open_)
-    snapshot_->restore(*body_);
-  else
-    snapshot_->save(*body_);
-  step_open_ = true;
-  t_new_ = t_new;
-  dt_ = dt;
+  snapshot_->save(*body_);
 }
 
-IterationReport MpmModel::solve_iteration() {
-  const auto t0 = Clock::now();
-  const int n = scheme_->advance(*body_, t_new_, dt_);
+void MpmModel::restore_step_start() { snapshot_->restore(*body_); }
+
+int MpmModel::advance(double t_new, double dt) {
+  const int n = scheme_->advance(*body_, t_new, dt);
   substeps_ += n;
-  times_.assembly += seconds_since(t0);
-  IterationReport r;
-  r.converged = true;
-  r.residual = 0;
-  r.residual_ref = 1;
-  r.inner_iterations = n;
-  return r;
+  return n;
 }
 
 void MpmModel::write_output(double t) {

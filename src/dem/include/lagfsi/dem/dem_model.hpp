@@ -30,6 +30,7 @@
 /// elastic energy) only by the blast's and the moving walls' work, give or take the energy the body holds or can
 /// release at t = 0: either is a SolverError naming the cause.
 #include <lagfsi/case.hpp>
+#include <lagfsi/explicit_model.hpp>
 #include <lagfsi/model.hpp>
 
 #include <memory>
@@ -43,7 +44,7 @@ namespace dem {
 struct DemBody;
 class DemWriter;
 
-class DemModel final : public PhysicsModel {
+class DemModel final : public ExplicitModel {
  public:
   /// Reads the body and builds its discs, law, walls and lists; throws InputError for a bad body.
   DemModel(Params body, const CaseContext& ctx);
@@ -54,13 +55,6 @@ class DemModel final : public PhysicsModel {
   Index num_nodes() const override;     ///< the discs
   Index num_elements() const override;  ///< the contacts
   void initialize() override;
-  /// Begins a step: snapshots the body (a copy of the DemBody), or, when the last step was not finalized (the
-  /// driver retries a failed step with a smaller dt), restores the snapshot first, so that the retry starts
-  /// from the step's start and not from the failed attempt's end.
-  void predict(double t_new, double dt) override;
-  /// Advances the body over the driver's step in sub-steps; always converged, inner_iterations = sub-steps.
-  IterationReport solve_iteration() override;
-  void finalize_step() override { step_open_ = false; }
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   Json summary() const override;
@@ -82,6 +76,14 @@ class DemModel final : public PhysicsModel {
   /// dissipated energy counted).
   double energy_balance() const;
 
+ protected:
+  /// The step's start: a copy of the DemBody; a retry restores it but keeps the work counters and timings of
+  /// the failed attempt (ExplicitModel).
+  void save_step_start() override;
+  void restore_step_start() override;
+  /// The driver's step in sub-steps no longer than the body's dt, then the finite-state and energy checks.
+  int advance(double t_new, double dt) override;
+
  private:
   /// Sets the energy guard's reference and scale at t = 0 (DemBody::energy_ref, energy_scale).
   void start_energy_guard();
@@ -93,11 +95,8 @@ class DemModel final : public PhysicsModel {
   CaseContext ctx_;
   std::unique_ptr<DemBody> body_;
   std::unique_ptr<DemWriter> writer_;
-  std::unique_ptr<DemBody> snapshot_;  // the body at the start of the open step (predict)
-  bool step_open_ = false;
-  double t_new_ = 0, dt_ = 0;
+  std::unique_ptr<DemBody> snapshot_;  // the body at the start of the open step (save_step_start)
   double settle_time_ = 0;
-  double wall_time_ = 0;
   /// A disc near a wall (or fast enough to reach one outside its list: all_walls) and its centre before a
   /// sub-step (DemModel::substep).
   struct NearWall {

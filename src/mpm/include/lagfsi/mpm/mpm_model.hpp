@@ -20,6 +20,7 @@
 ///  - probes                                                          mpm_probes.cpp
 ///  - the PhysicsModel lifecycle                                      mpm_model.cpp
 #include <lagfsi/case.hpp>
+#include <lagfsi/explicit_model.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/mpm/mpm_state.hpp>
 
@@ -35,7 +36,7 @@ class MpmScheme;
 class MpmWriter;
 struct MpmStepSnapshot;
 
-class MpmModel final : public PhysicsModel {
+class MpmModel final : public ExplicitModel {
  public:
   /// Reads the body (its case-file object) and builds its particles, grid, conditions and scheme; throws
   /// InputError for a bad body.
@@ -48,13 +49,6 @@ class MpmModel final : public PhysicsModel {
   Index num_particles() const override { return num_nodes(); }
   Index num_elements() const override;  ///< the grid's cells
   void initialize() override;
-  /// Starts a step; the first predict of a step saves the body's state, a second one before finalize_step (the
-  /// driver's retry with a smaller dt after a failure part of the way through the sub-steps) restores it.
-  void predict(double t_new, double dt) override;
-  /// Advances the body over the whole step (explicit: in sub-steps; implicit: one linear solve); always
-  /// converged, inner_iterations = the sub-steps.
-  IterationReport solve_iteration() override;
-  void finalize_step() override { step_open_ = false; }
   void write_output(double t) override;
   std::unique_ptr<Probe> make_probe(Params p) override;
   bool can_checkpoint() const override { return true; }
@@ -69,14 +63,19 @@ class MpmModel final : public PhysicsModel {
   /// Work of gravity since the start.
   double gravity_work() const;
 
+ protected:
+  /// The state at the step's start (MpmStepSnapshot), put back by a retry (ExplicitModel).
+  void save_step_start() override;
+  void restore_step_start() override;
+  /// The whole step (explicit: in sub-steps; implicit: one linear solve); returns the sub-steps.
+  int advance(double t_new, double dt) override;
+
  private:
   CaseContext ctx_;
   std::unique_ptr<MpmBody> body_;
   std::unique_ptr<MpmScheme> scheme_;
   std::unique_ptr<MpmWriter> writer_;
   std::unique_ptr<MpmStepSnapshot> snapshot_;  // the state at the step's start (retry)
-  bool step_open_ = false;                     // predicted and not finalized
-  double t_new_ = 0, dt_ = 0;
   long substeps_ = 0;
 };
 

@@ -10,6 +10,7 @@
 #include <lagfsi/app/analysis.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/output_file.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <cerrno>
 #include <chrono>
@@ -39,8 +40,7 @@ int check_case(const RunOptions& opt) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using Clock = SteadyClock;
 
 /// The output folder of a run: not the case file's own, not in use by another run (locked until the run ends),
 /// created; a restart's must hold an earlier run. Returns false after printing the one-line error.
@@ -280,7 +280,7 @@ int run_case(const RunOptions& opt) {
       code = dynamic_cast<const OutputError*>(&e) ? kOutputError : kInternalError;
     }
   }
-  report_end(sim, c, opt, progress, code, status, outputs.checkpointer.last_step(), since(t_start));
+  report_end(sim, c, opt, progress, code, status, outputs.checkpointer.last_step(), seconds_since(t_start));
   return code;
 }
 

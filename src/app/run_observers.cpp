@@ -2,18 +2,14 @@
 
 #include "interrupt.hpp"
 
+#include <lagfsi/stopwatch.hpp>
+
 #include <iomanip>
 #include <sstream>
 
 namespace lagfsi {
 
 namespace fs = std::filesystem;
-
-namespace {
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
 std::string json_text(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
@@ -80,16 +76,16 @@ void Checkpointer::save(const Simulation& s) {
   pos.probes_bytes = p_.probes_csv->size();
   pos.log_bytes = p_.log->size();
   RunTotals saved = s.totals();
-  saved.wall_before += since(p_.start);
+  saved.wall_before += seconds_since(p_.start);
   save_checkpoint(p_.dir, p_.settings.keep, pos, saved, p_.models, p_.probes, p_.case_file);
   last_step_ = s.step();
-  last_wall_ = since(p_.start);
+  last_wall_ = seconds_since(p_.start);
 }
 
 void Checkpointer::stepped(const Simulation& s, const StepRecord& r) {
   const CheckpointSettings& ck = p_.settings;
   if ((ck.every_steps > 0 && r.step % ck.every_steps == 0) ||
-      (ck.every_minutes > 0 && since(p_.start) - last_wall_ >= 60 * ck.every_minutes))
+      (ck.every_minutes > 0 && seconds_since(p_.start) - last_wall_ >= 60 * ck.every_minutes))
     if (!s.finished()) save(s);
 }
 
@@ -109,7 +105,7 @@ void ProgressReport::stepped(const Simulation& s, const StepRecord& r) {
   st.shown = s.labelled(r);
   st.particles = r.particles;
   st.nodes = r.nodes;
-  st.wall = since(start_);
+  st.wall = seconds_since(start_);
   progress_.step(st);
 }
 
@@ -138,7 +134,7 @@ void SummaryWriter::write(const Simulation& sim) const {
   s["steps_planned"] = sim.planned_steps();
   s["step_retries"] = tot.retries;
   s["time"] = sim.time();
-  s["wall_time"] = tot.wall_before + since(p_.start);
+  s["wall_time"] = tot.wall_before + seconds_since(p_.start);
   if (p_.restarted_step >= 0) s["restarted_from_step"] = p_.restarted_step;
   if (p_.checkpointer && p_.checkpointer->last_step() >= 0)
     s["checkpoint"] = {{"file", kCheckpointFile}, {"step", p_.checkpointer->last_step()}};

@@ -1,6 +1,7 @@
 #include "simulation.hpp"
 
 #include <lagfsi/error.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -9,10 +10,7 @@
 
 namespace lagfsi {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
+using Clock = SteadyClock;
 
 Simulation::Simulation(const AnalysisSettings& analysis, std::vector<PhysicsModel*> bodies,
                        std::vector<PhysicsModel*> couplings, std::vector<PhysicsModel*> steppers)
@@ -126,7 +124,7 @@ void Simulation::run(const std::function<bool(const Simulation&)>& stop) {
     t_ = r.t;
     for (StepObserver* o : observers_) o->output(*this, r);
     record(r);
-    r.wall = since(t_step);
+    r.wall = seconds_since(t_step);
     account(r);
     for (StepObserver* o : observers_) o->stepped(*this, r);
   }

@@ -1,6 +1,6 @@
 #include <lagfsi/explicit_model.hpp>
 
-#include <chrono>
+#include <lagfsi/stopwatch.hpp>
 
 namespace lagfsi {
 
@@ -15,9 +15,9 @@ void ExplicitModel::predict(double t_new, double dt) {
 }
 
 IterationReport ExplicitModel::solve_iteration() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = SteadyClock::now();
   const int n = advance(t_new_, dt_);
-  const double w = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double w = seconds_since(t0);
   wall_time_ += w;
   times_.assembly += w;
   IterationReport r;

@@ -8,27 +8,14 @@
 #include <algorithm>
 
 #include "case_runner.hpp"
+#include "dem_base_case.hpp"
 
 namespace {
 
 using namespace lagfsi::testing;
 using nlohmann::json;
 
-json base_case() {
-  return json::parse(R"({
-    "name": "dem_input_base",
-    "analysis": {"type": "dynamic", "dt": 1e-4, "end_time": 1e-3},
-    "gravity": [0, -9.81],
-    "bodies": [{
-      "name": "bed", "type": "dem",
-      "material": {"density": 2500},
-      "contact": {"law": "linear", "kn": 1e5, "damping_ratio": 0.1, "friction": 0.5},
-      "discs": [{"type": "hex_lattice", "region": {"type": "rectangle", "origin": [0, 0], "size": [0.1, 0.05]},
-                 "radius": 0.002}],
-      "walls": [{"name": "box", "points": [[0, 0.2], [0, 0], [0.1, 0], [0.1, 0.2]]}]
-    }]
-  })");
-}
+json base_case() { return dem_base_case("dem_input_base"); }
 
 struct Outcome {
   int code;

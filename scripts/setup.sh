@@ -11,6 +11,7 @@ PKGS=(
   nlohmann-json3-dev
   libgtest-dev googletest
   libomp-dev
+  petsc-dev openmpi-bin
   python3 python3-matplotlib python3-numpy python3-pil
 )
 missing=()

@@ -3,7 +3,7 @@
 
 #include "input_checks.hpp"
 
-#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/linear_solver_input.hpp>
 #include <lagfsi/time_integrator.hpp>
 
 namespace lagfsi {
@@ -24,7 +24,8 @@ const KeyTable kAnalysisKeys(
       kDerived},
      {"newton", Json::object(), "Newton iteration settings (see /analysis/newton)."},
      {"linear_solver", Json{{"type", "cholmod"}},
-      "Sparse linear solver of the solids (see /analysis/linear_solver)."}});
+      "Sparse linear solver of the solids, shells and EFG bodies: {\"type\": ...} with the keys of linear solver "
+      "(object form) (Krylov: CG + BoomerAMG)."}});
 
 const KeyTable kNewmarkKeys(
     "/analysis/integrator (type newmark)", "Newmark's method (beta = 1/4, gamma = 1/2: the trapezoidal rule).",
@@ -55,13 +56,10 @@ const KeyTable kNewtonKeys(
      {"position_tolerance", 1e-9,
       "Largest position update, relative to the body's size, for a step to have converged."}});
 
-const KeyTable kLinearSolverKeys("/analysis/linear_solver", "The sparse linear solver of the solids' Newton steps.",
-                                 {{"type", "cholmod",
-                                   "One of cholmod, cholmod_supernodal, umfpack, klu, eigen_lu, eigen_ldlt."}});
-
 }  // namespace
 
 AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, const Json& default_integrator) {
+  expand_linear_solver(a, "linear_solver");
   a.validate(kAnalysisKeys, {{"integrator", default_integrator}});
   AnalysisSettings s;
   s.type = a.choice("type", {"static", "dynamic"});
@@ -95,9 +93,11 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, con
   s.newton.max_iterations = nw.integer("max_iterations", 1);
   s.newton.residual_tolerance = nw.positive("residual_tolerance");
   s.newton.position_tolerance = nw.positive("position_tolerance");
-  Params ls = a.at("linear_solver");
-  ls.validate(kLinearSolverKeys);
-  s.linear_solver = ls.choice("type", linear_solver_types());
+  LinearSolverSettings ls;
+  ls.type = ls.direct = "cholmod";
+  ls.kind = SystemKind::elasticity;
+  ls.block_size = 2;
+  s.linear_solver = read_linear_solver(a, "linear_solver", ls, direct_solver_types());
   return s;
 }
 

@@ -1,5 +1,6 @@
 /// @file linear_solver.cpp
-/// Sparse direct solvers behind lagfsi::LinearSolver (see linear_solver.hpp for the contract).
+/// The contract's bookkeeping (timings, reports, statistics) and the sparse direct solvers behind
+/// lagfsi::LinearSolver (see linear_solver.hpp for the contract).
 ///
 /// Structure: DirectSolverBase does everything that does not depend on the library (input checks, the
 /// private copy of the matrix, the pattern comparison that decides whether the symbolic analysis is
@@ -13,6 +14,7 @@
 /// so the matrix it was factorized with must outlive the caller's.
 #include <lagfsi/error.hpp>
 #include <lagfsi/linear_solver.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <cholmod.h>
 #include <Eigen/KLUSupport>
@@ -29,6 +31,68 @@
 
 namespace lagfsi {
 
+void SolverStatistics::add(const SolverStatistics& o) {
+  setups += o.setups;
+  pattern_setups += o.pattern_setups;
+  solves += o.solves;
+  iterations += o.iterations;
+  max_iterations = std::max(max_iterations, o.max_iterations);
+  iterative_solves += o.iterative_solves;
+  failures += o.failures;
+  setup_seconds += o.setup_seconds;
+  solve_seconds += o.solve_seconds;
+}
+
+void LinearSolver::setup(const SparseMatrix& A) {
+  const auto t0 = SteadyClock::now();
+  const int analyses = symbolic_count_;
+  report_.unknowns = A.rows();
+  report_.failure.clear();
+  try {
+    do_setup(A);
+  } catch (const SolverError& e) {
+    report_.failure = e.what();
+    ++stats_.failures;
+    report_.setup_seconds = seconds_since(t0);
+    stats_.setup_seconds += report_.setup_seconds;
+    throw;
+  }
+  report_.setup_seconds = seconds_since(t0);
+  ++stats_.setups;
+  stats_.pattern_setups += symbolic_count_ - analyses;
+  stats_.setup_seconds += report_.setup_seconds;
+}
+
+void LinearSolver::solve(const Vec& b, Vec& x) {
+  const auto t0 = SteadyClock::now();
+  report_.iterations = 0;
+  report_.residual = 0.0;
+  report_.failure.clear();
+  try {
+    if (&b == &x) {  // the backends need distinct input and output
+      const Vec copy = b;
+      do_solve(copy, x);
+    } else {
+      do_solve(b, x);
+    }
+  } catch (const SolverError& e) {
+    report_.failure = e.what();
+    ++stats_.failures;
+    report_.solve_seconds = seconds_since(t0);
+    stats_.solve_seconds += report_.solve_seconds;
+    stats_.iterations += report_.iterations;
+    throw;
+  }
+  report_.solve_seconds = seconds_since(t0);
+  ++stats_.solves;
+  stats_.solve_seconds += report_.solve_seconds;
+  if (report_.iterations > 0) {
+    ++stats_.iterative_solves;
+    stats_.iterations += report_.iterations;
+    stats_.max_iterations = std::max<long>(stats_.max_iterations, report_.iterations);
+  }
+}
+
 namespace {
 
 /// True if a and b (both compressed) have the same size and the same outer/inner index arrays.
@@ -41,8 +105,9 @@ bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
 
 /// The library-independent part of every solver.
 class DirectSolverBase : public LinearSolver {
- public:
-  void factorize(const SparseMatrix& A) final {
+ protected:
+  void do_setup(const SparseMatrix& A) final {
+    report_.method = type();
     factorized_ = false;
     if (A.rows() != A.cols()) {
       std::ostringstream os;
@@ -88,8 +153,8 @@ class DirectSolverBase : public LinearSolver {
     factorized_ = true;
   }
 
-  void solve(const Vec& b, Vec& x) final {
-    if (!factorized_) fail("solve() called without a successful factorize()");
+  void do_solve(const Vec& b, Vec& x) final {
+    if (!factorized_) fail("solve() called without a successful setup()");
     if (b.size() != A_.rows()) {
       std::ostringstream os;
       os << "right-hand side has size " << b.size() << ", matrix has " << A_.rows() << " rows";
@@ -100,16 +165,10 @@ class DirectSolverBase : public LinearSolver {
       x.resize(0);
       return;
     }
-    if (&b == &x) {  // the backends need distinct input and output
-      const Vec copy = b;
-      backsolve(copy, x);
-    } else {
-      backsolve(b, x);
-    }
+    backsolve(b, x);
     if (x.size() != b.size() || !x.allFinite()) fail("solution has non-finite entries (matrix numerically singular?)");
   }
 
- protected:
   /// Symbolic analysis of A (compressed, square, finite, non-empty); throws SolverError on failure.
   virtual void analyze(const SparseMatrix& A) = 0;
   /// Numeric factorization of A (same pattern as the last analyze()); throws SolverError on failure.
@@ -290,9 +349,19 @@ class EigenWrappedSolver final : public DirectSolverBase {
 
 }  // namespace
 
+const std::vector<std::string>& direct_solver_types() {
+  static const std::vector<std::string> types{"cholmod",  "cholmod_supernodal", "umfpack", "klu",
+                                              "eigen_lu", "eigen_ldlt",         "mumps"};
+  return types;
+}
+
 const std::vector<std::string>& linear_solver_types() {
-  static const std::vector<std::string> types{"cholmod", "cholmod_supernodal", "umfpack",
-                                              "klu",     "eigen_lu",           "eigen_ldlt"};
+  static const std::vector<std::string> types = [] {
+    std::vector<std::string> t = direct_solver_types();
+    t.push_back("petsc");
+    t.push_back("auto");
+    return t;
+  }();
   return types;
 }
 
@@ -306,9 +375,14 @@ std::unique_ptr<LinearSolver> make_linear_solver(const std::string& type) {
   if (type == "eigen_ldlt")
     return std::make_unique<
         EigenWrappedSolver<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>>>(type, true);
+  if (type == "petsc" || type == "auto" || type == "mumps") {
+    LinearSolverSettings s;
+    s.type = type;
+    return make_linear_solver(s);
+  }
   std::string valid;
-  for (const auto& t : linear_solver_types()) valid += (valid.empty() ? "" : ", ") + t;
-  throw std::invalid_argument("unknown linear solver '" + type + "' (valid: " + valid + ")");
+  for (const auto& t : direct_solver_types()) valid += (valid.empty() ? "" : ", ") + t;
+  throw std::invalid_argument("unknown direct linear solver '" + type + "' (valid: " + valid + ")");
 }
 
 }  // namespace lagfsi

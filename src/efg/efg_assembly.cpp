@@ -142,7 +142,7 @@ void EfgModel::factorize() {
   if (!K_.valuePtr() || !Eigen::Map<const Vec>(K_.valuePtr(), K_.nonZeros()).allFinite())
     fail_solve("non-finite stiffness", true);
   try {
-    solver_->factorize(K_);
+    solver_->setup(K_);
   } catch (const SolverError& e) {
     fail_solve(std::string("the stiffness cannot be factorized: ") + e.what(), true);
   }

@@ -221,8 +221,7 @@ EfgModel::EfgModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
   }
   read_control(b);
   build_pattern();
-  const std::string ls = ctx.analysis.linear_solver;
-  solver_ = make_linear_solver(ls);
+  solver_ = make_linear_solver(ctx.analysis.linear_solver);
   const bool unsym = (operator_ == Operator::tangent && !material_->linear()) || (material_->type() == "smeared_crack");
   if (solver_->symmetric_only() && (essential_ == "lagrange" || unsym))
     b.at(essential_ == "lagrange" ? "essential" : "operator")

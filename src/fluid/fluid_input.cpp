@@ -3,6 +3,8 @@
 #include "fluid_model_impl.hpp"
 #include "point_grid.hpp"
 
+#include <lagfsi/linear_solver_input.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -96,6 +98,15 @@ std::vector<KeyDecl> scheme_keys(const std::string& type, std::vector<KeyDecl> o
   return keys;
 }
 
+const std::vector<std::string> kPspgDirect{"klu", "umfpack", "eigen_lu", "mumps"};
+// "auto": the sizes (unknowns) from which the Krylov solver costs less per run than the direct one, measured on the
+// dam break (docs/decisions/0011-krylov-solvers.md): KLU's factorization grows faster than linearly while a
+// Krylov solve with multigrid costs about the same per unknown; below, the direct solver's back-solves (several
+// a step with one factorization) are cheaper than Krylov solves.
+constexpr Index kPspgKrylovFrom = 6000;
+constexpr Index kFractionalStepKrylovFrom = 20000;
+const std::vector<std::string> kFractionalStepDirect{"cholmod", "cholmod_supernodal", "eigen_ldlt", "mumps"};
+
 const KeyTable kPspgKeys(
     "/bodies/*/scheme (fluid body, type monolithic_pspg)",
     "The monolithic scheme: Newton on positions and pressures with PSPG stabilisation, the analysis' integrator.",
@@ -111,7 +122,7 @@ const KeyTable kPspgKeys(
                   "Weight of the Robin free-surface term (a tuned value; 0.01-0.2 keep the area)."},
                  {"tolerance", 1e-4, "Relative tolerance of the Newton iterations."},
                  {"refactorize_every", 0, "Factorize the Newton matrix every this many iterations (0: once a step)."},
-                 {"linear_solver", "klu", "umfpack, klu or eigen_lu."}}));
+                 {"linear_solver", Json{{"type", "auto"}}, linear_solver_doc(kPspgDirect)}}));
 
 const KeyTable kFractionalStepKeys(
     "/bodies/*/scheme (fluid body, type fractional_step)",
@@ -120,7 +131,7 @@ const KeyTable kFractionalStepKeys(
     scheme_keys("fractional_step",
                 {{"viscous_step", "automatic",
                   "automatic (implicit when dt > rho (0.3 h)^2 / (8 mu)), explicit or implicit."},
-                 {"linear_solver", "cholmod", "cholmod, cholmod_supernodal or eigen_ldlt."},
+                 {"linear_solver", Json{{"type", "auto"}}, linear_solver_doc(kFractionalStepDirect)},
                  {"inverted_elements", "retry",
                   "A step in which an element turns over: retry (with dt / 2) or remesh (kept, left to the next "
                   "remesh)."}}));
@@ -289,6 +300,7 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
   // The defaults that follow other keys (fluid_defaults); the free-surface pressure is the monolithic scheme's.
   Json derived = {{"volume_correction", d.volume_correction}, {"volume_relaxation_time", d.volume_relaxation_time}};
   if (pspg) derived["free_surface_pressure"] = d.free_surface_pressure;
+  expand_linear_solver(s, "linear_solver");
   s.validate(pspg ? kPspgKeys : kFractionalStepKeys, derived);
   if (pspg) {
     Params tau = s.at("tau");
@@ -308,11 +320,22 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
     ps.robin_factor = s.positive("robin_factor");
     ps.tol = s.positive("tolerance");
     ps.refactor_every = s.integer("refactorize_every", 0);
-    ps.solver = s.choice("linear_solver", {"umfpack", "klu", "eigen_lu"});
+    LinearSolverSettings ls;
+    ls.kind = SystemKind::saddle_point;
+    ls.block_size = 3;
+    ls.direct = "klu";
+    ls.type = "auto";
+    ls.auto_threshold = kPspgKrylovFrom;
+    ps.solver = read_linear_solver(s, "linear_solver", ls, kPspgDirect);
   } else {
     // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
     fs.viscous_step = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
-    fs.solver = s.choice("linear_solver", {"cholmod", "cholmod_supernodal", "eigen_ldlt"});
+    LinearSolverSettings ls;
+    ls.kind = SystemKind::symmetric_positive_definite;
+    ls.direct = "cholmod";
+    ls.type = "auto";
+    ls.auto_threshold = kFractionalStepKrylovFrom;
+    fs.solver = read_linear_solver(s, "linear_solver", ls, kFractionalStepDirect);
     fs.retry_inverted = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
   }
   const std::string vc = s.choice("volume_correction", {"surface", "source", "particle", "none"});

@@ -235,6 +235,7 @@ Json FluidModel::summary() const {
             {"wall_snaps", walls_.snaps()},
             {"wall_releases", walls_.releases()},
             {"inverted_elements_kept", scheme_->inverted_kept()},
+            {"linear_solvers", scheme_->linear_solvers()},
             {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
             {"remeshing", remeshing}};
   if (!boundaries_.empty()) s["boundaries"] = boundaries_.summary();

@@ -79,6 +79,8 @@ class FluidScheme {
   /// contract's members (Newmark family, central difference) would give only through a different update order
   /// (results not bit-identical). It stays the scheme's own two lines (fractional_step.cpp).
   virtual Vec step_velocity() const = 0;
+  /// The linear solvers' records for summary.json (solver_summary), by the system they solve.
+  virtual Json linear_solvers() const = 0;
   /// Elements inverted within accepted steps (the fractional step with "inverted_elements": "remesh").
   virtual long inverted_kept() const { return 0; }
   /// Checkpoints: what the scheme keeps from step to step (counters; its matrices are rebuilt every step).

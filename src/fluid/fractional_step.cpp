@@ -24,7 +24,7 @@
 #include "fluid_scheme.hpp"
 
 #include <lagfsi/assembly.hpp>
-#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/linear_solver_input.hpp>
 #include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 #include <lagfsi/time_integrator.hpp>
@@ -66,12 +66,19 @@ void constrain(SparseMatrix& A, const Fixed& fixed, const Diag& diag) {
   });
 }
 
+/// The viscous predictor's solver: the Poisson's settings for a mass matrix plus dt times a viscous stiffness.
+LinearSolverSettings viscous(const FractionalStepSettings& s) {
+  LinearSolverSettings v = s.solver;
+  v.kind = SystemKind::mass_dominated;
+  return v;
+}
+
 /// The fractional step: the pressure Poisson matrix and the implicit viscous predictor's matrix (both one dof
 /// per particle, one pattern) on the step's mesh, and the step's new velocities.
 class FractionalStep final : public FluidScheme {
  public:
   FractionalStep(const FluidParts& f, const FractionalStepSettings& s)
-      : FluidScheme(f), s_(s), solver_(make_linear_solver(s.solver)), viscous_solver_(make_linear_solver(s.solver)) {}
+      : FluidScheme(f), s_(s), solver_(make_linear_solver(s.solver)), viscous_solver_(make_linear_solver(viscous(s))) {}
   void begin_step() override {
     const Index np = f_.cloud.n();
     poisson_pattern_ = ElementPattern(f_.mesh.conn, 3, np, 1);
@@ -90,6 +97,11 @@ class FractionalStep final : public FluidScheme {
     s.a = (v_new_ - s.v) / f_.step.dt;
     s.v = v_new_;
     s.x = f_.step.x;
+  }
+  Json linear_solvers() const override {
+    Json j = {{"pressure", solver_summary(*solver_)}};
+    if (viscous_solver_->statistics().setups > 0) j["viscous"] = solver_summary(*viscous_solver_);
+    return j;
   }
   /// v_{n+1}.
   Vec step_velocity() const override { return v_new_; }
@@ -136,7 +148,7 @@ class FractionalStep final : public FluidScheme {
 void FractionalStep::factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what) {
   const auto t0 = Clock::now();
   try {
-    solver.factorize(A);
+    solver.setup(A);
   } catch (const SolverError& err) {
     throw SolverError("body '" + f_.c.name + "': " + what + ": " + err.what());
   }

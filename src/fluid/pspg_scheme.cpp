@@ -15,7 +15,7 @@
 #include "fluid_scheme.hpp"
 
 #include <lagfsi/assembly.hpp>
-#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/linear_solver_input.hpp>
 #include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 
@@ -68,6 +68,7 @@ class PspgScheme final : public FluidScheme {
     robin_factor_ = s.robin_factor;
   }
   FreeSurfacePressure free_surface_pressure() const override { return s_.free_surface; }
+  Json linear_solvers() const override { return {{"newton", solver_summary(*solver_)}}; }
   bool wall_frames() const override { return true; }
   void begin_step() override {
     if (s_.free_surface == FreeSurfacePressure::robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
@@ -325,7 +326,7 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
   auto t0 = Clock::now();
   if (s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0) {
     try {
-      solver_->factorize(J_);
+      solver_->setup(J_);
     } catch (const SolverError& e) {
       throw SolverError("body '" + f_.c.name + "': " + e.what());
     }

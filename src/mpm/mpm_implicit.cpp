@@ -113,7 +113,7 @@ void Implicit::step(MpmBody& b, double t_new, double dt) {
   for (Index d = 0; d < 2 * nn; ++d)
     if (held[d] && H.coeff(d, d) == 0.0) H.coeffRef(d, d) = 1.0;
   H.makeCompressed();
-  solver_->factorize(H);
+  solver_->setup(H);
   Vec dx;
   solver_->solve(-r, dx);
   x += dx;

@@ -203,8 +203,9 @@ SolidModel::SolidModel(Params b, const CaseContext& ctx) : ctx_(ctx), is_static_
   if (!is_static_) {
     integrator_ = make_time_integrator(ctx.analysis.integrator);
   }
-  solver_type_ = ctx.analysis.linear_solver;
-  solver_ = make_linear_solver(solver_type_);
+  solver_settings_ = ctx.analysis.linear_solver;
+  solver_settings_.block_size = static_cast<int>(nd % body_->num_nodes() == 0 ? nd / body_->num_nodes() : 1);
+  make_solver();
 
   state_.t = 0;
   state_.x = body_->reference_positions();

@@ -24,7 +24,7 @@ void SolidModel::initialize() {
     SparseMatrix M = body_->mass();
     apply_dirichlet(M, r);
     auto s = make_linear_solver("cholmod");
-    s->factorize(M);
+    s->setup(M);
     s->solve(r, state_.a);
     for (const auto& p : prescribed_) state_.a[p.dof] = 0.0;
   }
@@ -100,11 +100,11 @@ void SolidModel::serialize(StateArchive& ar) {
   ar.io(strain_energy_, work_ext_, work_damp_, energy0_, work_iface_);
   ar.io(f_iface_, f_iface_old_, reaction_, aug_factor_);
   // A factorization that failed once switched the body to LU for the rest of the run.
-  std::string solver = solver_type_;
+  std::string solver = solver_settings_.type;
   ar.io(solver, fallback_note_);
-  if (ar.loading() && solver != solver_type_) {
-    solver_type_ = solver;
-    solver_ = make_linear_solver(solver_type_);
+  if (ar.loading() && solver != solver_settings_.type) {
+    solver_settings_.type = solver;
+    make_solver();
   }
   serialize_series(ar, series_, ctx_.out_dir, name_);
 }

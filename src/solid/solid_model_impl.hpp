@@ -8,7 +8,7 @@
 #include <lagfsi/element.hpp>
 #include <lagfsi/error.hpp>
 #include <lagfsi/interface.hpp>
-#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/linear_solver_input.hpp>
 #include <lagfsi/solid/shell.hpp>
 #include <lagfsi/solid/solid.hpp>
 #include <lagfsi/solid/solid_model.hpp>
@@ -53,7 +53,9 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   Index num_nodes() const override { return body_->num_nodes(); }
   Index num_elements() const override { return body_->num_elements(); }
   Json summary() const override {
-    return fallback_note_.empty() ? Json::object() : Json{{"linear_solver_fallback", fallback_note_}};
+    Json s = {{"linear_solver", solver_summary(*solver_)}};
+    if (!fallback_note_.empty()) s["linear_solver_fallback"] = fallback_note_;
+    return s;
   }
 
   void initialize() override;
@@ -106,6 +108,8 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   void impose_prescribed(double t, Vec& x) const;
   void apply_dirichlet(SparseMatrix& H, Vec& r) const;
   void factorize(const SparseMatrix& H);
+  /// A new solver from solver_settings_ (with the nodes' coordinates for a multigrid).
+  void make_solver();
   Vec damping_times(const Vec& v) const;
   std::string name_, type_;
   CaseContext ctx_;
@@ -114,7 +118,7 @@ class SolidModel final : public PhysicsModel, public InterfaceStructure {
   std::vector<Vec2> surface_reference_;  // reference positions of the body's surface points
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
-  std::string solver_type_;
+  LinearSolverSettings solver_settings_;
   double damp_mass_ = 0, damp_stiff_ = 0;
   SparseMatrix K0_;  // initial tangent (stiffness-proportional damping)
   std::vector<Load> loads_;

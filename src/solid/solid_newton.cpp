@@ -42,18 +42,25 @@ Vec SolidModel::damping_times(const Vec& v) const {
 
 void SolidModel::apply_dirichlet(SparseMatrix& H, Vec& r) const { dirichlet_identity(H, r, fixed_mask_); }
 
+void SolidModel::make_solver() {
+  solver_ = make_linear_solver(solver_settings_);
+  // Positions alone per node (a plane solid): the rigid-body modes for an algebraic multigrid.
+  if (solver_settings_.block_size == 2) solver_->set_coordinates(body_->reference_positions());
+}
+
 void SolidModel::factorize(const SparseMatrix& H) {
   try {
-    solver_->factorize(H);
+    solver_->setup(H);
   } catch (const SolverError& e) {
-    if (solver_type_ != "cholmod" && solver_type_ != "cholmod_supernodal") throw;
+    // The direct Cholesky alone (also inside "auto"): an iterative solver's failure is not about definiteness.
+    if (solver_->report().method.rfind("cholmod", 0) != 0) throw;
     // Non-finite entries are not a matter of definiteness: LU would fail the same way.
     if (!std::all_of(H.valuePtr(), H.valuePtr() + H.nonZeros(), [](double v) { return std::isfinite(v); })) throw;
     // An indefinite tangent (buckling, strong compression): switch to LU for the rest of the run. The
     // warning comes once the LU has factorized, so that a run that fails says it in one line.
-    solver_type_ = "umfpack";
-    solver_ = make_linear_solver(solver_type_);
-    solver_->factorize(H);
+    solver_settings_.type = "umfpack";
+    make_solver();
+    solver_->setup(H);
     fallback_note_ = std::string(e.what()) + "; switched to umfpack at t = " + std::to_string(t_new_);
     if (!ctx_.quiet) std::cerr << "lagfsi: warning: body '" << name_ << "': " << fallback_note_ << "\n";
   }

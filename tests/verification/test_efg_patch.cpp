@@ -63,7 +63,7 @@ double patch_error(const PatchSetup& s) {
   ctx.analysis.type = "static";
   ctx.analysis.dt = 1.0;
   ctx.analysis.end_time = 1.0;
-  ctx.analysis.linear_solver = s.essential == "lagrange" ? "umfpack" : "cholmod";
+  ctx.analysis.linear_solver.type = s.essential == "lagrange" ? "umfpack" : "cholmod";
   ctx.analysis.newton.residual_tolerance = 1e-12;
   Params p(body, "patch.json", "/bodies/0");
   efg::EfgModel m(p, ctx);

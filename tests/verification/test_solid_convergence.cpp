@@ -152,7 +152,7 @@ Errors solve_and_measure(int order, int n) {
         if (fixed[it.row()] || fixed[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
     for (Index i = 0; i < nd; ++i)
       if (fixed[i]) rhs[i] = g[i];
-    solver->factorize(K);
+    solver->setup(K);
     solver->solve(rhs, dx);
     x += dx;
     last_dx = dx.norm();

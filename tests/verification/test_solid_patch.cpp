@@ -70,7 +70,7 @@ int solve_static(const SolidBody& body, const std::vector<char>& fixed, const Ve
         if (fixed[e.row()] || fixed[e.col()]) e.valueRef() = e.row() == e.col() ? 1.0 : 0.0;
     for (Index i = 0; i < r.size(); ++i)
       if (fixed[i]) rhs[i] = g[i];
-    solver->factorize(K);
+    solver->setup(K);
     solver->solve(rhs, dx);
     x += dx;
     for (Index i = 0; i < r.size(); ++i)

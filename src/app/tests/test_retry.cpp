@@ -29,7 +29,7 @@ CaseContext context(double dt) {
   c.analysis.dt = dt;
   c.analysis.end_time = 10 * dt;
   c.analysis.integrator = IntegratorSpec{};  // Newmark, beta 1/4, gamma 1/2
-  c.analysis.linear_solver = "umfpack";
+  c.analysis.linear_solver.type = "umfpack";
   c.gravity = Vec2(0.0, -9.81);
   c.quiet = true;
   return c;

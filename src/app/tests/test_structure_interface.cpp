@@ -28,7 +28,7 @@ CaseContext context(const Json& integrator, double dt) {
   c.analysis.dt = dt;
   c.analysis.end_time = 10 * dt;
   c.analysis.integrator = read_integrator(Params(integrator, "test", "/analysis/integrator"));
-  c.analysis.linear_solver = "umfpack";
+  c.analysis.linear_solver.type = "umfpack";
   return c;
 }
 

@@ -39,7 +39,7 @@ struct Cantilever {
     ctx.analysis.type = "static";
     ctx.analysis.dt = 1.0;
     ctx.analysis.end_time = 1.0;
-    ctx.analysis.linear_solver = "cholmod";
+    ctx.analysis.linear_solver.type = "cholmod";
     ctx.analysis.newton.residual_tolerance = 1e-12;
     m = std::make_unique<efg::EfgModel>(Params(body, "beam.json", "/bodies/0"), ctx);
     m->initialize();

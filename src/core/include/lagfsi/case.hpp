@@ -7,6 +7,7 @@
 /// A case file (JSON, comments allowed) has the top-level keys documented by case_defaults(); each body
 /// and each nested object is validated against its own defaults (see the builders), so `lagfsi check`
 /// prints the whole resolved case with every default filled in.
+#include <lagfsi/linear_solver.hpp>
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/params.hpp>
@@ -33,8 +34,8 @@ struct AnalysisSettings {
   double end_time = 0;        ///< 1 for static
   IntegratorSpec integrator;  ///< the implicit models' integrator (/analysis/integrator, read once)
   NewtonSettings newton;
-  std::string linear_solver;  ///< linear_solver.hpp type
-  int max_step_halvings = 4;  ///< retries of a failed step with dt/2, dt/4, ...
+  LinearSolverSettings linear_solver;  ///< the solids' Newton systems (linear_solver.hpp)
+  int max_step_halvings = 4;           ///< retries of a failed step with dt/2, dt/4, ...
 };
 
 /// What a model builder gets besides its own parameters.

@@ -3,6 +3,7 @@
 /// The PFEM fluid's parameters, read once from its case-file object (/bodies/i of type "fluid") by the
 /// model's constructor (src/fluid/fluid_input.cpp) and handed to the pieces that use them: the constants of
 /// the fluid, the remeshing's settings and each scheme's.
+#include <lagfsi/linear_solver.hpp>
 #include <lagfsi/meshing/remesh.hpp>
 #include <lagfsi/types.hpp>
 
@@ -51,16 +52,17 @@ struct PspgSettings {
   FreeSurfacePressure free_surface = FreeSurfacePressure::dirichlet;  // "free_surface_pressure"
   double robin_factor = 0.04;  // the Robin condition's weight f over the FIC one ("robin_factor"; a tuned value)
   double tol = 1e-4;
-  int refactor_every = 0;  // 0: one factorization per step (the matrix barely changes within a
-                           // step); k >= 1: refactorized every k iterations (1: Newton)
-  std::string solver = "klu";
+  int refactor_every = 0;       // 0: one factorization per step (the matrix barely changes within a
+                                // step); k >= 1: refactorized every k iterations (1: Newton)
+  LinearSolverSettings solver;  // the Newton system's ("linear_solver"; kind saddle_point, block size 3)
 };
 
 /// The fractional step's settings (/bodies/i/scheme).
 struct FractionalStepSettings {
   std::string viscous_step = "automatic";  // automatic | explicit | implicit
-  std::string solver = "cholmod";
-  bool retry_inverted = true;  // an element inverted within the step fails it (retry)
+  LinearSolverSettings solver;  // the pressure Poisson's ("linear_solver"; kind symmetric_positive_definite); the
+                                // implicit viscous predictor's is the same with kind mass_dominated
+  bool retry_inverted = true;   // an element inverted within the step fails it (retry)
 };
 
 }  // namespace lagfsi::fluid

@@ -1,0 +1,356 @@
+/// @file petsc_solver.cpp
+/// The iterative backend of lagfsi::LinearSolver: a PETSc KSP (Krylov method) with its PC (preconditioner),
+/// chosen for the kind of system (linear_solver.hpp) and overridable by the case file.
+///
+/// Defaults per SystemKind (each one a string of PETSc options, read before the case file's own):
+///  - symmetric_positive_definite: CG + BoomerAMG (hypre; Henson & Yang 2002), the residual measured
+///    unpreconditioned so that the tolerance is the contract's ||b - A x|| <= rtol ||b||.
+///  - elasticity: CG + smoothed-aggregation multigrid (GAMG; Adams et al. 2004) with the rigid-body modes of
+///    set_coordinates as its near-null space (BoomerAMG without them needs twice the time on a T10 solid).
+///  - mass_dominated: CG + Jacobi (a mass matrix plus dt times a stiffness is diagonally dominant).
+///  - saddle_point: FGMRES on [A B^T; C D] with interleaved [u_x u_y p] unknowns, preconditioned by the
+///    block upper-triangular Schur factorization (PCFIELDSPLIT, Brown et al. 2012): BoomerAMG on the
+///    position block A, and BoomerAMG on S_p = D - C diag(A)^{-1} B^T ("selfp"), which for the PSPG system
+///    is the stabilisation Laplacian (tau / rho) L_p plus its explicit counterpart dt^2/(c rho) L_p - the
+///    pressure-Laplacian approximation of the Schur complement (Cahouet & Chabard 1988; Mardal & Winther 2011).
+///  - general: GMRES (right preconditioned) + BoomerAMG.
+/// Each solver has an options prefix of its own ("lagfsi<k>_"), so that two solvers of a run (a Poisson and a
+/// predictor) never read each other's options; the case file's raw options are prefixed the same way.
+///
+/// Distributed-ready: the matrix is a PETSc AIJ matrix and the vectors PETSc vectors on a communicator (one
+/// process here: PETSC_COMM_SELF); rows are inserted by the ownership range PETSc reports, so that a caller
+/// owning a slice of the rows fills only its slice, and the solve never gathers the system.
+#include "petsc_solver.hpp"
+
+#include <lagfsi/error.hpp>
+
+#include <petscksp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace lagfsi {
+
+namespace {
+
+/// The communicator of the matrices and vectors: the systems are assembled whole on one process for now.
+const MPI_Comm kComm = PETSC_COMM_SELF;
+
+/// Throws SolverError with PETSc's text for a non-zero error code.
+void check(PetscErrorCode code, const char* what) {
+  if (code == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  throw SolverError(std::string("petsc: ") + what + " failed (" + (text ? text : "PETSc error") + ")");
+}
+
+/// PETSc (and MPI under it) start with the first solver and stop at exit; PETSc's signal handlers are not
+/// installed and its errors are not printed (they become SolverError).
+void ensure_petsc() {
+  static const bool started = [] {
+    PetscBool initialized = PETSC_FALSE;
+    PetscInitialized(&initialized);
+    if (!initialized) {
+      static char name[] = "lagfsi", no_signals[] = "-no_signal_handler";
+      static char* args[] = {name, no_signals, nullptr};
+      int argc = 2;
+      char** argv = args;
+      check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
+      std::atexit([] { PetscFinalize(); });
+    }
+    PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
+    return true;
+  }();
+  (void)started;
+}
+
+/// The kind's default options ("mumps": PETSc's interface to the MUMPS multifrontal LU, Amestoy et al. 2001, a
+/// direct solver for any kind).
+std::string default_options(const LinearSolverSettings& s) {
+  if (s.type == "mumps") return "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
+  switch (s.kind) {
+    case SystemKind::symmetric_positive_definite:
+      return "-ksp_type cg -ksp_norm_type unpreconditioned -pc_type hypre -pc_hypre_type boomeramg";
+    case SystemKind::elasticity:
+      return "-ksp_type cg -ksp_norm_type unpreconditioned -pc_type gamg";
+    case SystemKind::mass_dominated:
+      return "-ksp_type cg -ksp_norm_type unpreconditioned -pc_type jacobi";
+    case SystemKind::saddle_point:
+      return "-ksp_type fgmres -ksp_gmres_restart 100 -pc_type fieldsplit -pc_fieldsplit_type schur "
+             "-pc_fieldsplit_schur_fact_type upper -pc_fieldsplit_schur_precondition selfp "
+             "-pc_fieldsplit_0_fields 0,1 -pc_fieldsplit_1_fields 2 "
+             "-fieldsplit_0_ksp_type preonly -fieldsplit_0_pc_type hypre "
+             "-fieldsplit_1_ksp_type preonly -fieldsplit_1_pc_type hypre";
+    case SystemKind::general:
+      break;
+  }
+  return "-ksp_type gmres -ksp_pc_side right -ksp_gmres_restart 100 -pc_type hypre";
+}
+
+/// `options` with `prefix` after the dash of every option name ("-ksp_type cg" -> "-lagfsi3_ksp_type cg"); a
+/// token such as "-1e-3" is a value, not a name.
+std::string prefixed(const std::string& options, const std::string& prefix) {
+  std::istringstream in(options);
+  std::string token, out;
+  while (in >> token) {
+    if (token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1])))
+      token = "-" + prefix + token.substr(1);
+    out += (out.empty() ? "" : " ") + token;
+  }
+  return out;
+}
+
+/// The option names of a string (to clear them when the solver goes).
+std::vector<std::string> option_names(const std::string& options) {
+  std::istringstream in(options);
+  std::vector<std::string> names;
+  std::string token;
+  while (in >> token)
+    if (token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1])))
+      names.push_back(token);
+  return names;
+}
+
+const char* reason_text(KSPConvergedReason r) {
+  switch (r) {
+    case KSP_DIVERGED_ITS:
+      return "iteration limit reached";
+    case KSP_DIVERGED_DTOL:
+      return "residual grew (divergence)";
+    case KSP_DIVERGED_BREAKDOWN:
+      return "Krylov breakdown";
+    case KSP_DIVERGED_INDEFINITE_PC:
+      return "indefinite preconditioner";
+    case KSP_DIVERGED_INDEFINITE_MAT:
+      return "indefinite matrix";
+    case KSP_DIVERGED_NANORINF:
+      return "non-finite residual";
+    case KSP_DIVERGED_PC_FAILED:
+      return "preconditioner set-up failed";
+    default:
+      return "did not converge";
+  }
+}
+
+class PetscSolver final : public LinearSolver {
+ public:
+  explicit PetscSolver(const LinearSolverSettings& s) : s_(s) {
+    ensure_petsc();
+    static std::atomic<int> count{0};
+    prefix_ = "lagfsi" + std::to_string(count++) + "_";
+    std::string opts = default_options(s);
+    if (!s.ksp.empty()) opts += " -ksp_type " + s.ksp;
+    if (!s.pc.empty()) opts += " -pc_type " + s.pc;
+    opts += " " + s.options;
+    options_ = prefixed(opts, prefix_);
+    check(PetscOptionsInsertString(nullptr, options_.c_str()), "reading the options");
+  }
+  ~PetscSolver() override {
+    destroy();
+    for (const auto& name : option_names(options_)) PetscOptionsClearValue(nullptr, name.c_str());
+  }
+  PetscSolver(const PetscSolver&) = delete;
+  PetscSolver& operator=(const PetscSolver&) = delete;
+
+  std::string type() const override { return s_.type == "mumps" ? "mumps" : "petsc"; }
+  void set_coordinates(const Vec& xy) override { coordinates_ = xy; }
+  bool symmetric_only() const override { return false; }
+
+ protected:
+  void do_setup(const SparseMatrix& A) override;
+  void do_solve(const Vec& b, Vec& x) override;
+
+ private:
+  [[noreturn]] void fail(const std::string& reason) const { throw SolverError(type() + ": " + reason); }
+  /// A new matrix, vectors and KSP for a new pattern (the rows of R, compressed row storage).
+  void create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R);
+  /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
+  void set_rigid_body_modes(PetscInt lo, PetscInt hi);
+  /// The values of R into the matrix (same pattern as at create).
+  void fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R);
+  void destroy() {
+    if (ksp_) KSPDestroy(&ksp_);
+    if (mat_) MatDestroy(&mat_);
+    if (x_) VecDestroy(&x_);
+    if (b_) VecDestroy(&b_);
+    ksp_ = nullptr;
+    mat_ = nullptr;
+    x_ = b_ = nullptr;
+  }
+
+  LinearSolverSettings s_;
+  std::string prefix_, options_;
+  KSP ksp_ = nullptr;
+  Mat mat_ = nullptr;
+  ::Vec x_ = nullptr, b_ = nullptr;
+  std::vector<PetscInt> outer_, inner_;  // the pattern of the matrix (row pointers, column indices)
+  Vec coordinates_;                      // set_coordinates: the rigid-body near-null space's nodes
+  bool ready_ = false;
+};
+
+void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
+  destroy();
+  const auto n = static_cast<PetscInt>(R.rows());
+  // The rows this process owns (all of them on one process), whole blocks of block_size rows.
+  const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
+  PetscInt nblocks = n / bs, local_blocks = PETSC_DECIDE, first_block = 0;
+  check(PetscSplitOwnership(kComm, &local_blocks, &nblocks), "PetscSplitOwnership");
+  MPI_Exscan(&local_blocks, &first_block, 1, MPIU_INT, MPI_SUM, kComm);
+  const PetscInt lo = first_block * bs, hi = lo + local_blocks * bs;
+  check(MatCreate(kComm, &mat_), "MatCreate");
+  check(MatSetSizes(mat_, hi - lo, hi - lo, n, n), "MatSetSizes");
+  check(MatSetType(mat_, MATAIJ), "MatSetType");
+  if (bs > 1) check(MatSetBlockSize(mat_, bs), "MatSetBlockSize");
+  check(MatSetOptionsPrefix(mat_, prefix_.c_str()), "MatSetOptionsPrefix");
+  std::vector<PetscInt> rows(static_cast<size_t>(hi - lo + 1));
+  for (PetscInt r = lo; r <= hi; ++r) rows[static_cast<size_t>(r - lo)] = R.outerIndexPtr()[r] - R.outerIndexPtr()[lo];
+  const PetscInt* cols = R.innerIndexPtr() + R.outerIndexPtr()[lo];
+  const double* vals = R.valuePtr() + R.outerIndexPtr()[lo];
+  check(MatSeqAIJSetPreallocationCSR(mat_, rows.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(mat_, rows.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
+  check(MatSetOption(mat_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  if (coordinates_.size() == n && bs == 2) set_rigid_body_modes(lo, hi);
+  check(MatCreateVecs(mat_, &x_, &b_), "MatCreateVecs");
+  check(KSPCreate(kComm, &ksp_), "KSPCreate");
+  check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
+  check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
+  check(KSPSetTolerances(ksp_, s_.rtol, 1e-300, PETSC_DEFAULT, s_.max_iterations), "KSPSetTolerances");
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions (check the solver's options)");
+  outer_.assign(R.outerIndexPtr(), R.outerIndexPtr() + R.outerSize() + 1);
+  inner_.assign(R.innerIndexPtr(), R.innerIndexPtr() + R.nonZeros());
+  ++symbolic_count_;
+}
+
+void PetscSolver::set_rigid_body_modes(PetscInt lo, PetscInt hi) {
+  ::Vec xy = nullptr;
+  check(VecCreateMPI(kComm, hi - lo, PETSC_DETERMINE, &xy), "VecCreateMPI");
+  check(VecSetBlockSize(xy, 2), "VecSetBlockSize");
+  PetscScalar* p = nullptr;
+  check(VecGetArray(xy, &p), "VecGetArray");
+  std::copy(coordinates_.data() + lo, coordinates_.data() + hi, p);
+  check(VecRestoreArray(xy, &p), "VecRestoreArray");
+  MatNullSpace modes = nullptr;
+  check(MatNullSpaceCreateRigidBody(xy, &modes), "MatNullSpaceCreateRigidBody");
+  check(MatSetNearNullSpace(mat_, modes), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&modes);
+  VecDestroy(&xy);
+}
+
+void PetscSolver::fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
+  PetscInt lo = 0, hi = 0;
+  check(MatGetOwnershipRange(mat_, &lo, &hi), "MatGetOwnershipRange");
+  for (PetscInt r = lo; r < hi; ++r) {
+    const PetscInt begin = R.outerIndexPtr()[r], count = R.outerIndexPtr()[r + 1] - begin;
+    check(MatSetValues(mat_, 1, &r, count, R.innerIndexPtr() + begin, R.valuePtr() + begin, INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+void PetscSolver::do_setup(const SparseMatrix& A) {
+  ready_ = false;
+  if (A.rows() != A.cols()) {
+    std::ostringstream os;
+    os << "matrix is not square (" << A.rows() << " x " << A.cols() << ")";
+    fail(os.str());
+  }
+  if (!std::all_of(A.valuePtr(), A.valuePtr() + A.nonZeros(), [](double v) { return std::isfinite(v); }))
+    fail("matrix has non-finite entries");
+  if (A.rows() == 0) {
+    ready_ = true;
+    return;
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R = A;
+  R.makeCompressed();
+  const bool same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
+                    inner_.size() == static_cast<size_t>(R.nonZeros()) &&
+                    std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&
+                    std::equal(inner_.begin(), inner_.end(), R.innerIndexPtr());
+  if (same) {
+    fill(R);
+    // New values on the same operator: without this the KSP keeps the preconditioner (or a direct
+    // factorization) of the old values.
+    check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
+  } else {
+    create(R);
+  }
+  // The numeric stage (the preconditioner: multigrid hierarchy, Schur approximation) happens here, not at
+  // the first solve.
+  check(KSPSetUp(ksp_), "KSPSetUp (preconditioner set-up)");
+  KSPType kt = nullptr;
+  PCType pt = nullptr;
+  PC pc = nullptr;
+  KSPGetType(ksp_, &kt);
+  KSPGetPC(ksp_, &pc);
+  PCGetType(pc, &pt);
+  report_.method = s_.type == "mumps" ? "mumps" : std::string(kt ? kt : "?") + "/" + (pt ? pt : "?");
+  // A factorization that met a zero pivot (MUMPS, or an ILU/LU preconditioner) does not raise an error in PETSc:
+  // it marks the preconditioner as failed.
+  PCFailedReason why = PC_NOERROR;
+  check(PCGetFailedReason(pc, &why), "PCGetFailedReason");
+  if (why == PC_FACTOR_STRUCT_ZEROPIVOT || why == PC_FACTOR_NUMERIC_ZEROPIVOT) fail("matrix is singular (zero pivot)");
+  if (why == PC_FACTOR_OUTMEMORY) fail("out of memory in the factorization");
+  if (why != PC_NOERROR) fail("preconditioner set-up failed (PETSc reason " + std::to_string(int(why)) + ")");
+  ready_ = true;
+}
+
+void PetscSolver::do_solve(const Vec& b, Vec& x) {
+  if (!ready_) fail("solve() called without a successful setup()");
+  const Index n = report_.unknowns;
+  if (b.size() != n) {
+    std::ostringstream os;
+    os << "right-hand side has size " << b.size() << ", matrix has " << n << " rows";
+    fail(os.str());
+  }
+  if (!b.allFinite()) fail("right-hand side has non-finite entries");
+  x = Vec::Zero(n);
+  const double bnorm = b.norm();
+  if (n == 0 || bnorm == 0.0) return;
+  PetscInt lo = 0, hi = 0;
+  check(VecGetOwnershipRange(b_, &lo, &hi), "VecGetOwnershipRange");
+  PetscScalar* pb = nullptr;
+  check(VecGetArray(b_, &pb), "VecGetArray");
+  std::copy(b.data() + lo, b.data() + hi, pb);
+  check(VecRestoreArray(b_, &pb), "VecRestoreArray");
+  check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+  PetscInt its = 0;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
+  check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  report_.iterations = s_.type == "mumps" ? 0 : static_cast<int>(its);  // a direct solve counts none
+  const PetscScalar* px = nullptr;
+  check(VecGetArrayRead(x_, &px), "VecGetArrayRead");
+  std::copy(px, px + (hi - lo), x.data() + lo);
+  check(VecRestoreArrayRead(x_, &px), "VecRestoreArrayRead");
+  // The true relative residual (one product): the report's number whatever norm the method monitored.
+  ::Vec r = nullptr;
+  check(VecDuplicate(b_, &r), "VecDuplicate");
+  check(MatMult(mat_, x_, r), "MatMult");
+  check(VecAYPX(r, -1.0, b_), "VecAYPX");
+  PetscReal rnorm = 0;
+  check(VecNorm(r, NORM_2, &rnorm), "VecNorm");
+  VecDestroy(&r);
+  report_.residual = static_cast<double>(rnorm) / bnorm;
+  // A method that monitors another norm (a left-preconditioned one chosen in the options) may stop with a true
+  // residual above the tolerance: beyond 10 rtol that is a failure too (below, the recurrence's round-off).
+  const bool inaccurate = reason > 0 && report_.residual > 10.0 * s_.rtol;
+  if (reason < 0 || inaccurate || !x.allFinite()) {
+    std::ostringstream os;
+    os << report_.method << ": Krylov solve of " << n
+       << " unknowns failed: " << (inaccurate ? "converged in its own norm only" : reason_text(reason)) << " after "
+       << its << " iterations, relative residual " << report_.residual << " (tolerance " << s_.rtol << ")";
+    fail(os.str());
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_petsc_solver(const LinearSolverSettings& settings) {
+  return std::make_unique<PetscSolver>(settings);
+}
+
+}  // namespace lagfsi

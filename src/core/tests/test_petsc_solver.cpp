@@ -1,0 +1,294 @@
+// Unit tests of the iterative backend and "auto" (linear_solver.hpp, petsc_solver.cpp): each kind's default
+// reaches the contract's tolerance, a saddle-point system matches the direct solution, a solve that cannot
+// converge fails with its reason and the solver recovers, pattern reuse, per-solver options, and the case
+// file's `linear_solver` value (linear_solver_input.hpp).
+#include <lagfsi/error.hpp>
+#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/linear_solver_input.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lagfsi;
+
+namespace {
+
+// 5-point Laplacian on an n x n grid (Dirichlet boundary eliminated) plus `shift` on the diagonal.
+SparseMatrix laplacian(int n, double shift) {
+  std::vector<Triplet> t;
+  auto id = [n](int i, int j) { return i * n + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
+      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0);
+      if (i < n - 1) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
+      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0);
+      if (j < n - 1) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
+    }
+  SparseMatrix A(n * n, n * n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+// A stabilized Stokes-like system on an n x n grid with interleaved [u_x u_y p] per node:
+//   [ m I + L (x) I2    G ] [u]   [f]
+//   [ G^T          -eps L ] [p] = [g]
+// with L the grid Laplacian, G a centred-difference gradient: the structure of the PSPG Newton matrix.
+SparseMatrix saddle_point(int n, double m, double eps) {
+  const SparseMatrix L = laplacian(n, 0.0);
+  std::vector<Triplet> t;
+  auto id = [n](int i, int j) { return i * n + j; };
+  for (int k = 0; k < L.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(L, k); it; ++it) {
+      const Index r = it.row(), c = it.col();
+      for (int d = 0; d < 2; ++d) t.emplace_back(3 * r + d, 3 * c + d, it.value() + (r == c ? m : 0.0));
+      t.emplace_back(3 * r + 2, 3 * c + 2, -eps * it.value());
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = id(i, j);
+      auto add = [&](int b, int d, double w) {
+        t.emplace_back(3 * a + d, 3 * b + 2, w);  // G: velocity row, pressure column
+        t.emplace_back(3 * b + 2, 3 * a + d, w);  // G^T
+      };
+      if (i + 1 < n) add(id(i + 1, j), 0, 0.5);
+      if (i > 0) add(id(i - 1, j), 0, -0.5);
+      if (j + 1 < n) add(id(i, j + 1), 1, 0.5);
+      if (j > 0) add(id(i, j - 1), 1, -0.5);
+    }
+  SparseMatrix A(3 * n * n, 3 * n * n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+Vec random_vector(Index n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  Vec v(n);
+  for (Index i = 0; i < n; ++i) v[i] = dist(gen);
+  return v;
+}
+
+double relative_residual(const SparseMatrix& A, const Vec& x, const Vec& b) { return (A * x - b).norm() / b.norm(); }
+
+LinearSolverSettings petsc(SystemKind kind, int block_size = 1) {
+  LinearSolverSettings s;
+  s.type = "petsc";
+  s.kind = kind;
+  s.block_size = block_size;
+  return s;
+}
+
+}  // namespace
+
+TEST(PetscSolver, CgWithAlgebraicMultigridReachesTheToleranceOnAPoissonSystem) {
+  const SparseMatrix A = laplacian(60, 1e-3);
+  auto solver = make_linear_solver(petsc(SystemKind::symmetric_positive_definite));
+  solver->setup(A);
+  const Vec b = random_vector(A.rows(), 1);
+  Vec x;
+  solver->solve(b, x);
+  EXPECT_EQ(solver->report().method, "cg/hypre");
+  EXPECT_GT(solver->report().iterations, 0);
+  EXPECT_LT(solver->report().iterations, 30);  // multigrid: a few iterations, not ~n
+  EXPECT_LE(relative_residual(A, x, b), 1e-8);
+  EXPECT_NEAR(solver->report().residual, relative_residual(A, x, b), 1e-12);
+}
+
+TEST(PetscSolver, MassDominatedSystemsUseJacobiPreconditionedCg) {
+  SparseMatrix A = laplacian(30, 50.0);
+  auto solver = make_linear_solver(petsc(SystemKind::mass_dominated));
+  solver->setup(A);
+  const Vec b = random_vector(A.rows(), 2);
+  Vec x;
+  solver->solve(b, x);
+  EXPECT_EQ(solver->report().method, "cg/jacobi");
+  EXPECT_LE(relative_residual(A, x, b), 1e-8);
+}
+
+TEST(PetscSolver, SaddlePointFieldSplitMatchesTheDirectSolution) {
+  const SparseMatrix A = saddle_point(24, 1.0, 1e-2);
+  const Vec b = random_vector(A.rows(), 3);
+  auto direct = make_linear_solver("klu");
+  direct->setup(A);
+  Vec x_direct;
+  direct->solve(b, x_direct);
+  auto solver = make_linear_solver(petsc(SystemKind::saddle_point, 3));
+  solver->setup(A);
+  Vec x;
+  solver->solve(b, x);
+  EXPECT_EQ(solver->report().method, "fgmres/fieldsplit");
+  EXPECT_LE(relative_residual(A, x, b), 1e-8);
+  EXPECT_LT((x - x_direct).norm(), 1e-6 * x_direct.norm());
+}
+
+TEST(PetscSolver, GeneralSystemsUseRightPreconditionedGmres) {
+  SparseMatrix A = laplacian(20, 0.5);
+  A.coeffRef(0, 1) = -2.0;  // unsymmetric
+  auto solver = make_linear_solver(petsc(SystemKind::general));
+  solver->setup(A);
+  const Vec b = random_vector(A.rows(), 4);
+  Vec x;
+  solver->solve(b, x);
+  EXPECT_EQ(solver->report().method, "gmres/hypre");
+  EXPECT_LE(relative_residual(A, x, b), 1e-8);
+}
+
+TEST(PetscSolver, ASolveThatCannotConvergeFailsWithItsReasonAndTheSolverRecovers) {
+  const SparseMatrix A = laplacian(40, 1e-4);
+  LinearSolverSettings s = petsc(SystemKind::symmetric_positive_definite);
+  s.pc = "none";
+  s.max_iterations = 3;
+  auto solver = make_linear_solver(s);
+  solver->setup(A);
+  const Vec b = random_vector(A.rows(), 5);
+  Vec x;
+  try {
+    solver->solve(b, x);
+    FAIL() << "no exception";
+  } catch (const SolverError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("iteration limit"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("after 3 iterations"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("relative residual"), std::string::npos) << msg;
+  }
+  EXPECT_FALSE(solver->report().failure.empty());
+  EXPECT_EQ(solver->statistics().failures, 1);
+  // A solvable system afterwards: the same solver works.
+  const SparseMatrix easy = laplacian(40, 1e4);  // converges in 3 unpreconditioned iterations
+  solver->setup(easy);
+  solver->solve(b, x);
+  EXPECT_LE(relative_residual(easy, x, b), 1e-8);
+  EXPECT_TRUE(solver->report().failure.empty());
+}
+
+TEST(PetscSolver, RebuildsTheLayoutOnlyWhenThePatternChanges) {
+  auto solver = make_linear_solver(petsc(SystemKind::symmetric_positive_definite));
+  SparseMatrix A = laplacian(12, 0.1);
+  A.makeCompressed();
+  solver->setup(A);
+  EXPECT_EQ(solver->symbolic_analyses(), 1);
+  SparseMatrix A2 = A;
+  for (Index k = 0; k < A2.nonZeros(); ++k) A2.valuePtr()[k] *= 2.0;
+  solver->setup(A2);
+  EXPECT_EQ(solver->symbolic_analyses(), 1);
+  const Vec b = random_vector(A.rows(), 6);
+  Vec x;
+  solver->solve(b, x);
+  EXPECT_LE(relative_residual(A2, x, b), 1e-8);  // the new values are the ones solved
+  solver->setup(laplacian(13, 0.1));
+  EXPECT_EQ(solver->symbolic_analyses(), 2);
+  EXPECT_EQ(solver->statistics().setups, 3);
+  EXPECT_EQ(solver->statistics().pattern_setups, 2);
+}
+
+TEST(PetscSolver, NewValuesOnTheSamePatternRebuildTheFactorization) {
+  // A direct solve through PETSc (MUMPS) with a stale factorization would be wrong, not merely slower.
+  LinearSolverSettings s = petsc(SystemKind::general);
+  s.type = "mumps";
+  auto solver = make_linear_solver(s);
+  SparseMatrix A = laplacian(10, 0.5);
+  A.makeCompressed();
+  const Vec b = random_vector(A.rows(), 9);
+  Vec x1, x2;
+  solver->setup(A);
+  solver->solve(b, x1);
+  SparseMatrix A2 = A;
+  for (Index k = 0; k < A2.nonZeros(); ++k) A2.valuePtr()[k] *= 2.0;
+  solver->setup(A2);
+  solver->solve(b, x2);
+  EXPECT_EQ(solver->symbolic_analyses(), 1);
+  EXPECT_LT(relative_residual(A2, x2, b), 1e-12);
+  EXPECT_LT((2.0 * x2 - x1).norm(), 1e-12 * x1.norm());
+}
+
+TEST(PetscSolver, RawOptionsReachOnlyTheirOwnSolver) {
+  LinearSolverSettings s = petsc(SystemKind::symmetric_positive_definite);
+  s.options = "-ksp_type gmres -pc_type jacobi -ksp_pc_side right";
+  auto mine = make_linear_solver(s);
+  auto other = make_linear_solver(petsc(SystemKind::symmetric_positive_definite));
+  const SparseMatrix A = laplacian(10, 1.0);
+  mine->setup(A);
+  other->setup(A);
+  EXPECT_EQ(mine->report().method, "gmres/jacobi");
+  EXPECT_EQ(other->report().method, "cg/hypre");
+}
+
+TEST(PetscSolver, AnUnknownPetscTypeIsASolverErrorNamingPetsc) {
+  LinearSolverSettings s = petsc(SystemKind::general);
+  s.ksp = "no_such_method";
+  auto solver = make_linear_solver(s);
+  try {
+    solver->setup(laplacian(4, 1.0));
+    FAIL() << "no exception";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("petsc"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PetscSolver, RejectsNonFiniteMatricesAndRightHandSides) {
+  auto solver = make_linear_solver(petsc(SystemKind::symmetric_positive_definite));
+  SparseMatrix A = laplacian(4, 1.0);
+  Vec x;
+  EXPECT_THROW(solver->solve(Vec::Ones(16), x), SolverError);  // no setup yet
+  A.coeffRef(3, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(solver->setup(A), SolverError);
+  solver->setup(laplacian(4, 1.0));
+  Vec b = Vec::Ones(16);
+  b[2] = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(solver->solve(b, x), SolverError);
+  EXPECT_THROW(solver->solve(Vec::Ones(15), x), SolverError);
+  solver->solve(Vec::Zero(16), x);  // a zero right-hand side: x = 0 without iterating
+  EXPECT_EQ(x, Vec::Zero(16));
+}
+
+TEST(PetscSolver, AutoIsDirectBelowTheThresholdAndKrylovFromIt) {
+  LinearSolverSettings s = petsc(SystemKind::symmetric_positive_definite);
+  s.type = "auto";
+  s.direct = "cholmod";
+  s.auto_threshold = 400;
+  auto solver = make_linear_solver(s);
+  const Vec b_small = random_vector(19 * 19, 7), b_large = random_vector(20 * 20, 8);
+  Vec x;
+  solver->setup(laplacian(19, 0.1));
+  solver->solve(b_small, x);
+  EXPECT_EQ(solver->report().method, "cholmod");
+  EXPECT_EQ(solver->report().iterations, 0);
+  const SparseMatrix A = laplacian(20, 0.1);
+  solver->setup(A);
+  solver->solve(b_large, x);
+  EXPECT_EQ(solver->report().method, "cg/hypre");
+  EXPECT_GT(solver->report().iterations, 0);
+  EXPECT_LE(relative_residual(A, x, b_large), 1e-8);
+  EXPECT_EQ(solver->statistics().solves, 2);
+  EXPECT_EQ(solver->statistics().iterative_solves, 1);
+}
+
+TEST(LinearSolverInput, TakesATypeStringOrAnObjectAndNamesThePathOfAnError) {
+  const LinearSolverSettings d = petsc(SystemKind::saddle_point, 3);
+  const std::vector<std::string> direct{"klu", "umfpack"};
+  Params p(Json::parse(R"({"a": "klu", "b": {"type": "petsc", "rtol": 1e-6, "pc": "jacobi"},
+                           "c": {"type": "auto", "typo": 1}, "d": "cholmod", "e": {"type": "petsc", "rtol": 2}})"),
+           "case.json");
+  EXPECT_EQ(read_linear_solver(p, "a", d, direct).type, "klu");
+  const LinearSolverSettings b = read_linear_solver(p, "b", d, direct);
+  EXPECT_EQ(b.type, "petsc");
+  EXPECT_EQ(b.rtol, 1e-6);
+  EXPECT_EQ(b.pc, "jacobi");
+  EXPECT_EQ(b.block_size, 3);  // the system's own settings are kept
+  EXPECT_EQ(b.kind, SystemKind::saddle_point);
+  auto message = [&](const char* key) {
+    try {
+      read_linear_solver(p, key, d, direct);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("c").find("/c/typo"), std::string::npos) << message("c");
+  EXPECT_NE(message("d").find("/d"), std::string::npos) << message("d");  // not a direct type of this system
+  EXPECT_NE(message("e").find("/e/rtol"), std::string::npos) << message("e");
+}

@@ -301,9 +301,10 @@ void FluidModel::write_output(double t) {
 }
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
-  const std::string t = p.choice("type", {"front", "column_height", "pressure", "elevation", "fluid_area", "water_area",
-                                          "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
-                                          "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
+  const std::string t =
+      p.choice("type", {"front", "column_height", "pressure", "elevation", "runup", "water_above", "fluid_area",
+                        "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
+                        "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe
   // asks for them (an extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work") {

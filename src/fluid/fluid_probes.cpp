@@ -1,5 +1,5 @@
-// The fluid's probes (fluid_probes.hpp): front, column height, elevation, pressure on a segment, area and
-// energies, sampled from the model's read accessors.
+// The fluid's probes (fluid_probes.hpp): front, column height, elevation, pressure on a segment, the run-up on a
+// wall, the share of the water above a level, area and energies, sampled from the model's read accessors.
 #include "fluid_probes.hpp"
 
 #include "fluid_model_impl.hpp"
@@ -44,6 +44,20 @@ const KeyTable kPressureKeys("/probes/* (fluid body, type pressure)", "The mean 
                                                         "Distance (m) from the segment within which particles "
                                                         "count; default: h / 2.",
                                                         kDerived}}));
+
+const KeyTable kRunupKeys("/probes/* (fluid body, type runup)",
+                          "The run-up (m): the largest y of the meshed (connected) fluid within a band along a wall "
+                          "segment; drops and a jet that left the wall do not count.",
+                          probe_keys({"runup"}, {{"from", nullptr, "One end of the wall segment [x, y] (m)."},
+                                                 {"to", nullptr, "The other end [x, y] (m)."},
+                                                 {"band", 0.0,
+                                                  "Distance (m) from the segment within which particles count; "
+                                                  "default: 1.5 h.",
+                                                  kDerived}}));
+
+const KeyTable kWaterAboveKeys("/probes/* (fluid body, type water_above)",
+                               "The share (0-1) of the fluid particles above a level, meshed or in flight.",
+                               probe_keys({"water_above"}, {{"level", nullptr, "The level y (m)."}}));
 
 const KeyTable kGlobalKeys(
     "/probes/* (fluid body, type fluid_area, water_area, kinetic_energy, ...)",
@@ -119,6 +133,18 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     inside("x", coord_, 0);
     read_band();
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
+  } else if (type_ == "runup") {
+    p.validate(kRunupKeys, {{"band", 1.5 * h}});
+    a_ = p.vec2("from");
+    b_ = p.vec2("to");
+    for (int axis = 0; axis < 2; ++axis) {
+      inside("from", a_[axis], axis);
+      inside("to", b_[axis], axis);
+    }
+    read_band();
+  } else if (type_ == "water_above") {
+    p.validate(kWaterAboveKeys);
+    coord_ = p.number("level");
   } else if (type_ == "pressure") {
     p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
     a_ = p.vec2("from");
@@ -149,6 +175,26 @@ std::vector<double> FluidProbe::sample() const {
     for (Index i = 0; i < n; ++i)
       if (m_.is_fluid(i)) v = std::max(v, m_.vel(i).norm());
     return {v};
+  }
+  if (type_ == "water_above") {
+    Index above = 0, fluid = 0;
+    for (Index i = 0; i < n; ++i) {
+      if (!m_.is_fluid(i)) continue;
+      ++fluid;
+      if (m_.pos(i).y() > coord_) ++above;
+    }
+    return {fluid ? static_cast<double>(above) / static_cast<double>(fluid) : 0.0};
+  }
+  if (type_ == "runup") {
+    const Vec2 d = b_ - a_;
+    double top = std::numeric_limits<double>::quiet_NaN();
+    for (Index i = 0; i < n; ++i) {
+      if (!m_.is_fluid(i) || !m_.is_connected(i)) continue;
+      const Vec2 q = m_.pos(i);
+      const double t = d.squaredNorm() > 0 ? std::clamp((q - a_).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((q - (a_ + t * d)).norm() <= band_ && !(q.y() <= top)) top = q.y();
+    }
+    return {top};
   }
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)

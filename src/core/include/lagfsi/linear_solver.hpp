@@ -64,7 +64,7 @@ struct SolveReport {
   std::string method;  ///< the direct type, or "ksp/pc" of the Krylov solver
   Index unknowns = 0;
   int iterations = 0;          ///< Krylov iterations of the last solve (0 for a direct solve)
-  double residual = 0.0;       ///< relative residual ||b - A x|| / ||b|| of the last solve (Krylov estimate)
+  double residual = 0.0;       ///< relative residual ||b - A x|| / ||b|| of the last Krylov solve (computed)
   double setup_seconds = 0.0;  ///< the last setup
   double solve_seconds = 0.0;  ///< the last solve
   std::string failure;         ///< why the last setup or solve failed ("" if it did not)

@@ -10,7 +10,9 @@ wall time per step of each run, their ratio, and the mean FSI iterations per cou
 run; the target is ratio <= k + 1 (each coupling pass re-solves the fluid step, whose matrices are
 factorized once per step and reused, and the solid). Also the split of the coupled step by phase.
 
-usage: /usr/bin/python3 tests/bench/bench_fsi.py [OUTDIR] [--build DIR] [--t0 0.15] [--t1 0.45]
+usage: /usr/bin/python3 tests/bench/bench_fsi.py [OUTDIR] [--build DIR] [--t0 0.15] [--t1 0.45] [--set KEY=VALUE]...
+--set adds an override to both runs, e.g. --set bodies.0.scheme.linear_solver=petsc (the Krylov solvers, whose
+preconditioner a coupling pass reuses as a direct solver reuses its factorization).
 """
 import argparse
 import csv
@@ -43,6 +45,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
     ap.add_argument("--t0", type=float, default=0.15)
     ap.add_argument("--t1", type=float, default=0.45)
+    ap.add_argument("--set", action="append", default=[])
     a = ap.parse_args()
     exe = os.path.join(a.build, "lagfsi")
     if not os.access(exe, os.X_OK):
@@ -50,7 +53,7 @@ def main():
     out = a.outdir or os.path.join(a.build, "bench_fsi")
     os.makedirs(out, exist_ok=True)
     end = "analysis.end_time=%g" % a.t1
-    coupled = run(exe, os.path.join(out, "coupled"), [end])
+    coupled = run(exe, os.path.join(out, "coupled"), [end] + a.set)
     # The rigid variant: the obstacle's outline joins the tank's wall; the solid body, the coupling and the
     # probes on them go.
     walls = ('bodies.0.walls=[{"name": "tank", "points": [[0, 0.584], [0, 0], [0.292, 0], [0.292, 0.08], '
@@ -60,7 +63,7 @@ def main():
     water = json.loads(text)["bodies"][0]
     rigid = run(exe, os.path.join(out, "rigid"),
                 [end, "bodies=[%s]" % json.dumps(water), walls, "couplings=[]",
-                 'probes=[{"name": "front_x", "type": "front", "body": "water", "floor": 0.0}]'])
+                 'probes=[{"name": "front_x", "type": "front", "body": "water", "floor": 0.0}]'] + a.set)
     tc, n = window(coupled, a.t0, a.t1, "t_step")
     tr, _ = window(rigid, a.t0, a.t1, "t_step")
     k, _ = window(coupled, a.t0, a.t1, "fsi_iterations")

@@ -2,8 +2,9 @@
 """Benchmark (not a test): how the cost of a PFEM step grows with the particle count, direct against Krylov.
 
 Runs `lagfsi run cases/dam_break_tank/case.json` with a finer spacing h = 0.0073 sqrt(861 / N) for each target
-particle count N (the same tank and water column; a few steps from rest at the case's dt: a per-step cost
-measurement, not a flow result), for each scheme (monolithic_pspg, fractional_step) and each linear solver
+particle count N (the same tank and water column) and the time step scaled with h (dt = 1 ms h / 0.0073: the same
+Courant number, so that a step asks the same of the Newton iterations at every size); a few steps from rest, a
+per-step cost measurement, not a flow result; for each scheme (monolithic_pspg, fractional_step) and each linear solver
 (the direct one: klu / cholmod; petsc: FGMRES + Schur field split / CG + BoomerAMG), on the given thread
 counts. Per run it reads summary.json and reports the particles, steps, microseconds per particle-step in all
 and by phase (remesh, assembly, solver set-up, solve, rest), the Krylov iterations per solve (mean, largest),
@@ -16,7 +17,8 @@ usage: /usr/bin/python3 tests/bench/bench_scaling.py [OUTDIR] [--build DIR] [--s
            [--direct-max 1.2e5] [--steps-large 3] [--doc docs/solvers.md]
 --direct-max: no direct run above this many particles (KLU at 1e5 particles takes ~20 s a step).
 --doc: rewrite the table between the markers <!-- bench_scaling begin --> and <!-- bench_scaling end --> of that
-file, with the commit and the machine.
+file, with the commit and the machine; --from-csv FILE: the rows of an earlier run's bench_scaling.csv, not new
+runs (the commit is then given with --commit).
 OUTDIR (default BUILD/bench_scaling/) receives bench_scaling.csv and the runs' output folders.
 """
 import argparse
@@ -32,7 +34,8 @@ CASE = os.path.join(REPO, "cases", "dam_break_tank", "case.json")
 H0, N0, DT = 0.0073, 861, 1e-3
 DIRECT = {"monolithic_pspg": "klu", "fractional_step": "cholmod"}
 COLUMNS = ["scheme", "solver", "threads", "target", "particles", "steps", "us_per_particle_step", "remesh",
-           "assembly", "setup", "solve", "rest", "iterations_mean", "iterations_max", "peak_mb", "floor",
+           "assembly", "setup", "solve", "rest", "solves_per_step", "iterations_mean", "iterations_max", "peak_mb",
+           "floor",
            "ratio_to_floor", "method"]
 
 
@@ -42,11 +45,13 @@ def steps_for(n, large):
 
 def run(exe, outdir, scheme, solver, threads, n, steps):
     h = H0 * (N0 / n) ** 0.5
+    dt = DT * h / H0
     tag = f"{scheme}_{solver}_t{threads}_n{int(n)}"
     out = os.path.join(outdir, tag)
     ls = DIRECT[scheme] if solver == "direct" else solver
     args = ["/usr/bin/time", "-f", "%M", exe, "run", CASE, "-o", out, "--quiet", "--threads", str(threads),
-            "--set", f"analysis.end_time={steps * DT + DT / 2}", "--set", f"bodies.0.spacing={h:.6g}",
+            "--set", f"analysis.dt={dt:.6g}", "--set", f"analysis.end_time={steps * dt + dt / 2:.6g}",
+            "--set", f"bodies.0.spacing={h:.6g}",
             "--set", f"bodies.0.scheme.type={scheme}", "--set", f"bodies.0.scheme.linear_solver={ls}",
             "--set", "output.vtk=false", "--set", "output.every=100000"]
     p = subprocess.run(args, capture_output=True, text=True)
@@ -69,7 +74,8 @@ def run(exe, outdir, scheme, solver, threads, n, steps):
          "steps": nsteps, "us_per_particle_step": t["total"] * scale, "remesh": t["remesh"] * scale,
          "assembly": t["assembly"] * scale, "setup": setup * scale, "solve": solve * scale,
          "rest": (t["total"] - t["remesh"] - t["assembly"] - setup - solve) * scale,
-         "iterations_mean": main.get("iterations_per_solve", 0.0), "iterations_max": main.get("iterations_max", 0),
+         "solves_per_step": main["solves"] / nsteps, "iterations_mean": main.get("iterations_per_solve", 0.0),
+         "iterations_max": main.get("iterations_max", 0),
          "peak_mb": peak_kb / 1024.0, "method": main["method"]}
     if scheme == "fractional_step" and solver == "petsc":
         p_ = solvers["pressure"]
@@ -79,17 +85,18 @@ def run(exe, outdir, scheme, solver, threads, n, steps):
 
 def markdown(rows, commit, machine):
     lines = [f"Measured at {commit} on {machine} (`tests/bench/bench_scaling.py`). µs per particle-step; "
-             "phases: remesh, assembly, solver set-up, solve; Krylov iterations per solve (mean / largest); "
+             "phases: remesh, assembly, solver set-up, solve; linear solves per step (the Newton iterations of the "
+             "monolithic scheme); Krylov iterations per solve (mean / largest); "
              "the floor is one remesh + one CG + BoomerAMG Poisson solve at the same size.", "",
              "| scheme | solver | threads | particles | steps | µs/particle-step | remesh | assembly | set-up | solve "
-             "| iterations | peak MB | × floor |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| solves/step | iterations | peak MB | × floor |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         it = f"{r['iterations_mean']:.1f} / {r['iterations_max']}" if r["iterations_max"] else "direct"
         ratio = f"{r['ratio_to_floor']:.1f}" if r.get("ratio_to_floor") else ""
         lines.append(f"| {r['scheme']} | {r['method']} | {r['threads']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.1f} | {r['remesh']:.1f} | {r['assembly']:.1f} | {r['setup']:.1f} | "
-                     f"{r['solve']:.1f} | {it} | {r['peak_mb']:.0f} | {ratio} |")
+                     f"{r['solve']:.1f} | {r['solves_per_step']:.1f} | {it} | {r['peak_mb']:.0f} | {ratio} |")
     return "\n".join(lines) + "\n"
 
 
@@ -104,7 +111,18 @@ def main():
     ap.add_argument("--direct-max", type=float, default=1.2e5)
     ap.add_argument("--steps-large", type=int, default=3)
     ap.add_argument("--doc")
+    ap.add_argument("--from-csv")
+    ap.add_argument("--commit")
     a = ap.parse_args()
+    if a.from_csv:
+        rows = []
+        for r in csv.DictReader(open(a.from_csv)):
+            for k in COLUMNS:
+                if k not in ("scheme", "solver", "method"):
+                    r[k] = float(r[k]) if "." in r[k] or "e" in r[k] else int(r[k]) if r[k] else 0
+            rows.append(r)
+        publish(rows, a.commit, a.doc)
+        return
     exe = os.path.join(a.build, "lagfsi")
     outdir = a.outdir or os.path.join(a.build, "bench_scaling")
     os.makedirs(outdir, exist_ok=True)
@@ -138,16 +156,21 @@ def main():
         w.writeheader()
         for r in rows:
             w.writerow({k: r.get(k, "") for k in COLUMNS})
-    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
+    publish(rows, None, a.doc)
+
+
+def publish(rows, commit, doc):
+    """Prints the table and, with `doc`, writes it between that file's markers."""
+    commit = commit or subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                                      text=True).stdout.strip()
     machine = f"{os.cpu_count()} cores, {platform.processor() or platform.machine()}"
     table = markdown(rows, commit, machine)
     print(table)
-    if a.doc:
-        text = open(a.doc).read()
+    if doc:
+        text = open(doc).read()
         b, e = "<!-- bench_scaling begin -->\n", "<!-- bench_scaling end -->"
         i, j = text.index(b) + len(b), text.index(e)
-        open(a.doc, "w").write(text[:i] + table + text[j:])
+        open(doc, "w").write(text[:i] + table + text[j:])
 
 
 if __name__ == "__main__":

@@ -40,8 +40,6 @@ int check_case(const RunOptions& opt) {
 
 namespace {
 
-using Clock = SteadyClock;
-
 /// The output folder of a run: not the case file's own, not in use by another run (locked until the run ends),
 /// created; a restart's must hold an earlier run. Returns false after printing the one-line error.
 bool prepare_output_folder(const RunOptions& opt, const fs::path& out, OutputLock& lock) {
@@ -101,7 +99,7 @@ std::vector<PhysicsModel*> pointers(const std::vector<std::unique_ptr<PhysicsMod
 /// checkpoint, so that a restart continues the series as if it had not stopped).
 struct RunOutputs {
   RunOutputs(const Case& c, const RunOptions& opt, Progress& progress, const SummaryWriter::Status& status, int threads,
-             Clock::time_point start, long restarted_step)
+             SteadyClock::time_point start, long restarted_step)
       : probes(c.ctx.out_dir / "probes.csv", probe_list(c)),
         log(c.ctx.out_dir / "log.csv"),
         checkpointer({c.ctx.out_dir, opt.case_file, c.checkpoint,
@@ -226,7 +224,7 @@ void report_end(const Simulation& sim, const Case& c, const RunOptions& opt, Pro
 }  // namespace
 
 int run_case(const RunOptions& opt) {
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
 #ifdef LAGFSI_HAVE_OPENMP
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const int threads = omp_get_max_threads();

@@ -10,8 +10,6 @@
 
 namespace lagfsi {
 
-using Clock = SteadyClock;
-
 Simulation::Simulation(const AnalysisSettings& analysis, std::vector<PhysicsModel*> bodies,
                        std::vector<PhysicsModel*> couplings, std::vector<PhysicsModel*> steppers)
     : analysis_(analysis),
@@ -118,7 +116,7 @@ void Simulation::account(const StepRecord& r) {
 
 void Simulation::run(const std::function<bool(const Simulation&)>& stop) {
   while (!finished() && !stop(*this)) {
-    const auto t_step = Clock::now();
+    const auto t_step = SteadyClock::now();
     StepRecord r = advance();
     step_ = r.step;
     t_ = r.t;

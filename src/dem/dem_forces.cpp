@@ -13,17 +13,15 @@
 // pairs present in both lists are carried over.
 #include "dem_body.hpp"
 
+#include <lagfsi/stopwatch.hpp>
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace lagfsi::dem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 template <class Law, bool Energy>
 void pair_pass(DemBody& b, const Law& law, const double* x, const double* v, double h) {
@@ -183,16 +181,16 @@ void sweep(DemBody& b, const Law& law, const double* x, const double* v, double 
 }  // namespace
 
 void DemBody::compute_forces(const Vec& x, const Vec& v, double tt, double h, Vec& f) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   const Index n = static_cast<Index>(size());
   if (f.size() != 3 * n) f.resize(3 * n);
   if (blast && tt >= 0 && blast->active(tt)) {
-    const auto tb = Clock::now();
+    const auto tb = SteadyClock::now();
     blast_force.assign(2 * n, 0.0);
     blast->apply(x.data(), 3, discs.radius.data(), n, tt, blast_force);
     for (Index p = 0; p < n; ++p)
       blast_work += h * (blast_force[2 * p] * v[3 * p] + blast_force[2 * p + 1] * v[3 * p + 1]);
-    t_blast += since(tb);
+    t_blast += seconds_since(tb);
   } else if (!blast_force.empty()) {
     blast_force.clear();
   }
@@ -224,7 +222,7 @@ void DemBody::compute_forces(const Vec& x, const Vec& v, double tt, double h, Ve
     elastic = el;
     dissipated += dis;
   }
-  t_force += since(t0);
+  t_force += seconds_since(t0);
 }
 
 void DemBody::apply_marks() {
@@ -264,7 +262,7 @@ bool DemBody::needs_rebuild(double h) const {
 }
 
 void DemBody::rebuild() {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   const Index n = static_cast<Index>(size());
   const double cell = 2 * r_max + skin;
   grid.bin(state.x.data(), 3, n, cell);
@@ -347,7 +345,7 @@ void DemBody::rebuild() {
   wall_offset_build.resize(walls.size());
   for (size_t w = 0; w < walls.size(); ++w) wall_offset_build[w] = walls[w].offset;
   ++rebuilds;
-  t_rebuild += since(t0);
+  t_rebuild += seconds_since(t0);
 }
 
 double DemBody::kinetic_energy() const {

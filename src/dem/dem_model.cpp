@@ -5,9 +5,9 @@
 
 #include <lagfsi/dem/dem_model.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -15,10 +15,7 @@ namespace lagfsi {
 
 namespace dem {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
+namespace {}  // namespace
 
 DemModel::DemModel(Params body, const CaseContext& ctx) : ctx_(ctx), body_(std::make_unique<DemBody>()) {
   settle_time_ = read_dem_body(std::move(body), ctx, *body_);
@@ -100,7 +97,7 @@ std::vector<std::string> DemModel::warnings() const { return body_->warnings; }
 
 void DemModel::initialize() {
   DemBody& b = *body_;
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   // Here, not when the body is read: `lagfsi check` prints errors alone, and a run's later input error too.
   if (!ctx_.quiet)
     std::fprintf(stderr, "[%s] %zu discs, critical step %.4g s, sub-step %.4g s\n", b.name.c_str(), b.size(),
@@ -240,7 +237,7 @@ int DemModel::advance(double t_new, double) {
 }
 
 void DemModel::write_output(double t) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   writer_->write(t, *body_);
   times_.output += seconds_since(t0);
 }

@@ -2,9 +2,9 @@
 // Algorithms 1 and 6), commit of the material history at convergence. See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -12,8 +12,6 @@
 namespace lagfsi::efg {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 std::string number_text(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", x);
@@ -41,14 +39,14 @@ void EfgModel::predict(double t_new, double dt) {
 
 IterationReport EfgModel::solve_iteration() {
   IterationReport rep;
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   assemble(x_, fint_, true);
   Vec Q = lambda_ * P_ - fint_;
   for (Index d = 0; d < nsys_; ++d)
     if (is_fixed_[d]) Q[d] = 0.0;
   rep.residual = Q.norm();
   rep.residual_ref = std::max({(lambda_ * P_).norm(), fint_.norm(), 1e-300});
-  times_.assembly += since(t0);
+  times_.assembly += seconds_since(t0);
   if (!std::isfinite(rep.residual)) fail_solve("non-finite residual at load factor " + number_text(lambda_), true);
   if (iter_ > 0 && rep.residual <= ctx_.analysis.newton.residual_tolerance * rep.residual_ref) {
     check_runaway();
@@ -83,10 +81,10 @@ IterationReport EfgModel::solve_iteration() {
                     lambda_, iter_ + 1, relative);
     fail_solve(m);
   }
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   factorize();
-  times_.factorization += since(t0);
-  t0 = Clock::now();
+  times_.factorization += seconds_since(t0);
+  t0 = SteadyClock::now();
   const Vec dUP = solve(P_, true);
   Vec dx;
   double dl;
@@ -98,7 +96,7 @@ IterationReport EfgModel::solve_iteration() {
     dl = control_.corrector(to_control(dUP), to_control(dUQ), to_control(dx_step_));
     dx = dl * dUP + dUQ;
   }
-  times_.solve += since(t0);
+  times_.solve += seconds_since(t0);
   if (!std::isfinite(dl) || !dx.allFinite())
     fail_solve("non-finite load-factor increment at load factor " + number_text(lambda_), true);
   x_ += dx;

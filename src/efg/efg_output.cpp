@@ -3,6 +3,7 @@
 // the body's summary.json entry (discretisation, shape-function cost, conditioning, load factor, energy error).
 // See src/efg/include/lagfsi/efg/efg_model.hpp.
 #include <lagfsi/efg/efg_model.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <Eigen/Dense>
 #include <chrono>
@@ -11,12 +12,8 @@
 
 namespace lagfsi::efg {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-}
-
 void EfgModel::write_output(double t) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   if (!series_) {
     series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
     gauss_series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_ + "_gauss");
@@ -62,7 +59,7 @@ void EfgModel::write_output(double t) {
   }
   g.point_fields = {dmg, sg, ep};
   gauss_series_->write(t, g);
-  times_.output += std::chrono::duration<double>(Clock::now() - t0).count();
+  times_.output += std::chrono::duration<double>(SteadyClock::now() - t0).count();
 }
 
 std::pair<double, double> EfgModel::energy_error() const {

@@ -4,6 +4,7 @@
 #include <lagfsi/efg/efg_model.hpp>
 #include <lagfsi/efg/integration.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <Eigen/Dense>
 
@@ -12,10 +13,6 @@
 #include <set>
 
 namespace lagfsi::efg {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-}  // namespace
 
 void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool derivatives) const {
   const auto& cell = mesh_.cells[c];
@@ -85,7 +82,7 @@ void EfgModel::shape_at(Index c, double xi, double eta, ShapeValues& out, bool d
 }
 
 void EfgModel::build_integration_points() {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   std::vector<double> gx, gw, ex, ew;
   gauss_legendre(gauss_, gx, gw);
   gauss_legendre(std::max(2, gauss_), ex, ew);  // the edge rule of the traction loads
@@ -191,7 +188,7 @@ void EfgModel::build_integration_points() {
       for (size_t k = 0; k < sh.nodes.size(); ++k)
         if (sh.N[k] != 0.0) node_eval_[n].emplace_back(sh.nodes[k], sh.N[k]);
     }
-  t_shape_ = std::chrono::duration<double>(Clock::now() - t0).count();
+  t_shape_ = std::chrono::duration<double>(SteadyClock::now() - t0).count();
 }
 
 void EfgModel::fail_input(const std::string& key, const std::string& reason) const {

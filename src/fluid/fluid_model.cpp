@@ -51,7 +51,7 @@ void FluidModel::set_dirichlet(double t_start) {
 void FluidModel::initialize() {
   // The step the driver will take (the analysis' nominal one): what the kernels see before the first predict().
   step_.dt = ctx_.analysis.dt;
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
   if (c_.remesh) {
@@ -115,7 +115,7 @@ void FluidModel::initialize() {
 }
 
 void FluidModel::predict(double t_new, double dt) {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   // A retry of a failed step (the driver calls predict again with a smaller dt): start again from the
   // step's initial pressures. The failed attempt left its own in p, and taking them as the start of the
   // retry compounded the failure (a projection velocity growing like 1/dt at every halving).
@@ -152,7 +152,7 @@ void FluidModel::predict(double t_new, double dt) {
   }
   step_meshed_ = true;
   times_.remesh += seconds_since(t0);
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   solved_once_ = true;
   mesh_.flatten();
   set_dirichlet(t_new - dt);
@@ -243,7 +243,7 @@ Json FluidModel::summary() const {
 }
 
 void FluidModel::write_output(double t) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, c_.name);
   const Index np = cloud_.n();
   const Vec& x = cloud_.x();

@@ -146,7 +146,7 @@ class FractionalStep final : public FluidScheme {
 };
 
 void FractionalStep::factorize_step_matrix(LinearSolver& solver, const SparseMatrix& A, const char* what) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   try {
     solver.setup(A);
   } catch (const SolverError& err) {
@@ -165,7 +165,7 @@ bool FractionalStep::viscous_implicit() const {
 
 IterationReport FractionalStep::iterate() {
   Work wk;
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   geometry(wk);
   prescribe_velocities(wk);
   f_.times.assembly += seconds_since(t0);
@@ -268,7 +268,7 @@ void FractionalStep::predict_velocities(Work& wk) {
   const Vec& v = f_.cloud.v();
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
   Vec& pres = f_.cloud.p();
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   // 1. Predictor: gravity, the pressure of the last step and the viscous force. Explicit: all of
   // mu A (L + L^T) grad N_a at u^n. Implicit: the Laplacian part mu A (grad N_a . grad N_b) u_b at u*
   // (the stiff part, one scalar matrix for both components) and the transposed part mu A L^T grad N_a
@@ -310,7 +310,7 @@ void FractionalStep::predict_velocities(Work& wk) {
     for (int c = 0; c < 2; ++c) {
       // The matrix depends on the step's mesh only: a re-solve of the step (a coupling pass) reuses it.
       if ((c == 0 && !step_factorized_) || !same) {
-        t0 = Clock::now();
+        t0 = SteadyClock::now();
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
         element_loop(ne, scatter_, {values_of(viscous_)}, [&](Index e, std::span<double* const> out) {
@@ -327,7 +327,7 @@ void FractionalStep::predict_velocities(Work& wk) {
         f_.times.assembly += seconds_since(t0);
         factorize_step_matrix(*viscous_solver_, viscous_, "viscous predictor");
       }
-      t0 = Clock::now();
+      t0 = SteadyClock::now();
       Vec known = Vec::Zero(np), rhs(np);
       for (Index i = 0; i < np; ++i)
         if (wk.vfixed[2 * i + c]) known[i] = wk.ustar[2 * i + c];
@@ -351,9 +351,9 @@ void FractionalStep::pressure_increment(Work& wk) {
   const double dt = f_.step.dt;
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
   const std::vector<char>& fixed = f_.step.fixed;
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   // 2. Pressure increment (the matrix, like the viscous one, only once per step's mesh).
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   const bool assemble = !step_factorized_;
   double* lv = poisson_.valuePtr();
   if (assemble) std::fill(lv, lv + poisson_.nonZeros(), 0.0);
@@ -383,7 +383,7 @@ void FractionalStep::pressure_increment(Work& wk) {
   f_.times.assembly += seconds_since(t0);
   if (assemble) factorize_step_matrix(*solver_, poisson_, "pressure step");
   step_factorized_ = true;
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   solver_->solve(rhs, wk.dp);
   f_.times.solve += seconds_since(t0);
 }
@@ -396,9 +396,9 @@ void FractionalStep::correct(Work& wk) {
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
   Vec& pres = f_.cloud.p();
   Vec& ghost_force = f_.ghosts.forces();
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   // 3. Correction and new positions.
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   v_new_ = wk.ustar;
   wk.du = Vec::Zero(2 * np);
   element_loop(ne, scatter_, {values_of(wk.du)}, [&](Index e, std::span<double* const> out) {
@@ -480,7 +480,7 @@ IterationReport FractionalStep::move_and_check(Work& wk) {
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
   Vec& pres = f_.cloud.p();
   Vec& x_new = f_.step.x;  // the step's new positions
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   for (Index i = 0; i < np; ++i)
     if (kind[i] == ParticleKind::Fluid) {  // symplectic Euler's drift: x^{n+1} = x^n + dt u^{n+1}
       x_new.segment<2>(2 * i) = x.segment<2>(2 * i);

@@ -118,7 +118,7 @@ class PspgScheme final : public FluidScheme {
 };
 
 IterationReport PspgScheme::iterate() {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   FluidStep& step = f_.step;
   Vec& x_new = step.x;
   const double h = f_.c.h;
@@ -323,7 +323,7 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
   const std::vector<char>& fixed = step.fixed;
   const double h = f_.c.h;
   const Index np = f_.cloud.n();
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   if (s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0) {
     try {
       solver_->setup(J_);
@@ -333,7 +333,7 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
   }
   ++iter_in_step_;
   f_.times.factorization += seconds_since(t0);
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   Vec d;
   solver_->solve(-R, d);
   f_.times.solve += seconds_since(t0);

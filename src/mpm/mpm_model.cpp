@@ -5,17 +5,13 @@
 #include "mpm_scheme.hpp"
 
 #include <lagfsi/mpm/mpm_model.hpp>
-
-#include <chrono>
+#include <lagfsi/stopwatch.hpp>
 
 namespace lagfsi {
 
 namespace mpm {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
+namespace {}  // namespace
 
 MpmModel::~MpmModel() = default;
 
@@ -61,7 +57,7 @@ int MpmModel::advance(double t_new, double dt) {
 }
 
 void MpmModel::write_output(double t) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   writer_->write(t, *body_);
   times_.output += seconds_since(t0);
 }

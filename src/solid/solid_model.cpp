@@ -8,7 +8,7 @@ namespace lagfsi::solid {
 // ------------------------------------------------------------------------------------------ lifecycle
 
 void SolidModel::initialize() {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   if (damp_stiff_ > 0) {
     K0_ = body_->pattern();
     Vec f;
@@ -49,7 +49,7 @@ void SolidModel::predict(double t_new, double dt) {
 }
 
 void SolidModel::finalize_step() {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   const Vec x_old = state_.x;
   const Vec fext_old = external_force(old_state_.t, x_old);
   if (is_static_) {
@@ -86,7 +86,7 @@ void SolidModel::finalize_step() {
 }
 
 void SolidModel::write_output(double t) {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, name_);
   body_->write_output(*series_, t, state_);
   times_.output += seconds_since(t0);

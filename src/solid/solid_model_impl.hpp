@@ -12,21 +12,18 @@
 #include <lagfsi/solid/shell.hpp>
 #include <lagfsi/solid/solid.hpp>
 #include <lagfsi/solid/solid_model.hpp>
+#include <lagfsi/stopwatch.hpp>
 #include <lagfsi/time_function.hpp>
 #include <lagfsi/time_integrator.hpp>
 #include <lagfsi/vtk_output.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <set>
 
 namespace lagfsi::solid {
-
-using Clock = std::chrono::steady_clock;
-inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// A load: a fixed nodal force vector scaled by a function of time (and by the load factor in statics), or
 /// a follower pressure whose nodal forces are fn(t) P x (P from follower_pressure_matrix).

@@ -78,7 +78,7 @@ IterationReport SolidModel::solve_iteration() {
 }
 
 IterationReport SolidModel::newton_iteration() {
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   IterationReport rep;
   Vec r;
   const Index nd = body_->num_dofs();
@@ -135,10 +135,10 @@ IterationReport SolidModel::newton_iteration() {
     return rep;
   }
 
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   factorize(H_);
   times_.factorization += seconds_since(t0);
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   Vec dx;
   solver_->solve(-r, dx);
   times_.solve += seconds_since(t0);

@@ -17,9 +17,9 @@
 /// Each solver has an options prefix of its own ("lagfsi<k>_"), so that two solvers of a run (a Poisson and a
 /// predictor) never read each other's options; the case file's raw options are prefixed the same way.
 ///
-/// Distributed-ready: the matrix is a PETSc AIJ matrix and the vectors PETSc vectors on a communicator (one
-/// process here: PETSC_COMM_SELF); rows are inserted by the ownership range PETSc reports, so that a caller
-/// owning a slice of the rows fills only its slice, and the solve never gathers the system.
+/// Distributed: the matrix is a PETSc AIJ matrix and the vectors PETSc vectors on a communicator
+/// (PETSC_COMM_SELF, or PETSC_COMM_WORLD with LinearSolverSettings::distributed); each process inserts the rows
+/// of the ownership range PETSc gives it, and the solve never gathers the system.
 #include "petsc_solver.hpp"
 
 #include <lagfsi/error.hpp>
@@ -35,9 +35,6 @@
 namespace lagfsi {
 
 namespace {
-
-/// The communicator of the matrices and vectors: the systems are assembled whole on one process for now.
-const MPI_Comm kComm = PETSC_COMM_SELF;
 
 /// Throws SolverError with PETSc's text for a non-zero error code.
 void check(PetscErrorCode code, const char* what) {
@@ -139,6 +136,7 @@ class PetscSolver final : public LinearSolver {
  public:
   explicit PetscSolver(const LinearSolverSettings& s) : s_(s) {
     ensure_petsc();
+    if (s.distributed) comm_ = PETSC_COMM_WORLD;
     static std::atomic<int> count{0};
     prefix_ = "lagfsi" + std::to_string(count++) + "_";
     std::string opts = default_options(s);
@@ -182,6 +180,7 @@ class PetscSolver final : public LinearSolver {
   }
 
   LinearSolverSettings s_;
+  MPI_Comm comm_ = PETSC_COMM_SELF;
   std::string prefix_, options_;
   KSP ksp_ = nullptr;
   Mat mat_ = nullptr;
@@ -197,10 +196,13 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
   // The rows this process owns (all of them on one process), whole blocks of block_size rows.
   const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
   PetscInt nblocks = n / bs, local_blocks = PETSC_DECIDE, first_block = 0;
-  check(PetscSplitOwnership(kComm, &local_blocks, &nblocks), "PetscSplitOwnership");
-  MPI_Exscan(&local_blocks, &first_block, 1, MPIU_INT, MPI_SUM, kComm);
+  check(PetscSplitOwnership(comm_, &local_blocks, &nblocks), "PetscSplitOwnership");
+  MPI_Exscan(&local_blocks, &first_block, 1, MPIU_INT, MPI_SUM, comm_);
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  if (rank == 0) first_block = 0;  // MPI_Exscan leaves the first process's result undefined
   const PetscInt lo = first_block * bs, hi = lo + local_blocks * bs;
-  check(MatCreate(kComm, &mat_), "MatCreate");
+  check(MatCreate(comm_, &mat_), "MatCreate");
   check(MatSetSizes(mat_, hi - lo, hi - lo, n, n), "MatSetSizes");
   check(MatSetType(mat_, MATAIJ), "MatSetType");
   if (bs > 1) check(MatSetBlockSize(mat_, bs), "MatSetBlockSize");
@@ -214,7 +216,7 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
   check(MatSetOption(mat_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   if (coordinates_.size() == n && bs == 2) set_rigid_body_modes(lo, hi);
   check(MatCreateVecs(mat_, &x_, &b_), "MatCreateVecs");
-  check(KSPCreate(kComm, &ksp_), "KSPCreate");
+  check(KSPCreate(comm_, &ksp_), "KSPCreate");
   check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
   check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
   check(KSPSetTolerances(ksp_, s_.rtol, 1e-300, PETSC_DEFAULT, s_.max_iterations), "KSPSetTolerances");
@@ -226,7 +228,7 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
 
 void PetscSolver::set_rigid_body_modes(PetscInt lo, PetscInt hi) {
   ::Vec xy = nullptr;
-  check(VecCreateMPI(kComm, hi - lo, PETSC_DETERMINE, &xy), "VecCreateMPI");
+  check(VecCreateMPI(comm_, hi - lo, PETSC_DETERMINE, &xy), "VecCreateMPI");
   check(VecSetBlockSize(xy, 2), "VecSetBlockSize");
   PetscScalar* p = nullptr;
   check(VecGetArray(xy, &p), "VecGetArray");
@@ -266,10 +268,12 @@ void PetscSolver::do_setup(const SparseMatrix& A) {
   }
   Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R = A;
   R.makeCompressed();
-  const bool same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
-                    inner_.size() == static_cast<size_t>(R.nonZeros()) &&
-                    std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&
-                    std::equal(inner_.begin(), inner_.end(), R.innerIndexPtr());
+  int same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
+             inner_.size() == static_cast<size_t>(R.nonZeros()) &&
+             std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&
+             std::equal(inner_.begin(), inner_.end(), R.innerIndexPtr());
+  // Creating the matrix is collective: every process takes the same branch.
+  MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
   if (same) {
     fill(R);
     // New values on the same operator: without this the KSP keeps the preconditioner (or a direct
@@ -308,14 +312,16 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   }
   if (!b.allFinite()) fail("right-hand side has non-finite entries");
   x = Vec::Zero(n);
-  const double bnorm = b.norm();
-  if (n == 0 || bnorm == 0.0) return;
+  if (n == 0) return;
   PetscInt lo = 0, hi = 0;
   check(VecGetOwnershipRange(b_, &lo, &hi), "VecGetOwnershipRange");
   PetscScalar* pb = nullptr;
   check(VecGetArray(b_, &pb), "VecGetArray");
   std::copy(b.data() + lo, b.data() + hi, pb);
   check(VecRestoreArray(b_, &pb), "VecRestoreArray");
+  PetscReal bnorm = 0;  // over every process's rows
+  check(VecNorm(b_, NORM_2, &bnorm), "VecNorm");
+  if (bnorm == 0.0) return;
   check(KSPSolve(ksp_, b_, x_), "KSPSolve");
   PetscInt its = 0;
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -334,7 +340,7 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   PetscReal rnorm = 0;
   check(VecNorm(r, NORM_2, &rnorm), "VecNorm");
   VecDestroy(&r);
-  report_.residual = static_cast<double>(rnorm) / bnorm;
+  report_.residual = static_cast<double>(rnorm / bnorm);
   // A method that monitors another norm (a left-preconditioned one chosen in the options) may stop with a true
   // residual above the tolerance: beyond 10 rtol that is a failure too (below, the recurrence's round-off).
   const bool inaccurate = reason > 0 && report_.residual > 10.0 * s_.rtol;

@@ -57,6 +57,11 @@ struct LinearSolverSettings {
   std::string ksp;               ///< PETSc KSPType ("" = the kind's default)
   std::string pc;                ///< PETSc PCType ("" = the kind's default)
   std::string options;           ///< raw PETSc options for this solver alone, e.g. "-ksp_type bcgs -pc_type ilu"
+  /// PETSc types only: the matrix and vectors span every MPI process (PETSC_COMM_WORLD), each process filling
+  /// and solving the rows PETSc gives it (whole blocks of block_size); setup() reads only those rows of A and
+  /// solve() reads those entries of b and writes those of x (the others are zero). Off: one process
+  /// (PETSC_COMM_SELF) with every row.
+  bool distributed = false;
 };
 
 /// The last setup and solve.

@@ -165,6 +165,30 @@ TEST(PetscSolver, ASolveThatCannotConvergeFailsWithItsReasonAndTheSolverRecovers
   EXPECT_TRUE(solver->report().failure.empty());
 }
 
+TEST(PetscSolver, ASingularSystemWithNoSolutionIsAClearFailureNotAnAnswer) {
+  // A pure-Neumann Laplacian (an enclosed fluid's pressure with no level): singular, and a right-hand side with a
+  // non-zero mean has no solution. The solve must fail with its reason, not return the best it reached.
+  SparseMatrix A = laplacian(20, 0.0);
+  for (Index k = 0; k < A.outerSize(); ++k) {
+    double off = 0.0;
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      if (it.row() != it.col()) off += it.value();
+    A.coeffRef(k, k) = -off;  // rows sum to zero: constants are the null space
+  }
+  LinearSolverSettings s = petsc(SystemKind::symmetric_positive_definite);
+  s.max_iterations = 200;
+  auto solver = make_linear_solver(s);
+  solver->setup(A);
+  Vec x;
+  try {
+    solver->solve(Vec::Ones(A.rows()), x);
+    FAIL() << "no exception";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("failed"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("relative residual"), std::string::npos) << e.what();
+  }
+}
+
 TEST(PetscSolver, RebuildsTheLayoutOnlyWhenThePatternChanges) {
   auto solver = make_linear_solver(petsc(SystemKind::symmetric_positive_definite));
   SparseMatrix A = laplacian(12, 0.1);

@@ -25,7 +25,7 @@ const KeyTable kAnalysisKeys(
      {"newton", Json::object(), "Newton iteration settings (see /analysis/newton)."},
      {"linear_solver", Json{{"type", "cholmod"}},
       "Sparse linear solver of the solids, shells and EFG bodies: {\"type\": ...} with the keys of linear solver "
-      "(object form) (Krylov: CG + BoomerAMG)."}});
+      "(object form) (petsc: CG + GAMG with the rigid-body modes; mumps: MUMPS's LU)."}});
 
 const KeyTable kNewmarkKeys(
     "/analysis/integrator (type newmark)", "Newmark's method (beta = 1/4, gamma = 1/2: the trapezoidal rule).",

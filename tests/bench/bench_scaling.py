@@ -6,15 +6,16 @@ particle count N (the same tank and water column) and the time step scaled with 
 Courant number, so that a step asks the same of the Newton iterations at every size); a few steps from rest, a
 per-step cost measurement, not a flow result; for each scheme (monolithic_pspg, fractional_step) and each linear solver
 (the direct one: klu / cholmod; petsc: FGMRES + Schur field split / CG + BoomerAMG), on the given thread
-counts. Per run it reads summary.json and reports the particles, steps, microseconds per particle-step in all
-and by phase (remesh, assembly, solver set-up, solve, rest), the Krylov iterations per solve (mean, largest),
+counts. Per run it reads log.csv and summary.json and reports the particles, steps, microseconds per
+particle-step in all and by phase (remesh, assembly, solver set-up, solve, rest) over the steps after the first
+`--warmup` ones (the first steps of a large run pay for touching its memory the first time, and start from rest), the Krylov iterations per solve (mean, largest),
 and the peak memory (/usr/bin/time). The floor at each size is one remesh plus one Poisson solve with
 CG + BoomerAMG per particle-step: the remesh and pressure-solver times of the fractional step's Krylov run at
 that size.
 
 usage: /usr/bin/python3 tests/bench/bench_scaling.py [OUTDIR] [--build DIR] [--sizes 1e3 1e4 1e5]
            [--schemes monolithic_pspg fractional_step] [--solvers direct petsc] [--threads 1 2]
-           [--direct-max 1.2e5] [--steps-large 3] [--doc docs/solvers.md]
+           [--direct-max 1.2e5] [--steps 12] [--warmup 3] [--doc docs/solvers.md]
 --direct-max: no direct run above this many particles (KLU at 1e5 particles takes ~20 s a step).
 --doc: rewrite the table between the markers <!-- bench_scaling begin --> and <!-- bench_scaling end --> of that
 file, with the commit and the machine; --from-csv FILE: the rows of an earlier run's bench_scaling.csv, not new
@@ -39,11 +40,7 @@ COLUMNS = ["scheme", "solver", "threads", "target", "particles", "steps", "us_pe
            "ratio_to_floor", "method"]
 
 
-def steps_for(n, large):
-    return 10 if n <= 2e4 else large
-
-
-def run(exe, outdir, scheme, solver, threads, n, steps):
+def run(exe, outdir, scheme, solver, threads, n, steps, warmup):
     h = H0 * (N0 / n) ** 0.5
     dt = DT * h / H0
     tag = f"{scheme}_{solver}_t{threads}_n{int(n)}"
@@ -61,30 +58,38 @@ def run(exe, outdir, scheme, solver, threads, n, steps):
     peak_kb = float(p.stderr.strip().splitlines()[-1])
     s = json.load(open(os.path.join(out, "summary.json")))
     b = s["bodies"][0]
-    t = b["timing"]
     rows = list(csv.DictReader(open(os.path.join(out, "log.csv"))))
     nsteps = len(rows)
+    steady = rows[warmup:] if nsteps > warmup else rows
     particles = b["particles"]["final"]
-    scale = 1e6 / (particles * nsteps)
+    scale = 1e6 / sum(float(r_["nodes"]) for r_ in steady)  # per particle-step over the steady steps
+
+    def phase(col):
+        return sum(float(r_[col]) for r_ in steady) * scale
+
     solvers = b["linear_solvers"]
     main = solvers.get("newton", solvers.get("pressure"))
-    setup = sum(v["setup_seconds"] for v in solvers.values())
-    solve = sum(v["solve_seconds"] for v in solvers.values())
+    total = phase("t_step")
+    # log.csv's factorization and solve columns are the linear solvers' set-up and solve.
     r = {"scheme": scheme, "solver": solver, "threads": threads, "target": int(n), "particles": particles,
-         "steps": nsteps, "us_per_particle_step": t["total"] * scale, "remesh": t["remesh"] * scale,
-         "assembly": t["assembly"] * scale, "setup": setup * scale, "solve": solve * scale,
-         "rest": (t["total"] - t["remesh"] - t["assembly"] - setup - solve) * scale,
+         "steps": len(steady), "us_per_particle_step": total, "remesh": phase("t_remesh"),
+         "assembly": phase("t_assembly"), "setup": phase("t_factorization"), "solve": phase("t_solve"),
+         "rest": total - phase("t_remesh") - phase("t_assembly") - phase("t_factorization") - phase("t_solve"),
          "solves_per_step": main["solves"] / nsteps, "iterations_mean": main.get("iterations_per_solve", 0.0),
          "iterations_max": main.get("iterations_max", 0),
          "peak_mb": peak_kb / 1024.0, "method": main["method"]}
     if scheme == "fractional_step" and solver == "petsc":
-        p_ = solvers["pressure"]
-        r["floor_value"] = (t["remesh"] + p_["setup_seconds"] + p_["solve_seconds"]) * scale
+        # The floor: the remesh and the Poisson's set-up and solve (the viscous predictor's share taken out).
+        p_, v_ = solvers["pressure"], solvers.get("viscous", {})
+        share = (p_["setup_seconds"] + p_["solve_seconds"]) / max(
+            1e-300, p_["setup_seconds"] + p_["solve_seconds"] + v_.get("setup_seconds", 0) + v_.get("solve_seconds", 0))
+        r["floor_value"] = r["remesh"] + share * (r["setup"] + r["solve"])
     return r
 
 
 def markdown(rows, commit, machine):
-    lines = [f"Measured at {commit} on {machine} (`tests/bench/bench_scaling.py`). µs per particle-step; "
+    lines = [f"Measured at {commit} on {machine} (`tests/bench/bench_scaling.py`). µs per particle-step over the "
+             "steps after the first three (the steps column counts those); "
              "phases: remesh, assembly, solver set-up, solve; linear solves per step (the Newton iterations of the "
              "monolithic scheme); Krylov iterations per solve (mean / largest); "
              "the floor is one remesh + one CG + BoomerAMG Poisson solve at the same size.", "",
@@ -109,7 +114,8 @@ def main():
     ap.add_argument("--solvers", nargs="+", default=["direct", "petsc"])
     ap.add_argument("--threads", nargs="+", type=int, default=[1])
     ap.add_argument("--direct-max", type=float, default=1.2e5)
-    ap.add_argument("--steps-large", type=int, default=3)
+    ap.add_argument("--steps", type=int, default=12)
+    ap.add_argument("--warmup", type=int, default=3)
     ap.add_argument("--doc")
     ap.add_argument("--from-csv")
     ap.add_argument("--commit")
@@ -137,7 +143,7 @@ def main():
             for scheme, solver in order:
                 if solver == "direct" and n > a.direct_max:
                     continue
-                r = run(exe, outdir, scheme, solver, threads, n, steps_for(n, a.steps_large))
+                r = run(exe, outdir, scheme, solver, threads, n, a.steps, a.warmup)
                 if r is None:
                     continue
                 if "floor_value" in r and floor is None:

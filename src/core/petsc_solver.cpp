@@ -87,14 +87,18 @@ std::string default_options(const LinearSolverSettings& s) {
   return "-ksp_type gmres -ksp_pc_side right -ksp_gmres_restart 100 -pc_type hypre";
 }
 
+/// Whether a token of an options string names an option ("-ksp_type"), not a value ("-1e-3", "cg").
+bool is_option_name(const std::string& token) {
+  return token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1]));
+}
+
 /// `options` with `prefix` after the dash of every option name ("-ksp_type cg" -> "-lagfsi3_ksp_type cg"); a
 /// token such as "-1e-3" is a value, not a name.
 std::string prefixed(const std::string& options, const std::string& prefix) {
   std::istringstream in(options);
   std::string token, out;
   while (in >> token) {
-    if (token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1])))
-      token = "-" + prefix + token.substr(1);
+    if (is_option_name(token)) token = "-" + prefix + token.substr(1);
     out += (out.empty() ? "" : " ") + token;
   }
   return out;
@@ -106,8 +110,7 @@ std::vector<std::string> option_names(const std::string& options) {
   std::vector<std::string> names;
   std::string token;
   while (in >> token)
-    if (token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1])))
-      names.push_back(token);
+    if (is_option_name(token)) names.push_back(token);
   return names;
 }
 

@@ -75,6 +75,12 @@ class FluidProbe final : public Probe {
   std::vector<double> sample() const override;
 
  private:
+  /// The distance from q to the segment a_-b_ (a point when a_ = b_).
+  double segment_distance(const Vec2& q) const {
+    const Vec2 d = b_ - a_;
+    const double t = d.squaredNorm() > 0 ? std::clamp((q - a_).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    return (q - (a_ + t * d)).norm();
+  }
   const FluidModel& m_;
   std::string name_, type_;
   Vec2 a_ = Vec2::Zero(), b_ = Vec2::Zero();
@@ -112,6 +118,15 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
       p.fail(key, "lies outside the fluid and its walls (" + std::string(axis ? "y" : "x") + " from " +
                       std::to_string(lo[axis] + h) + " to " + std::to_string(hi[axis] - h) + ")");
   };
+  // A segment's ends ("from", "to"; the pressure sensor, the wall of a run-up).
+  auto read_segment = [&] {
+    a_ = p.vec2("from");
+    b_ = p.vec2("to");
+    for (int axis = 0; axis < 2; ++axis) {
+      inside("from", a_[axis], axis);
+      inside("to", b_[axis], axis);
+    }
+  };
   if (type_ == "front") {
     // largest x of fluid within a band above the floor
     p.validate(kFrontKeys, {{"band", 2.0 * h}});
@@ -135,24 +150,14 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     mesh_method_ = p.choice("method", {"mesh", "particles"}) == "mesh";
   } else if (type_ == "runup") {
     p.validate(kRunupKeys, {{"band", 1.5 * h}});
-    a_ = p.vec2("from");
-    b_ = p.vec2("to");
-    for (int axis = 0; axis < 2; ++axis) {
-      inside("from", a_[axis], axis);
-      inside("to", b_[axis], axis);
-    }
+    read_segment();
     read_band();
   } else if (type_ == "water_above") {
     p.validate(kWaterAboveKeys);
     coord_ = p.number("level");
   } else if (type_ == "pressure") {
     p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
-    a_ = p.vec2("from");
-    b_ = p.vec2("to");
-    for (int axis = 0; axis < 2; ++axis) {
-      inside("from", a_[axis], axis);
-      inside("to", b_[axis], axis);
-    }
+    read_segment();
     band_ = p.positive("tolerance");
   } else {
     p.validate(kGlobalKeys);
@@ -186,25 +191,20 @@ std::vector<double> FluidProbe::sample() const {
     return {fluid ? static_cast<double>(above) / static_cast<double>(fluid) : 0.0};
   }
   if (type_ == "runup") {
-    const Vec2 d = b_ - a_;
     double top = std::numeric_limits<double>::quiet_NaN();
     for (Index i = 0; i < n; ++i) {
       if (!m_.is_fluid(i) || !m_.is_connected(i)) continue;
       const Vec2 q = m_.pos(i);
-      const double t = d.squaredNorm() > 0 ? std::clamp((q - a_).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((q - (a_ + t * d)).norm() <= band_ && !(q.y() <= top)) top = q.y();
+      if (segment_distance(q) <= band_ && !(q.y() <= top)) top = q.y();
     }
     return {top};
   }
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
-    const Vec2 d = b_ - a_;
     double s = 0;
     int count = 0;
     for (Index i = 0; i < n; ++i) {
-      const Vec2 q = m_.pos(i);
-      const double t = d.squaredNorm() > 0 ? std::clamp((q - a_).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((q - (a_ + t * d)).norm() <= band_ && m_.is_connected(i)) {
+      if (segment_distance(m_.pos(i)) <= band_ && m_.is_connected(i)) {
         s += m_.pressure(i);
         ++count;
       }

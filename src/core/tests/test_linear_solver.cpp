@@ -6,33 +6,18 @@
 #include <gtest/gtest.h>
 #include <Eigen/LU>
 
+#include "test_systems.hpp"
+
 #include <cmath>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
 using namespace lagfsi;
+using lagfsi::testing::laplacian;
+using lagfsi::testing::random_vector;
 
 namespace {
-
-// 5-point Laplacian on an n x n grid (Dirichlet boundary eliminated) plus `shift` on the diagonal.
-// Eigenvalues are in (shift, 8 + shift): SPD for shift > 0, indefinite for shift in (-8, 0).
-SparseMatrix laplacian(int n, double shift) {
-  std::vector<Triplet> t;
-  auto id = [n](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0);
-      if (i < n - 1) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0);
-      if (j < n - 1) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  SparseMatrix A(n * n, n * n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
 
 // Upwind convection-diffusion on an n x n grid: same pattern as the Laplacian, unsymmetric values.
 SparseMatrix convection_diffusion(int n, double peclet) {
@@ -49,14 +34,6 @@ SparseMatrix convection_diffusion(int n, double peclet) {
   SparseMatrix A(n * n, n * n);
   A.setFromTriplets(t.begin(), t.end());
   return A;
-}
-
-Vec random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> dist(-1.0, 1.0);
-  Vec v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = dist(gen);
-  return v;
 }
 
 double relative_residual(const SparseMatrix& A, const Vec& x, const Vec& b) { return (A * x - b).norm() / b.norm(); }

@@ -1,5 +1,6 @@
 #include "fluid_boundaries.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
@@ -95,8 +96,41 @@ void FluidBoundaries::set_motion(double t, Vec& v, Vec& a) const {
     }
 }
 
-void FluidBoundaries::after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
-  for (auto& b : boundaries_) b->after_step(cloud, x_start, t);
+double FluidBoundaries::after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
+  double added = 0.0;
+  for (auto& b : boundaries_) added += b->after_step(cloud, x_start, t);
+  return added;
+}
+
+bool FluidBoundaries::open() const {
+  return std::any_of(boundaries_.begin(), boundaries_.end(), [](const auto& b) { return b->open(); });
+}
+
+int FluidBoundaries::taker(const Vec2& x) const {
+  for (size_t b = 0; b < boundaries_.size(); ++b)
+    if (boundaries_[b]->takes(x)) return static_cast<int>(b);
+  return -1;
+}
+
+void FluidBoundaries::clear_free_surface(std::vector<std::uint8_t>& free) const {
+  for (const WallConstraint& k : all_)
+    if (k.boundary > 0 && boundaries_[static_cast<size_t>(k.boundary - 1)]->holds_pressure() &&
+        static_cast<size_t>(k.i) < free.size())
+      free[static_cast<size_t>(k.i)] = 0;
+}
+
+void FluidBoundaries::fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,
+                                          std::vector<char>& fixed) const {
+  for (const auto& b : boundaries_)
+    if (b->open())
+      for (Index i = 0; i < cloud.n(); ++i)
+        if (cloud.is_fluid(i) && free[static_cast<size_t>(i)] && b->zero_pressure(cloud.pos(i))) fixed[3 * i + 2] = 1;
+}
+
+std::vector<std::array<Vec2, 3>> FluidBoundaries::fluid_regions() const {
+  std::vector<std::array<Vec2, 3>> out;
+  for (const auto& b : boundaries_) b->fluid_regions(out);
+  return out;
 }
 
 Json FluidBoundaries::summary() const {

@@ -7,6 +7,8 @@
 #include "fluid_boundary.hpp"
 #include "fluid_walls.hpp"
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -32,8 +34,23 @@ class FluidBoundaries {
   /// The walls' prescribed velocities and accelerations at time t (FluidWalls::set_wall_motion), then the
   /// boundaries' components.
   void set_motion(double t, Vec& v, Vec& a) const;
-  /// Every boundary's after_step.
-  void after_step(ParticleCloud& cloud, const Vec& x_start, double t);
+  /// Every boundary's after_step; the area they added (inflows).
+  double after_step(ParticleCloud& cloud, const Vec& x_start, double t);
+  /// Open boundaries present (an outflow or an inflow).
+  bool open() const;
+  /// The outflow that takes a fluid particle at x (its index), or -1 (none does).
+  int taker(const Vec2& x) const;
+  /// Boundary b took `particles` particles and `area` of the mesh.
+  void left(int b, long particles, double area) { boundaries_[static_cast<size_t>(b)]->left(particles, area); }
+  /// The particles held by a boundary that keeps their pressure unknown are not free surface (`free`, per
+  /// particle); the step's constraints (update) must be current.
+  void clear_free_surface(std::vector<std::uint8_t>& free) const;
+  /// An outflow's particles on the mesh's boundary (`free`) take p = 0: their pressure components of `fixed` (3 per
+  /// particle) are set.
+  void fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,
+                           std::vector<char>& fixed) const;
+  /// The triangles the boundaries add to the advected domain.
+  std::vector<std::array<Vec2, 3>> fluid_regions() const;
   /// summary.json: each boundary's numbers by its name (empty without boundaries).
   Json summary() const;
   void serialize(StateArchive& ar);

@@ -6,11 +6,14 @@
 /// on the particles after the step. The schemes see every boundary's prescribed components through
 /// FluidBoundaries (fluid_boundaries.hpp), the walls' first: a component prescribed as x_c(t) enters the
 /// monolithic scheme as a Dirichlet condition on the position, the fractional step's predictor as one on the
-/// velocity dx_c/dt.
+/// velocity dx_c/dt. Open boundaries (an inflow, an outflow) also add particles after a step, take particles at the
+/// remesh, add the region they fill to the advected domain and keep the pressure of the particles they hold
+/// unknown (not free surface).
 #include <lagfsi/fluid/particle_cloud.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/state_archive.hpp>
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -45,12 +48,38 @@ class FluidBoundary {
   virtual double velocity(const BoundaryConstraint& k, double t) const = 0;
   virtual double acceleration(const BoundaryConstraint& k, double t) const = 0;
   /// After the step converged (x_start: the positions at its start; t its end): acts on the particles
-  /// (injects, removes, puts back). None by default.
-  virtual void after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
+  /// (injects, puts back; a particle is only appended here, never removed: the step's mesh still refers to the
+  /// cloud). Returns the area of the fluid it added (an inflow). None by default.
+  virtual double after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
     (void)cloud;
     (void)x_start;
     (void)t;
+    return 0.0;
   }
+  /// An outflow: whether the fluid particle at x has left through it (it is removed at the next remesh with the
+  /// elements it belongs to; `left` then receives their number and area). None by default.
+  virtual bool takes(const Vec2& x) const {
+    (void)x;
+    return false;
+  }
+  virtual void left(long particles, double area) {
+    (void)particles;
+    (void)area;
+  }
+  /// An outflow: a particle on the mesh's boundary at x takes p = 0 exactly, whatever the free surface's condition
+  /// (a weak one leaves a confined flow's pressure level floating). None by default.
+  virtual bool zero_pressure(const Vec2& x) const {
+    (void)x;
+    return false;
+  }
+  /// Water enters or leaves through it (an inflow, an outflow).
+  virtual bool open() const { return false; }
+  /// The particles it holds keep their pressure unknown and their continuity equation: they are not free surface
+  /// though they lie on the mesh's boundary (an inflow's layer carries the pressure of the flow behind it).
+  virtual bool holds_pressure() const { return false; }
+  /// Triangles the advected and level-set detections count as fluid besides the last step's mesh (the strip an
+  /// inflow fills with its new particles). None by default.
+  virtual void fluid_regions(std::vector<std::array<Vec2, 3>>& out) const { (void)out; }
   /// Its numbers for summary.json (an object under the boundary's name; empty: none).
   virtual Json summary() const { return Json::object(); }
   /// Checkpoints: what it keeps from step to step.

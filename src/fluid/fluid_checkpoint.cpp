@@ -43,7 +43,8 @@ void RemeshPipeline::serialize(StateArchive& ar) {
 
 void VolumeCorrection::serialize(StateArchive& ar) {
   ar.section("volume");
-  ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, correction_energy_, change_in_steps_);
+  ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, area_entered_, correction_energy_,
+        change_in_steps_);
   // The step's starting shares are not kept: set_remeshed makes them, at the next step.
   ar.io(in_flight_, water_drift_max_, returned_through_bulk_);
 }

@@ -7,7 +7,7 @@
 namespace lagfsi {
 
 bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
-                  double& inertia2, double& gravity2) {
+                  double& inertia2, double& gravity2, double* viscous2) {
   const double A2 =
       (in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() - (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x();
   if (!(A2 > 0.0)) return false;
@@ -61,6 +61,7 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
     r.segment<2>(3 * a) = inertia + visc + pres + grav;
     inertia2 += inertia.squaredNorm();
     gravity2 += grav.squaredNorm();
+    if (viscous2) *viscous2 += visc.squaredNorm();
     // continuity
     r[3 * a + 2] =
         A / 3.0 * (divv + in.c_vol) + tau * A * dN[a].dot(amean - in.g) + tau / in.rho * A * dN[a].dot(gradp);

@@ -24,6 +24,7 @@ void mark_free_surface(RemeshPipeline& remesh, const FluidWalls& walls, Index n)
 
 void FluidModel::set_dirichlet(double t_start) {
   boundaries_.update(cloud_, t_start);
+  boundaries_.clear_free_surface(mesh_.free);  // an inflow's layer keeps its pressure unknown
   const Index np = cloud_.n();
   const std::vector<ParticleKind>& kind = cloud_.kind();
   std::vector<char>& fixed = step_.fixed;
@@ -35,6 +36,7 @@ void FluidModel::set_dirichlet(double t_start) {
     if (!mesh_.connected[i] || free_surface) fixed[3 * i + 2] = 1;
   }
   for (const auto& k : boundaries_.constraints()) fixed[3 * k.i + k.c] = 1;
+  if (c_.remesh) boundaries_.fix_outlet_pressure(cloud_, mesh_.free, fixed);
   // Dry wall particles: a wall particle in no element with an interior (non-free-surface) fluid particle
   // is above or beside the free surface (a meniscus element between a surface particle and the wall);
   // its pressure is the free-surface one. Left unknown, its continuity row sees only gravity and builds a
@@ -197,7 +199,8 @@ void FluidModel::finalize_step() {
   } else if (c_.remesh) {
     walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
   }
-  boundaries_.after_step(cloud_, x_start, step_.t_new);
+  const double entered = boundaries_.after_step(cloud_, x_start, step_.t_new);  // an inflow's new particles
+  if (entered > 0) volume_.add_entered(entered);
   volume_.set_end(mesh_.area(cloud_.x()));
   step_.p_scale = std::max(step_.p_scale, cloud_.p().cwiseAbs().maxCoeff());
 }
@@ -301,10 +304,10 @@ void FluidModel::write_output(double t) {
 }
 
 std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
-  const std::string t =
-      p.choice("type", {"front", "column_height", "pressure", "elevation", "runup", "water_above", "fluid_area",
-                        "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
-                        "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
+  const std::string t = p.choice(
+      "type", {"front", "column_height", "pressure", "elevation", "runup", "water_above", "discharge", "velocity",
+               "fluid_area", "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
+               "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe
   // asks for them (an extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work") {

@@ -4,6 +4,8 @@
 
 #include "fluid_model_impl.hpp"
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -59,6 +61,20 @@ const KeyTable kWaterAboveKeys("/probes/* (fluid body, type water_above)",
                                "The share (0-1) of the fluid particles above a level, meshed or in flight.",
                                probe_keys({"water_above"}, {{"level", nullptr, "The level y (m)."}}));
 
+const KeyTable kDischargeKeys(
+    "/probes/* (fluid body, type discharge)",
+    "The flow rate (m^2/s per m of thickness) through a segment, the integral of u.n over the part of it in the "
+    "meshed fluid (P1 velocity); n points to the right of the segment seen from `from` to `to` (from (x, 0) to "
+    "(x, H): the flow in +x).",
+    probe_keys({"discharge"}, {{"from", nullptr, "One end of the segment [x, y] (m)."},
+                               {"to", nullptr, "The other end [x, y] (m)."}}));
+
+const KeyTable kVelocityKeys("/probes/* (fluid body, type velocity)",
+                             "A component of the fluid's velocity (m/s) at a point, interpolated in the element "
+                             "that holds it (P1); nan where no element does.",
+                             probe_keys({"velocity"}, {{"at", nullptr, "The point [x, y] (m)."},
+                                                       {"component", nullptr, "`x` or `y`."}}));
+
 const KeyTable kGlobalKeys(
     "/probes/* (fluid body, type fluid_area, water_area, kinetic_energy, ...)",
     "A quantity of the whole fluid: fluid_area (m^2), water_area (with particles in flight), kinetic_energy, "
@@ -86,6 +102,11 @@ class FluidProbe final : public Probe {
   Vec2 a_ = Vec2::Zero(), b_ = Vec2::Zero();
   double band_ = 0, coord_ = 0;
   bool mesh_method_ = true;
+  int component_ = 0;
+  /// The discharge through a_-b_ (the part of it in each element, where u is linear: its midpoint's u.n).
+  double discharge() const;
+  /// Component component_ of the velocity at a_, or nan.
+  double velocity_at() const;
 };
 
 }  // namespace
@@ -155,6 +176,16 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
   } else if (type_ == "water_above") {
     p.validate(kWaterAboveKeys);
     coord_ = p.number("level");
+  } else if (type_ == "discharge") {
+    p.validate(kDischargeKeys);
+    read_segment();
+    if (!((b_ - a_).norm() > 0)) p.fail("to", "the segment's two ends coincide");
+  } else if (type_ == "velocity") {
+    p.validate(kVelocityKeys);
+    a_ = p.vec2("at");
+    inside("at", a_.x(), 0);
+    inside("at", a_.y(), 1);
+    component_ = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
   } else if (type_ == "pressure") {
     p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
     read_segment();
@@ -181,6 +212,8 @@ std::vector<double> FluidProbe::sample() const {
       if (m_.is_fluid(i)) v = std::max(v, m_.vel(i).norm());
     return {v};
   }
+  if (type_ == "discharge") return {discharge()};
+  if (type_ == "velocity") return {velocity_at()};
   if (type_ == "water_above") {
     Index above = 0, fluid = 0;
     for (Index i = 0; i < n; ++i) {
@@ -230,6 +263,58 @@ std::vector<double> FluidProbe::sample() const {
     if (type_ == "elevation" && std::abs(q.x() - coord_) <= band_) best = std::max(best, q.y());
   }
   return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+}
+
+double FluidProbe::discharge() const {
+  const Vec2 d = b_ - a_;
+  const double length = d.norm();
+  const Vec2 n = Vec2(d.y(), -d.x()) / length;
+  double q = 0;
+  for (const auto& t : m_.triangles()) {
+    const Vec2 p[3] = {m_.pos(t[0]), m_.pos(t[1]), m_.pos(t[2])};
+    const double area2 = cross(p[1] - p[0], p[2] - p[0]);
+    if (!(std::abs(area2) > 0)) continue;
+    // The segment's parameters s in [0, 1] inside the triangle: each edge's half-plane clips [lo, hi].
+    double lo = 0, hi = 1;
+    for (int k = 0; k < 3 && lo < hi; ++k) {
+      const Vec2 e0 = p[k], e1 = p[(k + 1) % 3];
+      // Inside: sign(area2) * cross(e1 - e0, x - e0) >= 0, linear in s: f(s) = f0 + s df.
+      const double f0 = area2 * cross(e1 - e0, a_ - e0), df = area2 * cross(e1 - e0, d);
+      if (df == 0) {
+        if (f0 < 0) hi = lo;
+      } else if (df > 0) {
+        lo = std::max(lo, -f0 / df);
+      } else {
+        hi = std::min(hi, -f0 / df);
+      }
+    }
+    if (!(hi > lo)) continue;
+    const Vec2 mid = a_ + 0.5 * (lo + hi) * d;
+    // P1 interpolation of the velocity at the chord's midpoint (barycentric coordinates).
+    Vec2 u = Vec2::Zero();
+    for (int k = 0; k < 3; ++k) u += cross(p[(k + 1) % 3] - mid, p[(k + 2) % 3] - mid) / area2 * m_.vel(t[k]);
+    q += (hi - lo) * length * u.dot(n);
+  }
+  return q;
+}
+
+double FluidProbe::velocity_at() const {
+  for (const auto& t : m_.triangles()) {
+    const Vec2 p[3] = {m_.pos(t[0]), m_.pos(t[1]), m_.pos(t[2])};
+    const double area2 = cross(p[1] - p[0], p[2] - p[0]);
+    if (!(std::abs(area2) > 0)) continue;
+    double w[3];
+    bool in = true;
+    for (int k = 0; k < 3; ++k) {
+      w[k] = cross(p[(k + 1) % 3] - a_, p[(k + 2) % 3] - a_) / area2;
+      in = in && w[k] >= -1e-12;
+    }
+    if (!in) continue;
+    double v = 0;
+    for (int k = 0; k < 3; ++k) v += w[k] * m_.vel(t[k])[component_];
+    return v;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace lagfsi::fluid

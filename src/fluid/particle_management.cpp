@@ -56,6 +56,7 @@ meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b)
   std::vector<std::array<Vec2, 3>> triangles;
   triangles.reserve(mesh_.tri.size());
   for (const auto& t : mesh_.tri) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
+  triangles.insert(triangles.end(), open_regions_.begin(), open_regions_.end());  // an inflow's strip
   std::vector<std::array<Vec2, 2>> boundary;
   for (Index i = 0; i < cloud_.n(); ++i)
     if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});

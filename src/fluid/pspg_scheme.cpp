@@ -102,7 +102,7 @@ class PspgScheme final : public FluidScheme {
   /// the Dirichlet rows with the reactions they give (ghost, wall and constraint forces; returns the squared
   /// momentum residual), and the Newton correction (factorize, solve, update).
   void assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2, double& gravity2,
-                         std::vector<char>& has_mass);
+                         double& viscous2, std::vector<char>& has_mass);
   void add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,
                                   const std::vector<char>& has_mass);
   double apply_dirichlet(Vec& R, double sp);
@@ -139,8 +139,8 @@ IterationReport PspgScheme::iterate() {
   double* jv = J_.valuePtr();
   std::fill(jv, jv + J_.nonZeros(), 0.0);
   std::vector<char> has_mass(np, 0);
-  double inertia2 = 0, gravity2 = 0;
-  assemble_elements(ev, cf, R, inertia2, gravity2, has_mass);
+  double inertia2 = 0, gravity2 = 0, viscous2 = 0;
+  assemble_elements(ev, cf, R, inertia2, gravity2, viscous2, has_mass);
 
   add_free_and_friction_rows(ev, cf, R, has_mass);
   // Pressure columns scaled by s_p (apply_dirichlet).
@@ -148,7 +148,7 @@ IterationReport PspgScheme::iterate() {
   const double rm2 = apply_dirichlet(R, sp);
   IterationReport rep;
   rep.residual = std::sqrt(rm2);
-  rep.residual_ref = std::max(std::sqrt(inertia2), std::sqrt(gravity2));
+  rep.residual_ref = std::max({std::sqrt(inertia2), std::sqrt(gravity2), std::sqrt(viscous2)});
   rep.increment = last_dx_;
   rep.increment_ref = h;
   if (!std::isfinite(rep.residual)) throw SolverError("body '" + f_.c.name + "': non-finite residual");
@@ -168,7 +168,7 @@ IterationReport PspgScheme::iterate() {
 }
 
 void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2_out,
-                                   double& gravity2_out, std::vector<char>& has_mass) {
+                                   double& gravity2_out, double& viscous2_out, std::vector<char>& has_mass) {
   const FluidMesh& mesh = f_.mesh;
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
   const FluidStep& step = f_.step;
@@ -179,7 +179,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
   // busy-waiting threads can cost a time slice), each thread adding into its own copy of R and of the matrix's
   // values, merged in thread order (parallel_sum.hpp: the same sums in every run with the same threads).
   scatter_.targets({values_of(R), values_of(J_)});
-  ThreadSums<2> scales;  // inertia2, gravity2
+  ThreadSums<3> scales;  // inertia2, gravity2, viscous2
   std::vector<char> assembled(ne, 0);
   Index failed = ne;  // the lowest element that failed (the one reported, whatever the threads' timing)
 #pragma omp parallel if (ne >= 2000)
@@ -187,15 +187,15 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
     const auto out = scatter_.arrays();
     double* const Rt = out[0];
     double* const jt = out[1];
-    double inertia2 = 0, gravity2 = 0;
+    double inertia2 = 0, gravity2 = 0, viscous2 = 0;
 #pragma omp for schedule(static) nowait
     for (Index e = 0; e < ne; ++e) {
       const auto& t = mesh.tri[e];
       const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
       Eigen::Matrix<double, 9, 1> r;
       Eigen::Matrix<double, 9, 9> K;
-      double i2 = 0, g2 = 0;
-      if (!pspg_element(in, r, K, i2, g2)) {
+      double i2 = 0, g2 = 0, v2 = 0;
+      if (!pspg_element(in, r, K, i2, g2, &v2)) {
         // Turned over by a structure's boundary sliding past another prescribed particle (see
         // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
         if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
@@ -211,6 +211,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
       }
       inertia2 += i2;
       gravity2 += g2;
+      viscous2 += v2;
       // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
       if (!f_.walls.frames().empty())
         for (int a = 0; a < 3; ++a)
@@ -225,11 +226,12 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
       assembled[e] = 1;
       pattern_.add(e, K, jt);
     }
-    scales.mine() = {inertia2, gravity2};
+    scales.mine() = {inertia2, gravity2, viscous2};
   }
   scatter_.merge();
   inertia2_out = scales.total(0);
   gravity2_out = scales.total(1);
+  viscous2_out = scales.total(2);
   for (Index e = 0; e < ne; ++e)
     if (assembled[e])
       for (Index i : mesh.tri[e]) has_mass[i] = 1;

@@ -262,7 +262,8 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
   // Fluid particles that left the domain box (walls and initial fluid, enlarged by domain_margin times the
   // larger side) are gone: a jet that falls off the end of a floor would otherwise fly forever. The box is
   // open on the side gravity points away from: a splash thrown above the walls falls back.
-  if (domain_lo_.x() > domain_hi_.x()) return false;
+  const bool box = domain_lo_.x() <= domain_hi_.x();
+  if (!box && !taker_) return false;
   // The box follows a structure that moves (its ghost particles, with extend_domain's margin): the water a
   // plate pushed 23 mm away holds past the first box is not gone (cases/flexible_tank lost 0.24 % of its
   // area there). So it does moving walls: a tank carried 0.5 m sideways lost nearly all its water.
@@ -283,12 +284,15 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
   const Vec2 hi(g.x() < 0 ? std::numeric_limits<double>::infinity() : box_hi.x(),
                 g.y() < 0 ? std::numeric_limits<double>::infinity() : box_hi.y());
   std::vector<char> drop(cloud_.n(), 0);
+  std::vector<int> taken_by(taker_ ? static_cast<size_t>(cloud_.n()) : 0, -1);  // the outflow that took it
   bool any = false;
   Index fluid_left = 0;
   for (Index i = 0; i < cloud_.n(); ++i) {
     if (cloud_.kind(i) != ParticleKind::Fluid) continue;
     const Vec2 q = cloud_.pos(i);
-    if (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y()) {
+    const int outflow = taker_ ? taker_(q) : -1;
+    if (outflow >= 0) taken_by[static_cast<size_t>(i)] = outflow;
+    if (outflow >= 0 || (box && (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y()))) {
       drop[i] = 1;
       any = true;
     } else {
@@ -301,9 +305,23 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
                       "': all fluid particles left the domain box by t = " + std::to_string(t_new));
   // The fluid that left is gone: its share of the last mesh (A_e / 3 per dropped particle of each element)
   // leaves the reference area too, so that the volume correction does not make it up elsewhere.
-  for (Index e = 0; e < mesh_.num_elements(); ++e)
+  // An element with a particle an outflow takes leaves whole with it: the mesh then ends at the particles behind
+  // it (a particle's third of its elements would count half the strip the outlet loses at each removal).
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    int outflow = -1;
+    for (Index i : mesh_.tri[e])
+      if (outflow < 0 && !taken_by.empty()) outflow = taken_by[static_cast<size_t>(i)];
+    if (outflow >= 0) {
+      const double a = mesh_.element_area(cloud_.x(), e);
+      volume.add_left(a);
+      left_(outflow, 0, a);
+      continue;
+    }
     for (Index i : mesh_.tri[e])
       if (drop[i]) volume.add_left(mesh_.element_area(cloud_.x(), e) / 3.0);
+  }
+  for (size_t i = 0; i < taken_by.size(); ++i)
+    if (taken_by[i] >= 0) left_(taken_by[i], 1, 0.0);
   // With "volume_correction": "particle", the area each owed (a drop in flight: all of its own) leaves too.
   if (volume.type() == VolumeCorrection::Type::particle)
     for (Index i = 0; i < cloud_.n(); ++i)

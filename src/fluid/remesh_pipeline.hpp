@@ -47,6 +47,16 @@ class RemeshPipeline {
     walls_hi_ = hi;
   }
 
+  /// Open boundaries (fluid_boundary.hpp): `taker` names the outflow (its index) a fluid particle at a position has
+  /// left through, or -1, and `left` receives what each outflow took: particles and area (drop_outside_domain);
+  /// `regions` are triangles the advected and level-set detections count as fluid (an inflow's strip).
+  void set_open_boundaries(std::function<int(const Vec2&)> taker, std::function<void(int, long, double)> left,
+                           std::vector<std::array<Vec2, 3>> regions) {
+    taker_ = std::move(taker);
+    left_ = std::move(left);
+    open_regions_ = std::move(regions);
+  }
+
   /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
   /// detections.
   void add_region_triangle(const std::array<Vec2, 3>& t) { region_triangles_.push_back(t); }
@@ -80,8 +90,8 @@ class RemeshPipeline {
   bool remove_close_particles();
   /// Inserts particles at the centroids of the oversized elements; true when some were.
   bool insert_particles();
-  /// Removes the fluid particles outside the domain box (their share of the mesh's area leaves `volume`'s
-  /// reference); throws SolverError when none is left (t_new in the message).
+  /// Removes the fluid particles outside the domain box and those an outflow takes (their share of the mesh's area
+  /// leaves `volume`'s reference); throws SolverError when none is left (t_new in the message).
   bool drop_outside_domain(double t_new, VolumeCorrection& volume);
 
   /// Remeshing's effect in the last step (log.csv remesh_dA, remesh_dKE).
@@ -151,7 +161,10 @@ class RemeshPipeline {
   Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
   Vec2 walls_lo_ = Vec2::Constant(1.0), walls_hi_ = Vec2::Constant(-1.0);    // moving walls' box (follow_walls)
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
-  std::vector<Index> renumber_;                        // the last drop_particles: old index -> new index, -1 if dropped
+  std::function<int(const Vec2&)> taker_;              // open boundaries (set_open_boundaries)
+  std::function<void(int, long, double)> left_;
+  std::vector<std::array<Vec2, 3>> open_regions_;
+  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
   std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's
                                  // survivor or of the wall particle that stands for it (-1: none)
   // Remeshing's effect per step (log.csv) and over the run (summary.json).

@@ -119,7 +119,8 @@ void VolumeCorrection::set_end(double area) {
   for (Index i = 0; i < cloud_.n(); ++i)
     if (i >= static_cast<Index>(mesh_.connected.size()) || !mesh_.connected[i]) in_flight_ += owed[i];
   if (area_initial_ > 0)
-    water_drift_max_ = std::max(water_drift_max_, std::abs((water_area() + area_left_) / area_initial_ - 1.0));
+    water_drift_max_ =
+        std::max(water_drift_max_, std::abs((water_area() + area_left_ - area_entered_) / area_initial_ - 1.0));
 }
 
 void VolumeCorrection::owe_remesh_change(const std::vector<double>& before, const std::vector<Index>& present) {
@@ -221,12 +222,14 @@ void VolumeCorrection::return_unpayable_through_bulk(const std::vector<char>& fi
 }
 
 Json VolumeCorrection::summary() const {
-  Json s = {{"initial", area_initial_},
-            {"final", area_end_},
-            {"left_domain", area_left_},
-            {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_) / area_initial_ - 1.0 : 0.0},
-            {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_},
-            {"change_in_steps", change_in_steps_}};
+  Json s = {
+      {"initial", area_initial_},
+      {"final", area_end_},
+      {"left_domain", area_left_},
+      {"drift_without_left", area_initial_ > 0 ? (area_end_ + area_left_ - area_entered_) / area_initial_ - 1.0 : 0.0},
+      {"change_by_remeshing", area_end_ - area_initial_ - change_in_steps_ - area_entered_},
+      {"change_in_steps", change_in_steps_}};
+  if (area_entered_ > 0) s["entered_domain"] = area_entered_;
   if (type_ == Type::particle) {
     s["owed_by_particles"] = cloud_.owed().sum();  // not yet returned (initial = final + owed + left)
     s["in_flight"] = in_flight_;

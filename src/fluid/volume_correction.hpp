@@ -32,7 +32,12 @@ class VolumeCorrection {
   void add_left(double share) { area_left_ += share; }
   /// The fluid that left is gone from the reference area too, so that the correction does not make it up
   /// elsewhere.
-  void rebase() { area_ref_ = area_initial_ - area_left_; }
+  void rebase() { area_ref_ = area_initial_ - area_left_ + area_entered_; }
+  /// Fluid that entered through an inflow (its particles' area, appended after a step): the reference grows by it.
+  void add_entered(double area) {
+    area_entered_ += area;
+    rebase();
+  }
 
   /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
   /// that the area after remeshing equals the reference area again.
@@ -98,6 +103,7 @@ class VolumeCorrection {
   double relax_time_ = 0.1;  // s: the "source" correction closes an area error over this time
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
+  double area_entered_ = 0;                  // area of the fluid an inflow added
   double correction_energy_ = 0;
   double change_in_steps_ = 0;        // the sum over the steps of their area change after remeshing
   std::vector<double> nodal_start_;   // "particle": the particles' shares of the area at the step's start

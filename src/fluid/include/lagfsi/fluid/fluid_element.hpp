@@ -46,9 +46,11 @@ struct PspgElementInput {
 };
 
 /// Residual r (9) and frozen-geometry tangent K (9 x 9) of one element; inertia2 and gravity2 get the
-/// squared norms of the nodal inertia and gravity forces (for the residual reference). Returns false (and
-/// leaves the outputs unspecified) when the element's area is not positive.
+/// squared norms of the nodal inertia and gravity forces, and viscous2 (when given) those of the viscous forces
+/// (for the residual reference: a flow driven by its boundaries alone, from rest and without gravity, has no
+/// other force at its first iteration). Returns false (and leaves the outputs unspecified) when the element's
+/// area is not positive.
 bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
-                  double& inertia2, double& gravity2);
+                  double& inertia2, double& gravity2, double* viscous2 = nullptr);
 
 }  // namespace lagfsi

@@ -1,0 +1,193 @@
+// An inflow: a segment through which water enters the fluid at a prescribed velocity. With the segment from a to b
+// (length L, unit tangent t, unit normal n towards the fluid: the side the velocity points to) and the coordinate
+// s = (x - a).t / L in [0, 1], the inflow velocity is
+//   u(s, t) = U phi(s) f(t),   phi = 1 ("uniform") or 6 s (1 - s) ("parabolic": zero at the ends, mean 1, peak 3/2),
+// with U the case's mean velocity and f its time function (1 without one). Every fluid particle in the inlet layer
+// (depth d = (x - a).n in [-h/2, h), s in [0, 1]) follows u over the step in both components (a Dirichlet condition
+// on its motion, as a moving lid's), and its pressure stays an unknown with its continuity equation: the layer is a
+// boundary of the mesh, not a free surface.
+//
+// Injection (after each step): the segment is divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the
+// spacing of a structured region that starts at the segment). Each lane adds up the distance its inflow velocity
+// carried the fluid, d_k += u_n(s_k) int f dt, and when it reaches a spacing, d_k -= h, a new particle enters at
+// depth d_k (where it would be had it entered at that instant) with the inflow's velocity and the nearest
+// particle's pressure: particles enter in layers at exactly the rate the profile carries them, as in the inflows of
+// Kratos' PFEM and of PFEM-2 (Idelsohn et al. 2013). A lane whose inflow velocity is zero (a parabolic profile's
+// ends, which walls hold) gets none. The area that entered is the profile's flux, u_n L int f dt (summary.json also
+// counts the particles, each lane's width times h). The strip
+// of depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that the
+// elements joining a new layer to the flow are kept.
+#include "fluid_boundary.hpp"
+
+#include <lagfsi/time_function.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lagfsi::fluid {
+
+namespace {
+
+const KeyTable kInflowKeys(
+    "/bodies/*/boundaries/* (fluid body, type inflow)",
+    "A segment through which water enters at a prescribed velocity profile; new particles are injected in layers "
+    "one spacing apart as the flow advances. Needs remeshing; the domain detection may be any.",
+    {{"type", "inflow", "`inflow`."},
+     {"name", "boundary", "Boundary name (summary.json); default: boundary<index>.", kDerived},
+     {"segment", nullptr, "The inlet segment [[x0, y0], [x1, y1]] (m), on the edge of a fluid region."},
+     {"velocity", nullptr,
+      "The mean inflow velocity [u, v] (m/s) over the segment, scaled by the profile and the function; it must "
+      "point off the segment, into the fluid."},
+     {"profile", "uniform",
+      "`uniform` (the velocity everywhere) or `parabolic` (6 s (1 - s) times it along the segment: zero at its "
+      "ends, 1.5 times the mean at its middle: a channel's Poiseuille profile)."},
+     {"function", Json::object(),
+      "A time function f(t) scaling the velocity (see time function (type ...)), e.g. a smooth start; default {}: "
+      "1."}});
+
+class Inflow final : public FluidBoundary {
+ public:
+  Inflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
+    p.validate(kInflowKeys, {{"name", ctx.name}});
+    const std::vector<Vec2> s = p.points("segment");
+    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
+    a_ = s[0];
+    const Vec2 e = s[1] - s[0];
+    length_ = e.norm();
+    if (!(length_ > 0.5 * h_)) p.fail("segment", "shorter than half a particle spacing");
+    tangent_ = e / length_;
+    normal_ = Vec2(-tangent_.y(), tangent_.x());
+    u_ = p.vec2("velocity");
+    const double un = u_.dot(normal_);
+    if (!(std::abs(un) > 1e-3 * u_.norm())) p.fail("velocity", "must point off the segment (into the fluid)");
+    if (un < 0) normal_ = -normal_;
+    parabolic_ = p.choice("profile", {"uniform", "parabolic"}) == "parabolic";
+    if (!p.json().at("function").empty()) fn_ = make_time_function(p.at("function"), ctx.base_dir);
+    lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(length_ / h_)));
+  }
+
+  bool open() const override { return true; }
+  bool holds_pressure() const override { return true; }
+
+  void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
+                 std::vector<BoundaryConstraint>& out) override {
+    t0_ = t;
+    held_velocity_.assign(static_cast<size_t>(cloud.n()), Vec2::Zero());
+    long held = 0;
+    for (Index i = 0; i < cloud.n(); ++i) {
+      if (!cloud.is_fluid(i) || taken[static_cast<size_t>(i)]) continue;
+      const Vec2 q = cloud.pos(i) - a_;
+      const double s = q.dot(tangent_) / length_, d = q.dot(normal_);
+      if (s < -1e-9 || s > 1 + 1e-9 || d < -0.5 * h_ || d >= h_ * (1 - 1e-9)) continue;
+      held_velocity_[static_cast<size_t>(i)] = u_ * profile(s);
+      out.push_back({i, 0, cloud.pos(i).x()});
+      out.push_back({i, 1, cloud.pos(i).y()});
+      ++held;
+    }
+    held_max_ = std::max(held_max_, held);
+  }
+  double position(const BoundaryConstraint& k, double t) const override {
+    return k.base + held_velocity_[static_cast<size_t>(k.i)][k.c] * (integral(t) - integral(t0_));
+  }
+  double velocity(const BoundaryConstraint& k, double t) const override {
+    return held_velocity_[static_cast<size_t>(k.i)][k.c] * value(t);
+  }
+  double acceleration(const BoundaryConstraint& k, double t) const override {
+    return held_velocity_[static_cast<size_t>(k.i)][k.c] * rate(t);
+  }
+
+  double after_step(ParticleCloud& cloud, const Vec& x_start, double t) override {
+    (void)x_start;
+    // Each lane's distance travelled since its last particle entered; a lane that has travelled a spacing gets
+    // the next one, where it would be had it entered at that instant (the injected area is the profile's flux).
+    const double swept = integral(t) - integral(t0_);
+    const auto nl = static_cast<size_t>(lanes_ + 1);
+    if (phase_.size() != nl) phase_.assign(nl, 0.0);
+    std::vector<ParticleCloud::Particle> added;
+    double area = 0.0;
+    const double width = length_ / static_cast<double>(lanes_);
+    for (size_t k = 0; k < nl; ++k) {
+      const double s = static_cast<double>(k) / static_cast<double>(lanes_);
+      const double un = u_.dot(normal_) * profile(s);
+      if (!(un > 0)) continue;
+      phase_[k] += un * swept;
+      if (phase_[k] < h_ * (1 - 1e-9)) continue;
+      phase_[k] = std::max(0.0, phase_[k] - h_);
+      ParticleCloud::Particle q;
+      q.kind = ParticleKind::Fluid;
+      q.h = h_;
+      q.x = q.X0 = a_ + tangent_ * (s * length_) + normal_ * phase_[k];
+      q.v = u_ * (profile(s) * value(t));
+      q.a = u_ * (profile(s) * rate(t));
+      q.p = nearest_pressure(cloud, q.x);
+      added.push_back(q);
+      area += (k == 0 || k + 1 == nl ? 0.5 : 1.0) * width * h_;
+    }
+    if (!added.empty()) cloud.append(added);
+    injected_ += static_cast<long>(added.size());
+    area_injected_ += area;
+    // What the profile carried in over the step: the mean normal velocity times the length, times int f dt.
+    const double flux = u_.dot(normal_) * length_ * swept;
+    area_prescribed_ += flux;
+    return flux;
+  }
+
+  void fluid_regions(std::vector<std::array<Vec2, 3>>& out) const override {
+    const Vec2 b = a_ + tangent_ * length_, depth = normal_ * (1.5 * h_);
+    out.push_back({a_, b, b + depth});
+    out.push_back({a_, b + depth, a_ + depth});
+  }
+
+  Json summary() const override {
+    return {{"type", "inflow"},
+            {"particles_injected", injected_},
+            {"area_injected", area_injected_},
+            {"area_prescribed", area_prescribed_},
+            {"particles_held_max", held_max_}};
+  }
+  void serialize(StateArchive& ar) override {
+    ar.io(t0_, phase_, injected_, area_injected_, area_prescribed_, held_max_);
+  }
+
+ private:
+  /// The pressure of the fluid particle nearest to x within two spacings (0 without one).
+  double nearest_pressure(const ParticleCloud& cloud, const Vec2& x) const {
+    double best = 4 * h_ * h_, p = 0.0;
+    for (Index i = 0; i < cloud.n(); ++i) {
+      const double d2 = (cloud.pos(i) - x).squaredNorm();
+      if (cloud.is_fluid(i) && d2 < best) {
+        best = d2;
+        p = cloud.p()[i];
+      }
+    }
+    return p;
+  }
+  double profile(double s) const { return parabolic_ ? 6.0 * s * (1.0 - s) : 1.0; }
+  double value(double t) const { return fn_ ? fn_->value(t) : 1.0; }
+  double integral(double t) const { return fn_ ? fn_->integral(t) : t; }
+  double rate(double t) const {
+    if (!fn_) return 0.0;
+    const double d = 1e-4;  // central difference of f, as for the walls' motions
+    return (fn_->value(t + d) - fn_->value(t - d)) / (2 * d);
+  }
+
+  double h_;
+  Vec2 a_, tangent_, normal_, u_;
+  double length_ = 0;
+  bool parabolic_ = false;
+  std::shared_ptr<TimeFunction> fn_;
+  Index lanes_ = 1;
+  double t0_ = 0;
+  std::vector<Vec2> held_velocity_;  // per particle: its inflow velocity over the step (zero if not held)
+  std::vector<double> phase_;        // per lane: the distance travelled since its last particle entered
+  long injected_ = 0, held_max_ = 0;
+  double area_injected_ = 0, area_prescribed_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FluidBoundary> make_inflow_boundary(Params p, const BoundaryContext& ctx) {
+  return std::make_unique<Inflow>(std::move(p), ctx);
+}
+
+}  // namespace lagfsi::fluid

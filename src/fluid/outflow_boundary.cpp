@@ -1,0 +1,104 @@
+// An outflow: a segment through which water leaves the fluid. A fluid particle that has crossed the segment's line
+// to the side away from the fluid, within the segment's extent (half a spacing beyond its ends), is removed at the
+// next remesh, with its share of the mesh's area (the volume correction's reference loses it, and summary.json
+// counts it here). The particles on the mesh's boundary within a spacing of the outlet take p = 0 exactly (whatever
+// the free surface's condition: a weak Robin one leaves a confined flow's pressure level floating): a traction-free
+// outlet that sets the pressure level of a confined flow (the "do-nothing" condition up to the viscous normal
+// stress, which vanishes for a fully developed flow; Heywood, Rannacher & Turek 1996).
+//
+// The fluid's side is found at the first step: the side of the segment where the fluid particles within two
+// spacings of it lie.
+#include "fluid_boundary.hpp"
+
+#include <cmath>
+
+namespace lagfsi::fluid {
+
+namespace {
+
+const KeyTable kOutflowKeys(
+    "/bodies/*/boundaries/* (fluid body, type outflow)",
+    "A segment through which water leaves: particles that cross it are removed, the outlet's pressure is the free "
+    "surface's (zero). Needs remeshing.",
+    {{"type", "outflow", "`outflow`."},
+     {"name", "boundary", "Boundary name (summary.json); default: boundary<index>.", kDerived},
+     {"segment", nullptr, "The outlet segment [[x0, y0], [x1, y1]] (m), on the edge of the fluid."}});
+
+class Outflow final : public FluidBoundary {
+ public:
+  Outflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
+    p.validate(kOutflowKeys, {{"name", ctx.name}});
+    const std::vector<Vec2> s = p.points("segment");
+    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
+    a_ = s[0];
+    const Vec2 e = s[1] - s[0];
+    length_ = e.norm();
+    if (!(length_ > 0.5 * h_)) p.fail("segment", "shorter than half a particle spacing");
+    tangent_ = e / length_;
+    normal_ = Vec2(-tangent_.y(), tangent_.x());
+  }
+
+  bool open() const override { return true; }
+
+  void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
+                 std::vector<BoundaryConstraint>& out) override {
+    (void)taken;
+    (void)t;
+    (void)out;
+    if (oriented_) return;
+    // The outward normal points away from the fluid next to the segment.
+    double side = 0;
+    for (Index i = 0; i < cloud.n(); ++i) {
+      if (!cloud.is_fluid(i)) continue;
+      const Vec2 q = cloud.pos(i) - a_;
+      const double s = q.dot(tangent_), d = q.dot(normal_);
+      if (s >= 0 && s <= length_ && std::abs(d) <= 2 * h_) side += d;
+    }
+    if (side > 0) normal_ = -normal_;
+    oriented_ = side != 0;
+  }
+  double position(const BoundaryConstraint& k, double t) const override {
+    (void)t;
+    return k.base;
+  }
+  double velocity(const BoundaryConstraint&, double) const override { return 0.0; }
+  double acceleration(const BoundaryConstraint&, double) const override { return 0.0; }
+
+  bool takes(const Vec2& x) const override {
+    if (!oriented_) return false;
+    const Vec2 q = x - a_;
+    const double s = q.dot(tangent_);
+    return q.dot(normal_) > 0 && s >= -0.5 * h_ && s <= length_ + 0.5 * h_;
+  }
+  bool zero_pressure(const Vec2& x) const override {
+    if (!oriented_) return false;
+    const Vec2 q = x - a_;
+    const double s = q.dot(tangent_);
+    return q.dot(normal_) > -h_ && s >= -0.5 * h_ && s <= length_ + 0.5 * h_;
+  }
+  void left(long particles, double area) override {
+    particles_left_ += particles;
+    area_left_ += area;
+  }
+
+  Json summary() const override {
+    return {{"type", "outflow"}, {"particles_left", particles_left_}, {"area_left", area_left_}};
+  }
+  void serialize(StateArchive& ar) override { ar.io(oriented_, normal_, particles_left_, area_left_); }
+
+ private:
+  double h_;
+  Vec2 a_, tangent_, normal_;
+  double length_ = 0;
+  bool oriented_ = false;
+  long particles_left_ = 0;
+  double area_left_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FluidBoundary> make_outflow_boundary(Params p, const BoundaryContext& ctx) {
+  return std::make_unique<Outflow>(std::move(p), ctx);
+}
+
+}  // namespace lagfsi::fluid

@@ -1,0 +1,161 @@
+// Open boundaries of the fluid (src/fluid/inflow_boundary.cpp, src/fluid/outflow_boundary.cpp) on the plane
+// Poiseuille flow of cases/channel_poiseuille at a coarse size: a channel H = 0.1 m high between no-slip walls,
+// a parabolic inflow of mean velocity U = 0.05 m/s (Re = U H / nu = 5) at x = 0, an outflow at x = L = 0.5 m, no
+// gravity. The exact steady state: u(y) = 6 U y (H - y) / H^2 and dp/dx = -12 mu U / H^2, so that the pressure drop
+// between x = 0.1 and 0.4 is 18 Pa, and the water that enters leaves.
+#include "case_runner.hpp"
+#include "process.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+namespace {
+
+using namespace lagfsi::testing;
+
+constexpr double kDropExact = 12.0 * 1.0 * 0.05 / (0.1 * 0.1) * 0.3;  // 12 mu U / H^2 times 0.3 m
+
+std::string channel(const std::string& scheme, double end_time, const std::string& extra_body = "") {
+  const std::string fs =
+      scheme == "fractional_step" ? R"(, "domain_detection": "advected", "wall_model": "constraints")" : "";
+  return R"({
+    "name": "channel",
+    "analysis": {"type": "dynamic", "dt": 0.01, "end_time": )" +
+         std::to_string(end_time) + R"(},
+    "gravity": [0.0, 0.0],
+    "bodies": [{
+      "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1.0, "spacing": 0.01,
+      "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.5, 0.1]}],
+      "walls": [{"name": "bottom", "points": [[0, 0], [0.5, 0]]}, {"name": "top", "points": [[0, 0.1], [0.5, 0.1]]}],
+      "wall_friction": "held",
+      "boundaries": [
+        {"type": "inflow", "name": "inlet", "segment": [[0, 0], [0, 0.1]], "velocity": [0.05, 0],
+         "profile": "parabolic"},
+        {"type": "outflow", "name": "outlet", "segment": [[0.5, 0], [0.5, 0.1]]}],
+      "scheme": {"type": ")" +
+         scheme + R"("})" + fs + extra_body + R"(
+    }],
+    "probes": [
+      {"name": "area", "type": "fluid_area", "body": "water"},
+      {"name": "p_in", "type": "pressure", "body": "water", "from": [0.1, 0.0], "to": [0.1, 0.1]},
+      {"name": "p_out", "type": "pressure", "body": "water", "from": [0.4, 0.0], "to": [0.4, 0.1]},
+      {"name": "max_speed", "type": "max_speed", "body": "water"},
+      {"name": "discharge", "type": "discharge", "body": "water", "from": [0.25, 0.0], "to": [0.25, 0.1]},
+      {"name": "u_center", "type": "velocity", "body": "water", "at": [0.25, 0.05], "component": "x"}],
+    "output": {"every": 100000, "vtk": false}
+  })";
+}
+
+/// The mean pressure drop between x = 0.1 and 0.4 over t >= t0.
+double mean_drop(const Csv& p, double t0) {
+  double sum = 0;
+  int n = 0;
+  for (size_t k = 0; k < p["time"].size(); ++k)
+    if (p["time"][k] >= t0 - 1e-9) {
+      sum += p["p_in"][k] - p["p_out"][k];
+      ++n;
+    }
+  return n > 0 ? sum / n : 0.0;
+}
+
+void expect_poiseuille(const std::string& scheme, double drop_tolerance, double area_tolerance, double flux_tolerance) {
+  const RunResult r = run_case_text(fresh_dir("channel_" + scheme), channel(scheme, 2.0));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  EXPECT_NEAR(mean_drop(p, 1.0), kDropExact, drop_tolerance * kDropExact) << scheme;
+  // The inflow's particles carry its peak velocity, 1.5 U; once the impulsive start has passed (the first step's
+  // potential flow turns the parabola round the inlet's corners at up to 5.6 U), nothing in the channel runs
+  // faster.
+  for (size_t k = 0; k < p["time"].size(); ++k) {
+    if (p["time"][k] >= 0.5) {
+      EXPECT_LE(p["max_speed"][k], 1.5 * 0.05 * 1.05) << scheme;
+    }
+  }
+  // The flow rate through mid-channel (the discharge probe) and the centre-line velocity, at the end.
+  EXPECT_NEAR(p["discharge"].back(), 0.05 * 0.1, flux_tolerance * 0.05 * 0.1) << scheme;
+  EXPECT_NEAR(p["u_center"].back(), 1.5 * 0.05, flux_tolerance * 1.5 * 0.05) << scheme;
+  // The water that entered left: the channel's area stays within area_tolerance of its start.
+  for (double a : p["area"]) EXPECT_NEAR(a, 0.05, area_tolerance * 0.05) << scheme;
+  const auto s = summary_of(r)["bodies"][0];
+  const double in = s["boundaries"]["inlet"]["area_prescribed"].get<double>();
+  EXPECT_NEAR(in, 0.05 * 0.1 * 2.0, 1e-12);  // U H t
+  // The particles injected carry the trapezoidal rule's share of the parabola's flux (1 - 1/N^2, N = 10 lanes) but
+  // for what each lane has travelled since its last particle (H h / 2 on average: 5 % of this run's flux).
+  const double injected = s["boundaries"]["inlet"]["area_injected"].get<double>() / in;
+  EXPECT_GE(injected, 0.99 - 0.05 - 0.02) << scheme;
+  EXPECT_LE(injected, 0.99) << scheme;
+  // What left through the outlet: the flux less what the steps' continuity lost (the discretization's error,
+  // which halves or better at H/20).
+  EXPECT_NEAR(s["boundaries"]["outlet"]["area_left"].get<double>() / in, 1.0, flux_tolerance) << scheme;
+  EXPECT_NEAR(s["fluid_area"]["entered_domain"].get<double>(), in, 1e-12);
+}
+
+TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithTheFractionalStep) {
+  // Measured (H/10, 2 s): the mean drop over 1-2 s and the outlet's share of the flux are in the case's README.
+  expect_poiseuille("fractional_step", 0.05, 0.03, 0.06);
+}
+
+TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithTheMonolithicScheme) {
+  // The monolithic scheme's continuity loses more of the flux at this size (its PSPG stabilisation).
+  expect_poiseuille("monolithic_pspg", 0.10, 0.035, 0.12);
+}
+
+TEST(OpenBoundaries, AnInflowAloneFillsTheChannelAtItsFlux) {
+  // No outflow: the water the inflow brings stays, and the mesh's area grows by the profile's flux (within the
+  // half-spacing strip behind the newest layer that is not meshed yet).
+  std::string text = channel("fractional_step", 0.5);
+  const std::string outflow = R"(,
+        {"type": "outflow", "name": "outlet", "segment": [[0.5, 0], [0.5, 0.1]]})";
+  text.erase(text.find(outflow), outflow.size());
+  // The channel is longer than the water: it has room to advance.
+  text.replace(text.find("[[0, 0], [0.5, 0]]"), 18, "[[0, 0], [0.8, 0]]");
+  text.replace(text.find("[[0, 0.1], [0.5, 0.1]]"), 22, "[[0, 0.1], [0.8, 0.1]]");
+  const RunResult r = run_case_text(fresh_dir("channel_filling"), text);
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const double added = 0.05 * 0.1 * 0.5;
+  EXPECT_NEAR(p["area"].back(), 0.05 + added, 0.01 * (0.05 + added));
+  EXPECT_GT(p["area"].back(), 0.05 + 0.5 * added);
+}
+
+TEST(OpenBoundaries, AChannelRunRestartsBitForBit) {
+  const std::string text = channel("monolithic_pspg", 0.3);
+  const std::string opts = "--quiet --threads 1 --set output.checkpoint.every_steps=10";
+  const RunResult full = run_case_text(fresh_dir("channel_full"), text, opts);
+  ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
+  const fs::path dir = fresh_dir("channel_part");
+  ASSERT_EQ(run_case_text(dir, text, opts + " --stop-after-step 17").exit_code, 0);
+  const RunResult part = run_case_text(dir, text, opts + " --restart \"" + (dir / "out").string() + "\"");
+  ASSERT_EQ(part.exit_code, 0) << part.stderr_text;
+  EXPECT_EQ(file_text(part.out_dir / "probes.csv"), file_text(full.out_dir / "probes.csv"));
+  EXPECT_EQ(summary_of(part)["bodies"][0]["boundaries"], summary_of(full)["bodies"][0]["boundaries"]);
+}
+
+TEST(OpenBoundaries, AnInflowAlongItsSegmentIsAnErrorNamingItsVelocity) {
+  std::string text = channel("monolithic_pspg", 0.1);
+  text.replace(text.find(R"("velocity": [0.05, 0])"), 21, R"("velocity": [0, 0.05])");
+  const RunResult r = run_case_text(fresh_dir("channel_tangent"), text);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("/bodies/0/boundaries/0/velocity"), std::string::npos) << r.stderr_text;
+}
+
+TEST(OpenBoundaries, ParticleVolumesWithAnInflowAreAnErrorNamingTheKey) {
+  const RunResult r =
+      run_case_text(fresh_dir("channel_particle_volumes"), channel("monolithic_pspg", 0.1, R"(, "remesh": true)"),
+                    "--set bodies.0.scheme.volume_correction=particle");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("/bodies/0/scheme/volume_correction"), std::string::npos) << r.stderr_text;
+}
+
+TEST(OpenBoundaries, AnOpenBoundaryOnAFixedMeshIsAnError) {
+  const RunResult r =
+      run_case_text(fresh_dir("channel_fixed"), channel("monolithic_pspg", 0.1, R"(, "remesh": false)"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("/bodies/0/boundaries"), std::string::npos) << r.stderr_text;
+}
+
+}  // namespace

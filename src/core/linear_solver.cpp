@@ -2,7 +2,8 @@
 /// The contract's bookkeeping (timings, reports, statistics) and the sparse direct solvers behind
 /// lagfsi::LinearSolver (see linear_solver.hpp for the contract).
 ///
-/// Structure: DirectSolverBase does everything that does not depend on the library (input checks, the
+/// Structure: LinearSolver::setup and LinearSolver::solve check the input of every backend (direct, PETSc,
+/// "auto") before calling it. DirectSolverBase does the rest of what does not depend on the library (the
 /// private copy of the matrix, the pattern comparison that decides whether the symbolic analysis is
 /// redone, the finiteness check of the solution); each backend only implements analyze(), numeric()
 /// and backsolve(). CHOLMOD is called through its C API (to report the failing column of a matrix that
@@ -31,6 +32,18 @@
 
 namespace lagfsi {
 
+namespace {
+
+/// True if every stored value of A is finite (compressed or not: only the used part of each column is read).
+bool all_finite(const SparseMatrix& A) {
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      if (!std::isfinite(it.value())) return false;
+  return true;
+}
+
+}  // namespace
+
 void SolverStatistics::add(const SolverStatistics& o) {
   setups += o.setups;
   pattern_setups += o.pattern_setups;
@@ -48,7 +61,15 @@ void LinearSolver::setup(const SparseMatrix& A) {
   const int analyses = symbolic_count_;
   report_.unknowns = A.rows();
   report_.failure.clear();
+  ready_ = false;
   try {
+    if (A.rows() != A.cols()) {
+      std::ostringstream os;
+      os << "matrix is not square (" << A.rows() << " x " << A.cols() << ")";
+      fail(os.str());
+    }
+    if (!all_finite(A)) fail("matrix has non-finite entries");
+    rows_ = A.rows();
     do_setup(A);
   } catch (const SolverError& e) {
     report_.failure = e.what();
@@ -57,6 +78,7 @@ void LinearSolver::setup(const SparseMatrix& A) {
     stats_.setup_seconds += report_.setup_seconds;
     throw;
   }
+  ready_ = true;
   report_.setup_seconds = seconds_since(t0);
   ++stats_.setups;
   stats_.pattern_setups += symbolic_count_ - analyses;
@@ -69,7 +91,16 @@ void LinearSolver::solve(const Vec& b, Vec& x) {
   report_.residual = 0.0;
   report_.failure.clear();
   try {
-    if (&b == &x) {  // the backends need distinct input and output
+    if (!ready_) fail("solve() called without a successful setup()");
+    if (b.size() != rows_) {
+      std::ostringstream os;
+      os << "right-hand side has size " << b.size() << ", matrix has " << rows_ << " rows";
+      fail(os.str());
+    }
+    if (!b.allFinite()) fail("right-hand side has non-finite entries");
+    if (rows_ == 0) {  // nothing to solve (e.g. every degree of freedom is prescribed)
+      x.resize(0);
+    } else if (&b == &x) {  // the backends need distinct input and output
       const Vec copy = b;
       do_solve(copy, x);
     } else {
@@ -93,6 +124,8 @@ void LinearSolver::solve(const Vec& b, Vec& x) {
   }
 }
 
+void LinearSolver::fail(const std::string& reason) const { throw SolverError(type() + ": " + reason); }
+
 namespace {
 
 /// True if a and b (both compressed) have the same size and the same outer/inner index arrays.
@@ -103,17 +136,11 @@ bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
          std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr());
 }
 
-/// The library-independent part of every solver.
+/// The library-independent part of every direct solver (the input is checked by LinearSolver::setup/solve).
 class DirectSolverBase : public LinearSolver {
  protected:
   void do_setup(const SparseMatrix& A) final {
     report_.method = type();
-    factorized_ = false;
-    if (A.rows() != A.cols()) {
-      std::ostringstream os;
-      os << "matrix is not square (" << A.rows() << " x " << A.cols() << ")";
-      fail(os.str());
-    }
     // Keep a compressed copy; reuse the analysis if the pattern did not change.
     bool same = false;
     if (A.isCompressed()) {
@@ -132,15 +159,8 @@ class DirectSolverBase : public LinearSolver {
         A_ = std::move(B);
     }
     A_.makeCompressed();
-    const double* v = A_.valuePtr();
-    for (Eigen::Index k = 0; k < A_.nonZeros(); ++k)
-      if (!std::isfinite(v[k])) {
-        analyzed_ = same;  // the pattern (and an analysis done for it) is still valid
-        fail("matrix has non-finite entries");
-      }
     if (A_.rows() == 0) {  // nothing to factorize (e.g. every degree of freedom is prescribed)
       analyzed_ = true;
-      factorized_ = true;
       return;
     }
     if (!same) {
@@ -150,21 +170,9 @@ class DirectSolverBase : public LinearSolver {
       ++symbolic_count_;
     }
     numeric(A_);
-    factorized_ = true;
   }
 
   void do_solve(const Vec& b, Vec& x) final {
-    if (!factorized_) fail("solve() called without a successful setup()");
-    if (b.size() != A_.rows()) {
-      std::ostringstream os;
-      os << "right-hand side has size " << b.size() << ", matrix has " << A_.rows() << " rows";
-      fail(os.str());
-    }
-    if (!b.allFinite()) fail("right-hand side has non-finite entries");
-    if (A_.rows() == 0) {
-      x.resize(0);
-      return;
-    }
     backsolve(b, x);
     if (x.size() != b.size() || !x.allFinite()) fail("solution has non-finite entries (matrix numerically singular?)");
   }
@@ -176,12 +184,9 @@ class DirectSolverBase : public LinearSolver {
   /// x = A^{-1} b with the last factorization (b and x are distinct, b has the right size).
   virtual void backsolve(const Vec& b, Vec& x) = 0;
 
-  [[noreturn]] void fail(const std::string& reason) const { throw SolverError(type() + ": " + reason); }
-
  private:
   SparseMatrix A_;
   bool analyzed_ = false;
-  bool factorized_ = false;
 };
 
 // ------------------------------------------------------------------------------------------------ CHOLMOD

@@ -215,6 +215,42 @@ TEST(PetscSolver, RejectsNonFiniteMatricesAndRightHandSides) {
   EXPECT_EQ(x, Vec::Zero(16));
 }
 
+TEST(PetscSolver, TheContractsInputChecksNameTheSolverForEveryType) {
+  // LinearSolver::setup/solve check the input once for every backend: the Krylov one, MUMPS and "auto" too.
+  for (const std::string type : {"petsc", "mumps", "auto"}) {
+    LinearSolverSettings s = petsc(SystemKind::general);
+    s.type = type;
+    auto solver = make_linear_solver(s);
+    auto message = [](auto&& call) -> std::string {
+      try {
+        call();
+      } catch (const SolverError& e) {
+        return e.what();
+      }
+      return "no error";
+    };
+    Vec x;
+    EXPECT_EQ(message([&] { solver->solve(Vec::Ones(9), x); }), type + ": solve() called without a successful setup()");
+    EXPECT_EQ(message([&] { solver->setup(SparseMatrix(4, 5)); }), type + ": matrix is not square (4 x 5)");
+    SparseMatrix bad = laplacian(3, 0.1);
+    bad.uncompress();  // the check reads the used part of each column only
+    bad.coeffRef(4, 4) = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(message([&] { solver->setup(bad); }), type + ": matrix has non-finite entries");
+    EXPECT_EQ(message([&] { solver->solve(Vec::Ones(9), x); }), type + ": solve() called without a successful setup()");
+    solver->setup(laplacian(3, 0.1));
+    EXPECT_EQ(message([&] { solver->solve(Vec::Ones(4), x); }),
+              type + ": right-hand side has size 4, matrix has 9 rows");
+    Vec b = Vec::Ones(9);
+    b[1] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(message([&] { solver->solve(b, x); }), type + ": right-hand side has non-finite entries");
+    EXPECT_EQ(solver->statistics().failures, 6) << type;
+    solver->setup(SparseMatrix(0, 0));  // an empty system: an empty solution
+    x = Vec::Ones(3);
+    solver->solve(Vec(0), x);
+    EXPECT_EQ(x.size(), 0) << type;
+  }
+}
+
 TEST(PetscSolver, AutoIsDirectBelowTheThresholdAndKrylovFromIt) {
   LinearSolverSettings s = petsc(SystemKind::symmetric_positive_definite);
   s.type = "auto";

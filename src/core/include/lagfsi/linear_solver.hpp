@@ -14,7 +14,9 @@
 ///  - report() describes the last setup and solve (method, iterations, residual, seconds, failure);
 ///    statistics() sums them over the solver's life (what summary.json prints).
 /// Errors (singular or non-finite matrix, a solve before a setup, a right-hand side of the wrong size) throw
-/// lagfsi::SolverError.
+/// lagfsi::SolverError. setup() and solve() check their input themselves, for every backend: a matrix that is not
+/// square or has a non-finite value, a solve without a successful last setup, a right-hand side of another size
+/// than A or with a non-finite value; the backends see only input that passed.
 ///
 /// Types (the string used in case files):
 ///  - "cholmod"     CHOLMOD simplicial Cholesky (A symmetric positive definite; lower triangle used)
@@ -93,9 +95,11 @@ class LinearSolver {
   virtual std::string type() const = 0;
   /// True if the solver only reads the lower triangle and needs A symmetric.
   virtual bool symmetric_only() const = 0;
-  /// Prepares the solves with A: pattern stage when the pattern changed, numeric stage always.
+  /// Prepares the solves with A: pattern stage when the pattern changed, numeric stage always. A that is not square
+  /// or has a non-finite value is refused before the backend sees it (the backend keeps its previous state).
   void setup(const SparseMatrix& A);
-  /// Solves A x = b with the A of the last setup (b and x may alias).
+  /// Solves A x = b with the A of the last setup (b and x may alias); refused unless that setup succeeded and b
+  /// is finite with A.rows() entries. An empty system (0 x 0) gives an empty x.
   void solve(const Vec& b, Vec& x);
   /// The nodes' coordinates [x0 y0 x1 y1 ...] of a 2D elasticity system whose unknowns are interleaved per node:
   /// an algebraic multigrid then keeps the rigid-body modes (two translations, one rotation) in its coarse
@@ -107,13 +111,20 @@ class LinearSolver {
   const SolverStatistics& statistics() const { return stats_; }
 
  protected:
+  /// The backend's setup of A: square with finite values (possibly 0 x 0); throws SolverError on failure.
   virtual void do_setup(const SparseMatrix& A) = 0;
+  /// The backend's solve, only after a successful do_setup of a non-empty A: b finite with A.rows() entries,
+  /// b and x distinct.
   virtual void do_solve(const Vec& b, Vec& x) = 0;
+  /// Throws SolverError "<type>: <reason>".
+  [[noreturn]] void fail(const std::string& reason) const;
   int symbolic_count_ = 0;
   SolveReport report_;
 
  private:
   SolverStatistics stats_;
+  bool ready_ = false;  ///< the last setup succeeded: solves are allowed
+  Index rows_ = 0;      ///< the size of the A of the last setup
 };
 
 /// Builds a direct solver from its type string; throws std::invalid_argument listing the valid types.

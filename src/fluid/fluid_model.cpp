@@ -158,8 +158,17 @@ void FluidModel::predict(double t_new, double dt) {
   solved_once_ = true;
   mesh_.flatten();
   set_dirichlet(t_new - dt);
+  // Particle volumes with the fractional step: the free-surface particles (p = 0, no continuity row) return what
+  // they are owed by moves along the gradient of the area, in this step; handed inward, the interior's sources
+  // leaked it back into their shares (docs/decisions/0007-fractional-step.md).
+  const bool by_moves = fractional_ && volume_.type() == VolumeCorrection::Type::particle;
+  if (by_moves) {
+    std::vector<char> held(2 * cloud_.n(), 0);
+    for (const auto& k : boundaries_.constraints()) held[2 * k.i + k.c] = 1;
+    volume_.return_owed_by_moves(step_.fixed, held);
+  }
   volume_.set_remeshed(mesh_.area(cloud_.x()));
-  volume_.hand_owed_inward(step_.fixed);
+  if (!by_moves) volume_.hand_owed_inward(step_.fixed);
   volume_.return_unpayable_through_bulk(step_.fixed);
   // A new mesh: new matrices (the scheme's patterns; its integrator starts the step).
   scheme_->begin_step();

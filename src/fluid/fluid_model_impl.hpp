@@ -130,6 +130,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   std::unique_ptr<FluidScheme> scheme_;
 
   Index n_initial_ = 0;            // particles at the start (summary.json)
+  bool fractional_ = false;        // the scheme is the fractional step (read_scheme)
   bool wall_constraints_ = false;  // "wall_model": "constraints" (read by the constructor for build_particles)
   bool solved_once_ = false;
   bool step_open_ = false;    // predict called and the step not finalized yet (a retry if predicted again)

@@ -8,7 +8,9 @@
 //                 positive definite scalar system for both components); wall particles take the wall's
 //                 velocity; a particle sliding on a no-slip wall ("wall_friction": "navier") feels
 //                 -k (u*_t - v_wall,t) (fluid_walls.hpp), implicitly in both variants.
-//  2. pressure    (dt / rho) L dp + C dp = - sum_e (A_e / 3)(div u*_e + c_vol),   dp = p^{n+1} - p^n,
+//  2. pressure    (dt / rho) L dp + C dp = - sum_e (A_e / 3)(r_e + c_vol) + owed_a / T,   dp = p^{n+1} - p^n,
+//                 r_e = div u* + dt det(grad u*) the exact area rate of the element moved by dt u* (P1; with the
+//                 advected and level-set detections, div u* alone with the alpha shape),
 //                 L_ab = sum_e A_e grad N_a . grad N_b (the Laplacian replaces D M^-1 G: the stabilization
 //                 of equal-order interpolation, Codina 2001), C = diag((A/3) / (K dt)) the slight
 //                 compressibility, dp = 0 on the free surface (p = 0 there) and a natural condition on walls.
@@ -362,8 +364,24 @@ void FractionalStep::pressure_increment(Work& wk) {
   if (assemble) pressure_sums.insert(pressure_sums.end(), {values_of(comp), values_of(poisson_)});
   element_loop(ne, scatter_, std::move(pressure_sums), [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
+    // The continuity as the element's exact area rate over the step at u*: with x + dt u the area changes by
+    // dt A (div u + dt det(grad u)) exactly (P1, grad u constant), so div u* alone leaves a second-order change in
+    // every element (a stretching flow loses area, a rotating one gains). Used with the advected and level-set
+    // detections (with the alpha shape the remesh re-detects and corrects the area); an element the step deforms
+    // by a tenth or more, or one with a wall particle (an impact: the second order is no guide there), keeps
+    // div u*.
     double div = f_.volume.c_vol();
-    for (int k = 0; k < 3; ++k) div += wk.ustar.segment<2>(2 * t[k]).dot(wk.grad[e][k]);
+    {
+      Mat2 G = Mat2::Zero();  // grad u*
+      for (int k = 0; k < 3; ++k) G += wk.ustar.segment<2>(2 * t[k]) * wk.grad[e][k].transpose();
+      const double rate = G.trace() + dt * G.determinant();
+      const std::vector<ParticleKind>& kind = f_.cloud.kind();
+      const bool fluid =
+          kind[t[0]] == ParticleKind::Fluid && kind[t[1]] == ParticleKind::Fluid && kind[t[2]] == ParticleKind::Fluid;
+      const bool exact = s_.exact_area_rate && fluid && std::abs(dt * G.trace()) < 0.1 &&
+                         std::abs(dt * dt * G.determinant()) < 0.1;
+      div += exact ? rate : G.trace();
+    }
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {
       out[0][t[a]] += -wk.area[e] / 3.0 * div;
@@ -378,8 +396,13 @@ void FractionalStep::pressure_increment(Work& wk) {
   if (assemble)
     constrain(
         poisson_, [&](Index i) { return fixed[3 * i + 2] != 0; }, [&](Index i) { return comp[i]; });
+  // With particle volumes the rows return what their particles are owed, owed / T (the free-surface particles,
+  // which have none, return theirs by moves: VolumeCorrection::return_owed_by_moves).
   for (Index i = 0; i < np; ++i)
-    if (fixed[3 * i + 2]) rhs[i] = 0.0;
+    if (fixed[3 * i + 2])
+      rhs[i] = 0.0;
+    else if (wk.mass[i] > 0)
+      rhs[i] += f_.volume.owed_rate(i);
   f_.times.assembly += seconds_since(t0);
   if (assemble) factorize_step_matrix(*solver_, poisson_, "pressure step");
   step_factorized_ = true;

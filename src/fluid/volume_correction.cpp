@@ -189,6 +189,69 @@ void VolumeCorrection::hand_owed_inward(const std::vector<char>& fixed) {
     if (!row(i) && takers[i] > 0) owed[i] = 0.0;
 }
 
+void VolumeCorrection::return_owed_by_moves(const std::vector<char>& fixed, const std::vector<char>& held) {
+  if (type_ != Type::particle) return;
+  const Index np = cloud_.n();
+  const std::vector<std::array<Index, 3>>& tri = mesh_.tri;
+  Vec& x = cloud_.x();
+  Vec& owed = cloud_.owed();
+  const std::vector<double> before = mesh_.nodal_areas(x, np);
+  Vec g = Vec::Zero(2 * np);
+  for (const auto& t : tri)
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 q = x.segment<2>(2 * t[(k + 1) % 3]), r = x.segment<2>(2 * t[(k + 2) % 3]);
+      g.segment<2>(2 * t[k]) += 0.5 * Vec2(q.y() - r.y(), r.x() - q.x());
+    }
+  Vec dx = Vec::Zero(2 * np);
+  for (Index i = 0; i < np; ++i) {
+    if (has_row(i, fixed) || cloud_.kind(i) != ParticleKind::Fluid || !(before[i] > 0) || owed[i] == 0.0) continue;
+    for (int c = 0; c < 2; ++c)
+      if (static_cast<size_t>(2 * i + c) < held.size() && held[2 * i + c]) g[2 * i + c] = 0.0;
+    const double gg = g.segment<2>(2 * i).squaredNorm();
+    if (!(gg > 0)) continue;
+    Vec2 d = owed[i] / gg * g.segment<2>(2 * i);
+
+    const double cap = 0.1 * cloud_.h(i);
+    if (d.norm() > cap) d *= cap / d.norm();
+    dx.segment<2>(2 * i) = d;
+  }
+  // A move that would shrink an element below half its area (a sliver) is not made.
+  const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  for (int pass = 0; pass < 3; ++pass) {
+    bool frozen = false;
+    for (const auto& t : tri) {
+      if (dx.segment<2>(2 * t[0]).isZero() && dx.segment<2>(2 * t[1]).isZero() && dx.segment<2>(2 * t[2]).isZero())
+        continue;
+      Vec2 y[3], z[3];
+      for (int k = 0; k < 3; ++k) {
+        z[k] = x.segment<2>(2 * t[k]);
+        y[k] = z[k] + dx.segment<2>(2 * t[k]);
+      }
+      if (area2(y[0], y[1], y[2]) < 0.5 * area2(z[0], z[1], z[2])) {
+        for (Index i : t) dx.segment<2>(2 * i).setZero();
+        frozen = true;
+      }
+    }
+    if (!frozen) break;
+  }
+  // The area a move adds is taken from the mover's debt (not from the neighbours whose shares it also changes):
+  // first order g_i . dx_i each, the second-order rest in proportion.
+  const double area_before = std::accumulate(before.begin(), before.end(), 0.0);
+  x += dx;
+  const std::vector<double> after = mesh_.nodal_areas(x, np);
+  const double added = std::accumulate(after.begin(), after.end(), 0.0) - area_before;
+  double first = 0;
+  for (Index i = 0; i < np; ++i) first += g.segment<2>(2 * i).dot(dx.segment<2>(2 * i));
+  if (first == 0.0) return;
+  for (Index i = 0; i < np; ++i) {
+    if (dx.segment<2>(2 * i).isZero()) continue;
+    owed[i] -= g.segment<2>(2 * i).dot(dx.segment<2>(2 * i)) * added / first;
+    correction_energy_ -= c_.rho * before[i] * c_.gravity.dot(dx.segment<2>(2 * i));
+  }
+}
+
 void VolumeCorrection::return_unpayable_through_bulk(const std::vector<char>& fixed) {
   if (type_ != Type::particle) return;
   // A particle owed less than minus its share is asked to give more area than its elements have: its source

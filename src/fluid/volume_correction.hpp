@@ -64,6 +64,12 @@ class VolumeCorrection {
   /// with "dirichlet", the fractional step's) has no continuity row to return its area: it hands what it is
   /// owed to the particles with one that share an element with it (equal shares per element), once a step.
   void hand_owed_inward(const std::vector<char>& fixed);
+  /// "particle" with the fractional step: a particle whose pressure is prescribed (`fixed`) gives back what
+  /// it is owed by a move along the gradient of the mesh area at its position (its elements grow by what it is
+  /// owed; `held`: 2 per particle, the components a wall prescribes, which do not move). What the move changes
+  /// at every particle is taken from what it is owed (the sum of the owed areas and the mesh's area is kept).
+  /// Before set_remeshed.
+  void return_owed_by_moves(const std::vector<char>& fixed, const std::vector<char>& held);
   /// "particle": a particle with a continuity row owed less than minus its share of the area (asked to give
   /// more than its elements have: a film's or a jet's tip) keeps a debt of its share; the rest goes to the
   /// particles inside the water in proportion to their shares (summary.json "returned_through_bulk"). Once a

@@ -63,6 +63,7 @@ struct FractionalStepSettings {
   LinearSolverSettings solver;  // the pressure Poisson's ("linear_solver"; kind symmetric_positive_definite); the
                                 // implicit viscous predictor's is the same with kind mass_dominated
   bool retry_inverted = true;   // an element inverted within the step fails it (retry)
+  bool exact_area_rate = false;  // the pressure equation holds each element's exact area rate (advected, level set)
 };
 
 }  // namespace lagfsi::fluid

@@ -362,6 +362,7 @@ void FractionalStep::pressure_increment(Work& wk) {
   Vec rhs = Vec::Zero(np), comp = Vec::Zero(np);
   std::vector<std::span<double>> pressure_sums{values_of(rhs)};
   if (assemble) pressure_sums.insert(pressure_sums.end(), {values_of(comp), values_of(poisson_)});
+  const std::vector<ParticleKind>& kind = f_.cloud.kind();
   element_loop(ne, scatter_, std::move(pressure_sums), [&](Index e, std::span<double* const> out) {
     const auto& t = tri[e];
     // The continuity as the element's exact area rate over the step at u*: with x + dt u the area changes by
@@ -371,16 +372,14 @@ void FractionalStep::pressure_increment(Work& wk) {
     // by a tenth or more, or one with a wall particle (an impact: the second order is no guide there), keeps
     // div u*.
     double div = f_.volume.c_vol();
-    {
+    if (s_.exact_area_rate && kind[t[0]] == ParticleKind::Fluid && kind[t[1]] == ParticleKind::Fluid &&
+        kind[t[2]] == ParticleKind::Fluid) {
       Mat2 G = Mat2::Zero();  // grad u*
       for (int k = 0; k < 3; ++k) G += wk.ustar.segment<2>(2 * t[k]) * wk.grad[e][k].transpose();
-      const double rate = G.trace() + dt * G.determinant();
-      const std::vector<ParticleKind>& kind = f_.cloud.kind();
-      const bool fluid =
-          kind[t[0]] == ParticleKind::Fluid && kind[t[1]] == ParticleKind::Fluid && kind[t[2]] == ParticleKind::Fluid;
-      const bool exact = s_.exact_area_rate && fluid && std::abs(dt * G.trace()) < 0.1 &&
-                         std::abs(dt * dt * G.determinant()) < 0.1;
-      div += exact ? rate : G.trace();
+      const bool small = std::abs(dt * G.trace()) < 0.1 && std::abs(dt * dt * G.determinant()) < 0.1;
+      div += small ? G.trace() + dt * G.determinant() : G.trace();
+    } else {
+      for (int k = 0; k < 3; ++k) div += wk.ustar.segment<2>(2 * t[k]).dot(wk.grad[e][k]);
     }
     const int* sc = poisson_pattern_.scatter(e);
     for (int a = 0; a < 3; ++a) {

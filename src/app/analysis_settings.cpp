@@ -17,6 +17,9 @@ const KeyTable kAnalysisKeys(
      {"end_time", 0.0, "End time (s) of a dynamic analysis; must be positive there."},
      {"load_steps", 10, "Number of load steps of a static analysis (the loads' functions see t = k / load_steps)."},
      {"max_step_halvings", 4, "How many times a step that fails (Newton, inverted elements) is retried at half dt."},
+     {"time_step", Json{{"type", "fixed"}},
+      "How the step is chosen: {\"type\": \"fixed\"} (dt; halved only to retry a failed step) or adaptive (see "
+      "/analysis/time_step (type adaptive))."},
      {"integrator", Json::object(),
       "Time integrator (see /analysis/integrator (type newmark) and others); default: {\"type\": \"newmark\"}, or "
       "generalized_alpha with "
@@ -48,6 +51,21 @@ const KeyTable kCentralDifferenceKeys("/analysis/integrator (type central_differ
                                       "and is rejected in this version (the solids are implicit).",
                                       {{"type", "central_difference", "`central_difference`."}});
 
+const KeyTable kFixedStepKeys("/analysis/time_step (type fixed)",
+                              "Every step is dt (a failed one is retried at dt / 2).", {{"type", "fixed", "`fixed`."}});
+
+const KeyTable kAdaptiveStepKeys(
+    "/analysis/time_step (type adaptive)",
+    "Each step is the smallest of the ceiling `max`, `growth` times the last step and every body's stable step for "
+    "the Courant number (a fluid: C h / |v| and C sqrt(h / |a|) over its particles, the largest speed and "
+    "acceleration at the step's start); the first step is dt; a failed step is still retried at half its size. "
+    "log.csv records each step's limit (dt_limit) and what set it (dt_by: max, growth, end, or the body's reason); "
+    "summary.json counts them.",
+    {{"type", "adaptive", "`adaptive`."},
+     {"courant", 0.5, "The Courant number C, in (0, 1]."},
+     {"max", 0.0, "The largest step (s); default: the analysis' dt.", kDerived},
+     {"growth", 1.25, "The largest ratio of a step to the one before (> 1)."}});
+
 const KeyTable kNewtonKeys(
     "/analysis/newton", "Newton iterations of the implicit solids (each step or load step).",
     {{"max_iterations", 25, "Iterations before the step fails (and is retried at half dt)."},
@@ -73,6 +91,20 @@ AnalysisSettings read_analysis(Params a, std::vector<std::string>& warnings, con
     if (s.end_time / s.dt > 1e8) a.fail("dt", "more than 1e8 steps requested");
   }
   s.max_step_halvings = a.integer("max_step_halvings", 0);
+  Params ts = a.at("time_step");
+  if (!ts.json().is_object() || !ts.has("type")) ts.fail("type", "required key is missing");
+  if (ts.choice("type", {"fixed", "adaptive"}) == "adaptive") {
+    ts.validate(kAdaptiveStepKeys, {{"max", s.dt}});
+    if (s.type != "dynamic") ts.fail("type", "an adaptive step is for a dynamic analysis");
+    s.time_step.adaptive = true;
+    s.time_step.courant = ts.positive("courant");
+    if (s.time_step.courant > 1) ts.fail("courant", "must lie in (0, 1]");
+    s.time_step.max = ts.positive("max");
+    s.time_step.growth = ts.positive("growth");
+    if (!(s.time_step.growth > 1)) ts.fail("growth", "must be above 1");
+  } else {
+    ts.validate(kFixedStepKeys);
+  }
   Params it = a.at("integrator");
   if (!it.json().is_object() || !it.has("type")) it.fail("type", "required key is missing");
   const std::string itype = it.choice("type", time_integrator_types());

@@ -96,6 +96,7 @@ void serialize_run_head(StateArchive& ar, RunPosition& pos, RunTotals& tot, cons
   if (ar.loading()) tot.body_phases.resize(nb);
   for (PhaseTimes& p : tot.body_phases) serialize_phases(ar, p);
   ar.io(tot.iterations, tot.retries, tot.max_iterations, tot.steps, tot.labelled, tot.wall_before);
+  ar.io(tot.last_dt, tot.dt_by, tot.dt_by_steps, tot.dt_min, tot.dt_max);
 }
 
 void serialize_run_models(StateArchive& ar, const std::vector<PhysicsModel*>& models,

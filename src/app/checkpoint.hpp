@@ -40,6 +40,11 @@ struct RunTotals {
   /// The models' labelled metrics (Metric::progress_label) summed over the steps, in the log's column order.
   std::vector<double> labelled;
   double wall_before = 0;  // wall time of the runs before a restart
+  /// An adaptive step: the last accepted step, and how many steps each limit set (names and counts).
+  double last_dt = 0;
+  std::vector<std::string> dt_by;
+  std::vector<long> dt_by_steps;
+  double dt_min = 0, dt_max = 0;
 };
 
 /// Where the run is at a checkpoint.

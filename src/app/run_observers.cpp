@@ -34,15 +34,17 @@ void ProbesCsv::sample(double t) {
 void RunLog::started(const Simulation& s) {
   csv_.open(file_);
   std::string header = "step,time,dt,iterations,residual,nodes,elements";
+  if (s.analysis().time_step.adaptive) header += ",dt_limit,dt_by";
   for (const Metric& m : s.metric_columns()) header += "," + m.name;
   header += ",t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step\n";
   csv_.write(header);
 }
 
-void RunLog::stepped(const Simulation&, const StepRecord& r) {
+void RunLog::stepped(const Simulation& s, const StepRecord& r) {
   std::ostringstream row;
   row << std::setprecision(10) << r.step << "," << r.t << "," << r.dt << "," << r.iterations << "," << r.residual << ","
       << r.nodes << "," << r.elements;
+  if (s.analysis().time_step.adaptive) row << "," << r.dt_limit << "," << r.dt_by;
   for (double v : r.metrics) row << "," << v;
   const PhaseTimes& ph = r.phases;
   row << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << "," << ph.output << ","
@@ -133,6 +135,19 @@ void SummaryWriter::write(const Simulation& sim) const {
   s["steps"] = tot.steps;
   s["steps_planned"] = sim.planned_steps();
   s["step_retries"] = tot.retries;
+  if (sim.analysis().time_step.adaptive) {
+    Json by = Json::object();
+    for (size_t k = 0; k < tot.dt_by.size(); ++k) by[tot.dt_by[k]] = tot.dt_by_steps[k];
+    const TimeStepControl& c = sim.analysis().time_step;
+    s["time_step"] = {{"type", "adaptive"},
+                      {"courant", c.courant},
+                      {"max", c.max},
+                      {"growth", c.growth},
+                      {"dt_min", tot.dt_min},
+                      {"dt_max", tot.dt_max},
+                      {"dt_mean", tot.steps ? sim.time() / tot.steps : 0.0},
+                      {"steps_set_by", by}};
+  }
   s["time"] = sim.time();
   s["wall_time"] = tot.wall_before + seconds_since(p_.start);
   if (p_.restarted_step >= 0) s["restarted_from_step"] = p_.restarted_step;

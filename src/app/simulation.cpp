@@ -61,11 +61,40 @@ std::vector<double> Simulation::combined_metrics() const {
   return v;
 }
 
+double Simulation::choose_step(std::string& by) const {
+  const TimeStepControl& c = analysis_.time_step;
+  double dt = analysis_.dt;
+  by = "fixed";
+  if (c.adaptive) {
+    // The first step is dt; then the smallest of the ceiling, the growth limit and the bodies' stable steps.
+    by = totals_.last_dt > 0 ? "max" : "first";
+    dt = totals_.last_dt > 0 ? c.max : std::min(analysis_.dt, c.max);
+    if (totals_.last_dt > 0 && c.growth * totals_.last_dt < dt) {
+      dt = c.growth * totals_.last_dt;
+      by = "growth";
+    }
+    for (const PhysicsModel* m : bodies_) {
+      const StepLimit l = m->stable_step(c.courant);
+      if (l.dt < dt) {
+        dt = l.dt;
+        by = m->name() + ": " + l.by;
+      }
+    }
+  }
+  if (analysis_.end_time - t_ < dt) {
+    dt = analysis_.end_time - t_;
+    by = "end";
+  }
+  // A remainder shorter than 1e-6 dt is taken with this step.
+  if (analysis_.end_time - (t_ + dt) < 1e-6 * analysis_.dt) dt = analysis_.end_time - t_;
+  return dt;
+}
+
 StepRecord Simulation::advance() {
   StepRecord r;
   r.step = step_ + 1;
-  double dt = std::min(analysis_.dt, analysis_.end_time - t_);
-  if (analysis_.end_time - (t_ + dt) < 1e-6 * analysis_.dt) dt = analysis_.end_time - t_;
+  double dt = choose_step(r.dt_by);
+  r.dt_limit = dt;
   for (PhysicsModel* m : couplings_) m->times() = PhaseTimes{};
   for (PhysicsModel* m : bodies_) m->times() = PhaseTimes{};
   for (int halving = 0;; ++halving) {
@@ -105,6 +134,18 @@ void Simulation::record(StepRecord& r) {
 
 void Simulation::account(const StepRecord& r) {
   ++totals_.steps;
+  if (analysis_.time_step.adaptive) {
+    totals_.dt_min = totals_.last_dt > 0 ? std::min(totals_.dt_min, r.dt) : r.dt;
+    totals_.dt_max = std::max(totals_.dt_max, r.dt);
+    totals_.last_dt = r.dt;
+    const auto it = std::find(totals_.dt_by.begin(), totals_.dt_by.end(), r.dt_by);
+    if (it == totals_.dt_by.end()) {
+      totals_.dt_by.push_back(r.dt_by);
+      totals_.dt_by_steps.push_back(1);
+    } else {
+      ++totals_.dt_by_steps[static_cast<size_t>(it - totals_.dt_by.begin())];
+    }
+  }
   totals_.iterations += r.iterations;
   totals_.max_iterations = std::max(totals_.max_iterations, r.iterations);
   totals_.phases += r.phases;

@@ -19,10 +19,12 @@ namespace lagfsi {
 struct StepRecord {
   long step = 0;
   double t = 0, dt = 0;  ///< the time at the step's end and the step size it was taken with
-  int iterations = 0;    ///< Newton iterations of the step (inner ones of couplings, retried attempts too)
-  double residual = 0;   ///< the last relative residual
-  double wall = 0;       ///< seconds of wall time the step took (with its retried attempts)
-  PhaseTimes phases;     ///< every body's phases of the step
+  double dt_limit = 0;   ///< an adaptive step: the step it chose before any retry, and what set it
+  std::string dt_by;
+  int iterations = 0;   ///< Newton iterations of the step (inner ones of couplings, retried attempts too)
+  double residual = 0;  ///< the last relative residual
+  double wall = 0;      ///< seconds of wall time the step took (with its retried attempts)
+  PhaseTimes phases;    ///< every body's phases of the step
   Index nodes = 0, elements = 0, particles = 0;
   std::vector<double> metrics;  ///< the models' metrics combined, in Simulation::metric_columns()'s order
 };
@@ -95,6 +97,8 @@ class Simulation {
  private:
   /// One step from t_: its attempts (halving dt on a SolverError), then finalize_step; returns the record.
   StepRecord advance();
+  /// The step to try from t_ (the analysis' dt, or the adaptive choice) and what set it.
+  double choose_step(std::string& by) const;
   /// The bodies' phases, sizes and metrics of the step into its record.
   void record(StepRecord& r);
   /// The models' metrics combined by name in the columns' order.

@@ -214,6 +214,28 @@ void FluidModel::finalize_step() {
   step_.p_scale = std::max(step_.p_scale, cloud_.p().cwiseAbs().maxCoeff());
 }
 
+StepLimit FluidModel::stable_step(double courant) const {
+  // Over the fluid particles at the step's start (drops in flight included: one about to land needs the small
+  // step): the Courant limit C h_i / |v_i| (a particle crosses at most C of its spacing in a step; Courant,
+  // Friedrichs & Lewy 1928) and the acceleration limit C sqrt(h_i / |a_i|) (started from rest, it moves at most
+  // C^2 h_i / 2: the force criterion of SPH, Monaghan 1992), which sets the first steps of a flow at rest.
+  StepLimit l;
+  const KinematicState& s = cloud_.state();
+  for (Index i = 0; i < cloud_.n(); ++i) {
+    if (!cloud_.is_fluid(i)) continue;
+    const double h = cloud_.h(i), v = s.v.segment<2>(2 * i).norm(), a = s.a.segment<2>(2 * i).norm();
+    if (v * l.dt > courant * h) {
+      l.dt = courant * h / v;
+      l.by = "courant";
+    }
+    if (a * l.dt * l.dt > courant * courant * h) {
+      l.dt = courant * std::sqrt(h / a);
+      l.by = "acceleration";
+    }
+  }
+  return l;
+}
+
 // ------------------------------------------------------------------------------------------ ghosts
 
 int FluidModel::add_ghosts(const std::vector<Vec2>& points, const std::vector<std::pair<Index, Index>>& adjacent) {

@@ -49,6 +49,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// the latter: the scheme's own), the particles put back inside a wall (keep_inside_walls), the particle
   /// counts and what remeshing changed over the run (RemeshPipeline::summary).
   Json summary() const override;
+  StepLimit stable_step(double courant) const override;
 
   void initialize() override;
   void predict(double t_new, double dt) override;

@@ -28,6 +28,16 @@ struct NewtonSettings {
   double position_tolerance = 1e-9;  ///< relative to the body size
 };
 
+/// How a dynamic analysis chooses its step (/analysis/time_step): fixed (the analysis' dt, halved only to retry a
+/// failed step) or adaptive: each step the smallest of the ceiling, `growth` times the last step and every model's
+/// stable step for the Courant number `courant` (PhysicsModel::stable_step).
+struct TimeStepControl {
+  bool adaptive = false;
+  double courant = 0.5;
+  double max = 0;  ///< the ceiling (s)
+  double growth = 1.25;
+};
+
 struct AnalysisSettings {
   std::string type;           ///< "static" (load factor = time from 0 to 1) or "dynamic"
   double dt = 0;              ///< time step (dynamic) or 1/load_steps (static)
@@ -36,6 +46,7 @@ struct AnalysisSettings {
   NewtonSettings newton;
   LinearSolverSettings linear_solver;  ///< the solids' Newton systems (linear_solver.hpp)
   int max_step_halvings = 4;           ///< retries of a failed step with dt/2, dt/4, ...
+  TimeStepControl time_step;           ///< fixed or adaptive (dynamic analyses)
 };
 
 /// What a model builder gets besides its own parameters.

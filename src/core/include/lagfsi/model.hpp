@@ -16,6 +16,7 @@
 #include <lagfsi/params.hpp>
 #include <lagfsi/state_archive.hpp>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,6 +71,12 @@ class Probe {
   virtual void serialize(StateArchive&) {}
 };
 
+/// The largest step a model can take from its present state, and what sets it (PhysicsModel::stable_step).
+struct StepLimit {
+  double dt = std::numeric_limits<double>::infinity();
+  std::string by;  ///< e.g. "courant", "acceleration"; empty: no limit
+};
+
 class PhysicsModel {
  public:
   virtual ~PhysicsModel() = default;
@@ -96,6 +103,12 @@ class PhysicsModel {
   /// What the body's input chose on purpose against the safe default, or got unlike it asked, each line
   /// starting with its JSON path: printed as warnings and listed in summary.json's "warnings" (empty: none).
   virtual std::vector<std::string> warnings() const { return {}; }
+  /// An adaptive step's limit from the model's present state (after initialize or finalize_step) for the Courant
+  /// number `courant` (/analysis/time_step). None by default (implicit models; explicit ones sub-step).
+  virtual StepLimit stable_step(double courant) const {
+    (void)courant;
+    return {};
+  }
   PhaseTimes& times() { return times_; }
   const PhaseTimes& times() const { return times_; }
 

@@ -8,7 +8,10 @@
 
 #include "fluid_probes.hpp"
 
+#include <lagfsi/geometry2d.hpp>
+
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace lagfsi {
@@ -338,7 +341,8 @@ std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
   const std::string t = p.choice(
       "type", {"front", "column_height", "pressure", "elevation", "runup", "water_above", "discharge", "velocity",
                "fluid_area", "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
-               "volume_correction_energy", "total_energy", "boundary_work", "max_speed"});
+               "volume_correction_energy", "total_energy", "boundary_work", "max_speed", "wall_force"});
+  if (t == "wall_force") request_boundary_forces();
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe
   // asks for them (an extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work") {
@@ -346,6 +350,84 @@ std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
     step_.energy = true;
   }
   return make_fluid_probe(*this, p.string("name"), t, p);
+}
+
+int FluidModel::wall_index(const std::string& name) const {
+  const auto& all = walls_.all();
+  for (size_t w = 0; w < all.size(); ++w)
+    if (all[w].name == name) return static_cast<int>(w);
+  return -1;
+}
+
+Vec2 FluidModel::wall_force(int wall) const {
+  Vec2 f = Vec2::Zero();
+  if (walls_.constraint_model()) {
+    // The reaction of each constrained component (the force the wall applies to the fluid along it), and the
+    // friction of the particles sliding on a no-slip wall ("navier": -k (v_t - v_wall,t) on the fluid).
+    const auto& ks = boundaries_.constraints();
+    if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
+      for (size_t k = 0; k < ks.size(); ++k)
+        if (ks[k].boundary == 0 && ks[k].wall == wall)
+          f -= step_.constraint_force[static_cast<Index>(k)] * walls_.direction(ks[k].i, ks[k].c);
+    const double kf = walls_.friction_coefficient();
+    for (const WallFriction& w : walls_.frictions())
+      if (w.wall == wall && w.i < cloud_.n())
+        f += kf * (walls_.component(cloud_.v(), w.i, w.c) - walls_.friction_velocity(w, step_.t_new)) *
+             walls_.direction(w.i, w.c);
+    return f;
+  }
+  // Wall particles: the force each applied to the fluid in the step's solve. A particle shared by two walls (a
+  // corner) splits its force along the two walls' normals there, f = a n1 + b n2 (each wall takes its own
+  // normal's part: the pressure on its half of the corner), half each where they are parallel (a joint).
+  const auto& all = walls_.all();
+  const Index nb = static_cast<Index>(step_.boundary_force.size() / 2);
+  // The normal of the segment of wall w nearest to particle j.
+  const auto normal_at = [&](const Wall& w, Index j) {
+    size_t best = 0;
+    double d = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k + 1 < w.polyline.size(); ++k)
+      if (const double dk = w.distance(k, cloud_.X0().segment<2>(2 * j), Vec2::Zero()); dk < d) {
+        d = dk;
+        best = k;
+      }
+    return w.fluid_normal(best);
+  };
+  // How many walls hold each particle (a closed polyline lists its first particle twice: it counts once).
+  std::vector<int> walls_of(static_cast<size_t>(nb), 0), last(static_cast<size_t>(nb), -1);
+  for (size_t w = 0; w < all.size(); ++w)
+    for (Index j : all[w].particles)
+      if (j < nb && last[static_cast<size_t>(j)] != static_cast<int>(w)) {
+        ++walls_of[static_cast<size_t>(j)];
+        last[static_cast<size_t>(j)] = static_cast<int>(w);
+      }
+  std::vector<char> done(static_cast<size_t>(nb), 0);
+  std::vector<int> others;
+  for (Index j : all[static_cast<size_t>(wall)].particles) {
+    if (j >= nb || done[static_cast<size_t>(j)]) continue;
+    done[static_cast<size_t>(j)] = 1;
+    const Vec2 fj = step_.boundary_force.segment<2>(2 * j);
+    others.clear();
+    if (walls_of[static_cast<size_t>(j)] > 1)
+      for (size_t w = 0; w < all.size(); ++w)
+        if (static_cast<int>(w) != wall &&
+            std::find(all[w].particles.begin(), all[w].particles.end(), j) != all[w].particles.end())
+          others.push_back(static_cast<int>(w));
+    if (others.empty()) {
+      f -= fj;
+      continue;
+    }
+    if (others.size() == 1) {
+      const Vec2 n1 = normal_at(all[static_cast<size_t>(wall)], j);
+      const Vec2 n2 = normal_at(all[static_cast<size_t>(others[0])], j);
+      const double det = cross(n1, n2);
+      if (std::abs(det) > 1e-6) {
+        f -= cross(fj, n2) / det * n1;  // fj = a n1 + b n2: a = (fj x n2) / (n1 x n2)
+        continue;
+      }
+    }
+    f -= fj / static_cast<double>(others.size() + 1);
+  }
+  return f;
 }
 
 }  // namespace fluid

@@ -77,6 +77,16 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   double spacing() const { return c_.h; }
   /// The walls' polylines' bounding box (lo > hi without walls).
   void walls_box(Vec2& lo, Vec2& hi) const { walls_.bounding_box(lo, hi); }
+  /// The index of the wall named `name` (FluidWalls::all), or -1.
+  int wall_index(const std::string& name) const;
+  /// The force (N per m of thickness) the fluid applied to wall `wall` in the last step: minus the reactions of
+  /// its constraints ("wall_model": "constraints", FluidStep::constraint_force, in the particles' frames on
+  /// inclined segments) plus the Navier friction of the particles sliding on it, or minus the forces its wall
+  /// particles applied to the fluid (FluidStep::boundary_force; a corner particle shared by two walls counts for
+  /// the first). Zero before the first step.
+  Vec2 wall_force(int wall) const;
+  /// A wall_force probe needs the boundary forces of the step (the schemes compute them on demand).
+  void request_boundary_forces() { step_.energy = true; }
   const std::vector<std::array<Index, 3>>& triangles() const { return mesh_.tri; }
   double kinetic_energy() const { return energy_.kinetic(); }
   /// Potential energy of gravity over the current mesh (FluidEnergy::potential).

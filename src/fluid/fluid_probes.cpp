@@ -75,6 +75,18 @@ const KeyTable kVelocityKeys("/probes/* (fluid body, type velocity)",
                              probe_keys({"velocity"}, {{"at", nullptr, "The point [x, y] (m)."},
                                                        {"component", nullptr, "`x` or `y`."}}));
 
+const KeyTable kWallForceKeys(
+    "/probes/* (fluid body, type wall_force)",
+    "A component of the force (N per m of thickness) the fluid applied to a wall in the step, pressure and viscous "
+    "stress together: the drag and lift of an obstacle, the weight of water at rest on a floor (negative: "
+    "downwards). With \"wall_model\": \"constraints\": the reactions of the wall's constraints on the fluid "
+    "particles on it, sign flipped (a particle held at a corner of two walls gives each wall the component along "
+    "its normal; at a corner of an inclined wall, both to the inclined one), plus the Navier friction of the "
+    "particles sliding on it. With wall particles: the forces its particles applied to the fluid, sign flipped (a "
+    "corner particle shared by two walls splits its force along their normals, f = a n1 + b n2). Zero at t = 0.",
+    probe_keys({"wall_force"}, {{"wall", nullptr, "The name of a wall of the body (/bodies/i/walls/j/name)."},
+                                {"component", nullptr, "`x` or `y`."}}));
+
 const KeyTable kGlobalKeys(
     "/probes/* (fluid body, type fluid_area, water_area, kinetic_energy, ...)",
     "A quantity of the whole fluid: fluid_area (m^2), water_area (with particles in flight), kinetic_energy, "
@@ -103,6 +115,7 @@ class FluidProbe final : public Probe {
   double band_ = 0, coord_ = 0;
   bool mesh_method_ = true;
   int component_ = 0;
+  int wall_ = -1;  // wall_force: the wall's index
   /// The discharge through a_-b_ (the part of it in each element, where u is linear: its midpoint's u.n).
   double discharge() const;
   /// Component component_ of the velocity at a_, or nan.
@@ -186,6 +199,12 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     inside("at", a_.x(), 0);
     inside("at", a_.y(), 1);
     component_ = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
+  } else if (type_ == "wall_force") {
+    p.validate(kWallForceKeys);
+    const std::string wall = p.string("wall");
+    wall_ = m.wall_index(wall);
+    if (wall_ < 0) p.fail("wall", "the body has no wall named '" + wall + "'");
+    component_ = p.choice("component", {"x", "y"}) == "x" ? 0 : 1;
   } else if (type_ == "pressure") {
     p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
     read_segment();
@@ -214,6 +233,7 @@ std::vector<double> FluidProbe::sample() const {
   }
   if (type_ == "discharge") return {discharge()};
   if (type_ == "velocity") return {velocity_at()};
+  if (type_ == "wall_force") return {m_.wall_force(wall_)[component_]};
   if (type_ == "water_above") {
     Index above = 0, fluid = 0;
     for (Index i = 0; i < n; ++i) {

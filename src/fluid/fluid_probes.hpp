@@ -1,6 +1,6 @@
 #pragma once
 /// @file fluid_probes.hpp (private to src/fluid)
-/// The probes of a fluid body (/probes/i with "body" a fluid): front, column_height, elevation, pressure,
+/// The probes of a fluid body (/probes/i with "body" a fluid): front, column_height, elevation, pressure, wall_force,
 /// fluid_area and the energies.
 #include <lagfsi/model.hpp>
 #include <lagfsi/params.hpp>

@@ -30,7 +30,8 @@ struct FluidStep {
   Vec p_old;                // pressures at the start of the step
   std::vector<char> fixed;  // per dof (3 per particle: x, y, p): prescribed (FluidModel::set_dirichlet)
   double p_scale = 1;       // pressure scale of the convergence test
-  bool energy = false;      // an energy probe asks for the boundary work: the schemes set boundary_force
+  bool energy = false;      // an energy probe (the boundary work) or a wall_force probe asks for the walls'
+                            // and ghosts' forces: the schemes set boundary_force
   Vec boundary_force;       // per non-fluid particle (walls, ghosts: stable indices), 2 each: the force it
                             // applies to the fluid in the step's solve
   Vec constraint_force;     // per wall constraint (FluidWalls::constraints): the force the wall applies

@@ -28,6 +28,19 @@ const KeyTable kSinusoidKeys("time function (type sinusoid)", "f(t) = amplitude 
                               {"frequency", nullptr, "Frequency (Hz), positive."},
                               {"phase", 0.0, "Phase (rad)."}});
 
+const KeyTable kWavemakerKeys(
+    "time function (type piston_wavemaker)",
+    "The displacement (m) of a piston wave maker that makes regular waves of a given height and period in water of "
+    "a given depth, by linear wave-maker theory (Biesel & Suquet 1951): x(t) = (S/2) r(t) sin(2 pi t / T) with the "
+    "stroke S = H (sinh 2kd + 2kd) / (2 (cosh 2kd - 1)), omega^2 = g k tanh kd, and a half-cosine ramp r over the "
+    "first periods. Use it as a wall's prescribed displacement with \"value\": [1, 0].",
+    {{"type", "piston_wavemaker", "`piston_wavemaker`."},
+     {"height", nullptr, "The wave height H (m), trough to crest, positive."},
+     {"period", nullptr, "The wave period T (s), positive."},
+     {"depth", nullptr, "The still-water depth d (m) at the paddle, positive."},
+     {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
+     {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}});
+
 const KeyTable kTableKeys("time function (type table)",
                           "f(t) interpolated linearly in a table of (time, value) rows, constant beyond its ends.",
                           {{"type", "table", "`table`."},
@@ -71,6 +84,47 @@ class Sinusoid final : public TimeFunction {
 
  private:
   double a_, w_, phi_;
+};
+
+/// A piston wave maker's displacement for regular waves of height H and period T in water of depth d, by linear
+/// wave-maker theory (Biesel & Suquet 1951; Dean & Dalrymple 1991, section 6.2): the stroke S from
+///   H / S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd),   omega^2 = g k tanh kd,
+/// and x(t) = (S / 2) r(t) sin(omega t) with the ramp r = (1 - cos(pi t / t_r)) / 2 over the first t_r seconds.
+class PistonWavemaker final : public TimeFunction {
+ public:
+  PistonWavemaker(double height, double period, double depth, double g, double ramp)
+      : w_(2.0 * std::numbers::pi / period), tr_(ramp) {
+    // The dispersion relation by Newton's method from the deep-water guess (monotone in k: converges).
+    double k = w_ * w_ / g;
+    for (int it = 0; it < 100; ++it) {
+      const double th = std::tanh(k * depth), f = g * k * th - w_ * w_;
+      const double df = g * th + g * k * depth * (1 - th * th);
+      const double dk = f / df;
+      k -= dk;
+      if (std::abs(dk) < 1e-14 * k) break;
+    }
+    const double kd2 = 2 * k * depth;
+    stroke_ = height * (std::sinh(kd2) + kd2) / (2 * (std::cosh(kd2) - 1));
+  }
+  double value(double t) const override {
+    const double r = t <= 0 ? 0.0 : t >= tr_ ? 1.0 : 0.5 * (1 - std::cos(std::numbers::pi * t / tr_));
+    return 0.5 * stroke_ * r * std::sin(w_ * t);
+  }
+  double integral(double t) const override {
+    // int_0^t r(s) sin(w s) ds: with a = pi / t_r < w, (1 - cos w t) / (2w) - (1/4) [(1 - cos (w + a) t) / (w + a)
+    // + (1 - cos (w - a) t) / (w - a)] during the ramp, then the ramp's value plus (cos w t_r - cos w t) / w.
+    if (t <= 0) return 0.0;
+    const double a = std::numbers::pi / tr_;
+    const auto ramp = [&](double s) {
+      return (1 - std::cos(w_ * s)) / (2 * w_) -
+             0.25 * ((1 - std::cos((w_ + a) * s)) / (w_ + a) + (1 - std::cos((w_ - a) * s)) / (w_ - a));
+    };
+    const double i = t <= tr_ ? ramp(t) : ramp(tr_) + (std::cos(w_ * tr_) - std::cos(w_ * t)) / w_;
+    return 0.5 * stroke_ * i;
+  }
+
+ private:
+  double w_, tr_, stroke_ = 0;
 };
 
 class Table final : public TimeFunction {
@@ -215,7 +269,7 @@ std::shared_ptr<TimeFunction> constant_function(double c) { return std::make_sha
 std::unique_ptr<TimeFunction> make_time_function(Params p, const std::filesystem::path& base_dir) {
   if (!p.json().is_object()) p.fail("expected an object with a \"type\"");
   if (!p.has("type")) p.fail("type", "required key is missing");
-  const std::string type = p.choice("type", {"constant", "ramp", "sinusoid", "table"});
+  const std::string type = p.choice("type", {"constant", "ramp", "sinusoid", "table", "piston_wavemaker"});
   if (type == "constant") {
     p.validate(kConstantKeys);
     return std::make_unique<Constant>(p.number("value"));
@@ -229,6 +283,14 @@ std::unique_ptr<TimeFunction> make_time_function(Params p, const std::filesystem
   if (type == "sinusoid") {
     p.validate(kSinusoidKeys);
     return std::make_unique<Sinusoid>(p.number("amplitude"), p.positive("frequency"), p.number("phase"));
+  }
+  if (type == "piston_wavemaker") {
+    p.validate(kWavemakerKeys);
+    const double ramp = p.positive("ramp_periods");
+    if (ramp < 1) p.fail("ramp_periods", "must be at least 1");
+    const double period = p.positive("period");
+    return std::make_unique<PistonWavemaker>(p.positive("height"), period, p.positive("depth"), p.positive("gravity"),
+                                             ramp * period);
   }
   p.validate(kTableKeys);
   return read_table(p, base_dir);

@@ -6,6 +6,8 @@
 ///  - {"type": "sinusoid", "amplitude": A, "frequency": f, "phase": phi}   f = A sin(2 pi f t + phi)
 ///  - {"type": "table", "file": "x.csv"}                     piecewise linear in a two-column CSV (time, value);
 ///                                                           '#' lines are comments; constant beyond the ends
+///  - {"type": "piston_wavemaker", "height": H, "period": T, "depth": d}   a piston paddle's displacement for
+///                                                           regular waves by linear wave-maker theory
 /// integral(t) = int_0^t f(s) ds (exact for each type; used for prescribed velocities).
 #include <lagfsi/params.hpp>
 

@@ -13,6 +13,27 @@ namespace lagfsi::fluid {
 #include "fluid_boundaries.def"
 #undef LAGFSI_FLUID_BOUNDARY
 
+BoundarySegment::BoundarySegment(Params& p, double min_length, const std::string& too_short) {
+  const std::vector<Vec2> s = p.points("segment");
+  if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
+  a = s[0];
+  const Vec2 e = s[1] - s[0];
+  length = e.norm();
+  if (!(length > min_length)) p.fail("segment", too_short);
+  tangent = e / length;
+  normal = Vec2(-tangent.y(), tangent.x());
+}
+
+BoundaryFunction::BoundaryFunction(Params& p, const std::filesystem::path& base_dir) {
+  if (!p.json().at("function").empty()) fn_ = make_time_function(p.at("function"), base_dir);
+}
+
+double BoundaryFunction::rate(double t) const {
+  if (!fn_) return 0.0;
+  const double d = 1e-4;
+  return (fn_->value(t + d) - fn_->value(t - d)) / (2 * d);
+}
+
 namespace {
 using BoundaryBuilder = std::function<std::unique_ptr<FluidBoundary>(Params, const BoundaryContext&)>;
 const std::map<std::string, BoundaryBuilder>& boundary_registry() {

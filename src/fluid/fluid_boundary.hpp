@@ -12,6 +12,7 @@
 #include <lagfsi/fluid/particle_cloud.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/state_archive.hpp>
+#include <lagfsi/time_function.hpp>
 
 #include <array>
 #include <filesystem>
@@ -26,6 +27,30 @@ struct BoundaryConstraint {
   Index i;
   int c;
   double base;
+};
+
+/// A boundary's segment ("segment": [[x0, y0], [x1, y1]]): its start a, unit tangent t (towards the end), the unit
+/// normal n = perp(t) (to the left of t) and its length. Shorter than `min_length`: an error at the key.
+struct BoundarySegment {
+  Vec2 a = Vec2::Zero(), tangent = Vec2::UnitX(), normal = Vec2::UnitY();
+  double length = 0;
+  BoundarySegment() = default;
+  BoundarySegment(Params& p, double min_length, const std::string& too_short);
+  Vec2 b() const { return a + tangent * length; }
+};
+
+/// A boundary's optional time function ("function": {} or absent: f = 1): f, its integral from 0 and its rate (a
+/// central difference, as for the walls' motions).
+class BoundaryFunction {
+ public:
+  BoundaryFunction() = default;
+  BoundaryFunction(Params& p, const std::filesystem::path& base_dir);
+  double value(double t) const { return fn_ ? fn_->value(t) : 1.0; }
+  double integral(double t) const { return fn_ ? fn_->integral(t) : t; }
+  double rate(double t) const;
+
+ private:
+  std::shared_ptr<TimeFunction> fn_;
 };
 
 /// What a boundary is built with.

@@ -19,8 +19,6 @@
 // elements joining a new layer to the flow are kept.
 #include "fluid_boundary.hpp"
 
-#include <lagfsi/time_function.hpp>
-
 #include <algorithm>
 #include <cmath>
 
@@ -49,20 +47,17 @@ class Inflow final : public FluidBoundary {
  public:
   Inflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
     p.validate(kInflowKeys, {{"name", ctx.name}});
-    const std::vector<Vec2> s = p.points("segment");
-    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
-    a_ = s[0];
-    const Vec2 e = s[1] - s[0];
-    length_ = e.norm();
-    if (!(length_ > 0.5 * h_)) p.fail("segment", "shorter than half a particle spacing");
-    tangent_ = e / length_;
-    normal_ = Vec2(-tangent_.y(), tangent_.x());
+    const BoundarySegment seg(p, 0.5 * h_, "shorter than half a particle spacing");
+    a_ = seg.a;
+    length_ = seg.length;
+    tangent_ = seg.tangent;
+    normal_ = seg.normal;
     u_ = p.vec2("velocity");
     const double un = u_.dot(normal_);
     if (!(std::abs(un) > 1e-3 * u_.norm())) p.fail("velocity", "must point off the segment (into the fluid)");
     if (un < 0) normal_ = -normal_;
     parabolic_ = p.choice("profile", {"uniform", "parabolic"}) == "parabolic";
-    if (!p.json().at("function").empty()) fn_ = make_time_function(p.at("function"), ctx.base_dir);
+    fn_ = BoundaryFunction(p, ctx.base_dir);
     lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(length_ / h_)));
   }
 
@@ -163,19 +158,15 @@ class Inflow final : public FluidBoundary {
     return p;
   }
   double profile(double s) const { return parabolic_ ? 6.0 * s * (1.0 - s) : 1.0; }
-  double value(double t) const { return fn_ ? fn_->value(t) : 1.0; }
-  double integral(double t) const { return fn_ ? fn_->integral(t) : t; }
-  double rate(double t) const {
-    if (!fn_) return 0.0;
-    const double d = 1e-4;  // central difference of f, as for the walls' motions
-    return (fn_->value(t + d) - fn_->value(t - d)) / (2 * d);
-  }
+  double value(double t) const { return fn_.value(t); }
+  double integral(double t) const { return fn_.integral(t); }
+  double rate(double t) const { return fn_.rate(t); }
 
   double h_;
   Vec2 a_, tangent_, normal_, u_;
   double length_ = 0;
   bool parabolic_ = false;
-  std::shared_ptr<TimeFunction> fn_;
+  BoundaryFunction fn_;
   Index lanes_ = 1;
   double t0_ = 0;
   std::vector<Vec2> held_velocity_;  // per particle: its inflow velocity over the step (zero if not held)

@@ -28,14 +28,11 @@ class Outflow final : public FluidBoundary {
  public:
   Outflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
     p.validate(kOutflowKeys, {{"name", ctx.name}});
-    const std::vector<Vec2> s = p.points("segment");
-    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
-    a_ = s[0];
-    const Vec2 e = s[1] - s[0];
-    length_ = e.norm();
-    if (!(length_ > 0.5 * h_)) p.fail("segment", "shorter than half a particle spacing");
-    tangent_ = e / length_;
-    normal_ = Vec2(-tangent_.y(), tangent_.x());
+    const BoundarySegment seg(p, 0.5 * h_, "shorter than half a particle spacing");
+    a_ = seg.a;
+    length_ = seg.length;
+    tangent_ = seg.tangent;
+    normal_ = seg.normal;
   }
 
   bool open() const override { return true; }

@@ -8,7 +8,6 @@
 #include "fluid_boundary.hpp"
 
 #include <lagfsi/geometry2d.hpp>
-#include <lagfsi/time_function.hpp>
 
 #include <algorithm>
 
@@ -31,13 +30,11 @@ class PrescribedVelocity final : public FluidBoundary {
  public:
   PrescribedVelocity(Params p, const BoundaryContext& ctx) {
     p.validate(kPrescribedVelocityKeys, {{"name", ctx.name}});
-    const std::vector<Vec2> s = p.points("segment");
-    if (s.size() != 2) p.fail("segment", "expected two points [[x0, y0], [x1, y1]]");
-    a_ = s[0];
-    b_ = s[1];
-    if (!((b_ - a_).norm() > 1e-6 * ctx.h)) p.fail("segment", "the two points coincide");
+    const BoundarySegment seg(p, 1e-6 * ctx.h, "the two points coincide");
+    a_ = seg.a;
+    b_ = seg.b();
     u_ = p.vec2("velocity");
-    if (!p.json().at("function").empty()) fn_ = make_time_function(p.at("function"), ctx.base_dir);
+    fn_ = BoundaryFunction(p, ctx.base_dir);
     tol_ = p.non_negative("tolerance") * ctx.h;
   }
 
@@ -57,23 +54,16 @@ class PrescribedVelocity final : public FluidBoundary {
     held_max_ = std::max(held_max_, held_);
   }
   double position(const BoundaryConstraint& k, double t) const override {
-    return k.base + u_[k.c] * (integral(t) - integral(t0_));
+    return k.base + u_[k.c] * (fn_.integral(t) - fn_.integral(t0_));
   }
-  double velocity(const BoundaryConstraint& k, double t) const override {
-    return u_[k.c] * (fn_ ? fn_->value(t) : 1.0);
-  }
-  double acceleration(const BoundaryConstraint& k, double t) const override {
-    if (!fn_) return 0.0;
-    const double d = 1e-4;  // central difference of f, as for the walls' motions
-    return u_[k.c] * (fn_->value(t + d) - fn_->value(t - d)) / (2 * d);
-  }
+  double velocity(const BoundaryConstraint& k, double t) const override { return u_[k.c] * fn_.value(t); }
+  double acceleration(const BoundaryConstraint& k, double t) const override { return u_[k.c] * fn_.rate(t); }
   Json summary() const override { return {{"type", "prescribed_velocity"}, {"particles_held_max", held_max_}}; }
   void serialize(StateArchive& ar) override { ar.io(t0_, held_, held_max_); }
 
  private:
-  double integral(double t) const { return fn_ ? fn_->integral(t) : t; }
   Vec2 a_, b_, u_;
-  std::shared_ptr<TimeFunction> fn_;
+  BoundaryFunction fn_;
   double tol_ = 0, t0_ = 0;
   long held_ = 0, held_max_ = 0;
 };

@@ -60,9 +60,9 @@ struct PspgSettings {
 /// The fractional step's settings (/bodies/i/scheme).
 struct FractionalStepSettings {
   std::string viscous_step = "automatic";  // automatic | explicit | implicit
-  LinearSolverSettings solver;  // the pressure Poisson's ("linear_solver"; kind symmetric_positive_definite); the
-                                // implicit viscous predictor's is the same with kind mass_dominated
-  bool retry_inverted = true;   // an element inverted within the step fails it (retry)
+  LinearSolverSettings solver;   // the pressure Poisson's ("linear_solver"; kind symmetric_positive_definite); the
+                                 // implicit viscous predictor's is the same with kind mass_dominated
+  bool retry_inverted = true;    // an element inverted within the step fails it (retry)
   bool exact_area_rate = false;  // the pressure equation holds each element's exact area rate (advected, level set)
 };
 

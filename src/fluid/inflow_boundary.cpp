@@ -47,18 +47,14 @@ class Inflow final : public FluidBoundary {
  public:
   Inflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
     p.validate(kInflowKeys, {{"name", ctx.name}});
-    const BoundarySegment seg(p, 0.5 * h_, "shorter than half a particle spacing");
-    a_ = seg.a;
-    length_ = seg.length;
-    tangent_ = seg.tangent;
-    normal_ = seg.normal;
+    seg_ = BoundarySegment(p, 0.5 * h_, "shorter than half a particle spacing");
     u_ = p.vec2("velocity");
-    const double un = u_.dot(normal_);
+    const double un = u_.dot(seg_.normal);
     if (!(std::abs(un) > 1e-3 * u_.norm())) p.fail("velocity", "must point off the segment (into the fluid)");
-    if (un < 0) normal_ = -normal_;
+    if (un < 0) seg_.normal = -seg_.normal;
     parabolic_ = p.choice("profile", {"uniform", "parabolic"}) == "parabolic";
     fn_ = BoundaryFunction(p, ctx.base_dir);
-    lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(length_ / h_)));
+    lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(seg_.length / h_)));
   }
 
   bool open() const override { return true; }
@@ -71,8 +67,8 @@ class Inflow final : public FluidBoundary {
     long held = 0;
     for (Index i = 0; i < cloud.n(); ++i) {
       if (!cloud.is_fluid(i) || taken[static_cast<size_t>(i)]) continue;
-      const Vec2 q = cloud.pos(i) - a_;
-      const double s = q.dot(tangent_) / length_, d = q.dot(normal_);
+      const Vec2 q = cloud.pos(i) - seg_.a;
+      const double s = q.dot(seg_.tangent) / seg_.length, d = q.dot(seg_.normal);
       if (s < -1e-9 || s > 1 + 1e-9 || d < -0.5 * h_ || d >= h_ * (1 - 1e-9)) continue;
       held_velocity_[static_cast<size_t>(i)] = u_ * profile(s);
       out.push_back({i, 0, cloud.pos(i).x()});
@@ -100,10 +96,10 @@ class Inflow final : public FluidBoundary {
     if (phase_.size() != nl) phase_.assign(nl, 0.0);
     std::vector<ParticleCloud::Particle> added;
     double area = 0.0;
-    const double width = length_ / static_cast<double>(lanes_);
+    const double width = seg_.length / static_cast<double>(lanes_);
     for (size_t k = 0; k < nl; ++k) {
       const double s = static_cast<double>(k) / static_cast<double>(lanes_);
-      const double un = u_.dot(normal_) * profile(s);
+      const double un = u_.dot(seg_.normal) * profile(s);
       if (!(un > 0)) continue;
       phase_[k] += un * swept;
       if (phase_[k] < h_ * (1 - 1e-9)) continue;
@@ -111,7 +107,7 @@ class Inflow final : public FluidBoundary {
       ParticleCloud::Particle q;
       q.kind = ParticleKind::Fluid;
       q.h = h_;
-      q.x = q.X0 = a_ + tangent_ * (s * length_) + normal_ * phase_[k];
+      q.x = q.X0 = seg_.a + seg_.tangent * (s * seg_.length) + seg_.normal * phase_[k];
       q.v = u_ * (profile(s) * value(t));
       q.a = u_ * (profile(s) * rate(t));
       q.p = nearest_pressure(cloud, q.x);
@@ -122,15 +118,15 @@ class Inflow final : public FluidBoundary {
     injected_ += static_cast<long>(added.size());
     area_injected_ += area;
     // What the profile carried in over the step: the mean normal velocity times the length, times int f dt.
-    const double flux = u_.dot(normal_) * length_ * swept;
+    const double flux = u_.dot(seg_.normal) * seg_.length * swept;
     area_prescribed_ += flux;
     return flux;
   }
 
   void fluid_regions(std::vector<std::array<Vec2, 3>>& out) const override {
-    const Vec2 b = a_ + tangent_ * length_, depth = normal_ * (1.5 * h_);
-    out.push_back({a_, b, b + depth});
-    out.push_back({a_, b + depth, a_ + depth});
+    const Vec2 b = seg_.b(), depth = seg_.normal * (1.5 * h_);
+    out.push_back({seg_.a, b, b + depth});
+    out.push_back({seg_.a, b + depth, seg_.a + depth});
   }
 
   Json summary() const override {
@@ -163,8 +159,8 @@ class Inflow final : public FluidBoundary {
   double rate(double t) const { return fn_.rate(t); }
 
   double h_;
-  Vec2 a_, tangent_, normal_, u_;
-  double length_ = 0;
+  BoundarySegment seg_;  // the normal towards the fluid
+  Vec2 u_;
   bool parabolic_ = false;
   BoundaryFunction fn_;
   Index lanes_ = 1;

@@ -28,11 +28,7 @@ class Outflow final : public FluidBoundary {
  public:
   Outflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
     p.validate(kOutflowKeys, {{"name", ctx.name}});
-    const BoundarySegment seg(p, 0.5 * h_, "shorter than half a particle spacing");
-    a_ = seg.a;
-    length_ = seg.length;
-    tangent_ = seg.tangent;
-    normal_ = seg.normal;
+    seg_ = BoundarySegment(p, 0.5 * h_, "shorter than half a particle spacing");
   }
 
   bool open() const override { return true; }
@@ -47,11 +43,11 @@ class Outflow final : public FluidBoundary {
     double side = 0;
     for (Index i = 0; i < cloud.n(); ++i) {
       if (!cloud.is_fluid(i)) continue;
-      const Vec2 q = cloud.pos(i) - a_;
-      const double s = q.dot(tangent_), d = q.dot(normal_);
-      if (s >= 0 && s <= length_ && std::abs(d) <= 2 * h_) side += d;
+      const Vec2 q = cloud.pos(i) - seg_.a;
+      const double s = q.dot(seg_.tangent), d = q.dot(seg_.normal);
+      if (s >= 0 && s <= seg_.length && std::abs(d) <= 2 * h_) side += d;
     }
-    if (side > 0) normal_ = -normal_;
+    if (side > 0) seg_.normal = -seg_.normal;
     oriented_ = side != 0;
   }
   double position(const BoundaryConstraint& k, double t) const override {
@@ -61,18 +57,8 @@ class Outflow final : public FluidBoundary {
   double velocity(const BoundaryConstraint&, double) const override { return 0.0; }
   double acceleration(const BoundaryConstraint&, double) const override { return 0.0; }
 
-  bool takes(const Vec2& x) const override {
-    if (!oriented_) return false;
-    const Vec2 q = x - a_;
-    const double s = q.dot(tangent_);
-    return q.dot(normal_) > 0 && s >= -0.5 * h_ && s <= length_ + 0.5 * h_;
-  }
-  bool zero_pressure(const Vec2& x) const override {
-    if (!oriented_) return false;
-    const Vec2 q = x - a_;
-    const double s = q.dot(tangent_);
-    return q.dot(normal_) > -h_ && s >= -0.5 * h_ && s <= length_ + 0.5 * h_;
-  }
+  bool takes(const Vec2& x) const override { return beyond(x, 0.0); }
+  bool zero_pressure(const Vec2& x) const override { return beyond(x, -h_); }
   void left(long particles, double area) override {
     particles_left_ += particles;
     area_left_ += area;
@@ -81,12 +67,19 @@ class Outflow final : public FluidBoundary {
   Json summary() const override {
     return {{"type", "outflow"}, {"particles_left", particles_left_}, {"area_left", area_left_}};
   }
-  void serialize(StateArchive& ar) override { ar.io(oriented_, normal_, particles_left_, area_left_); }
+  void serialize(StateArchive& ar) override { ar.io(oriented_, seg_.normal, particles_left_, area_left_); }
 
  private:
+  /// x lies further out than `depth` along the outward normal, within half a spacing of the segment's extent.
+  bool beyond(const Vec2& x, double depth) const {
+    if (!oriented_) return false;
+    const Vec2 q = x - seg_.a;
+    const double s = q.dot(seg_.tangent);
+    return q.dot(seg_.normal) > depth && s >= -0.5 * h_ && s <= seg_.length + 0.5 * h_;
+  }
+
   double h_;
-  Vec2 a_, tangent_, normal_;
-  double length_ = 0;
+  BoundarySegment seg_;  // the normal away from the fluid once oriented
   bool oriented_ = false;
   long particles_left_ = 0;
   double area_left_ = 0;

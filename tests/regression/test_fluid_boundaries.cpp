@@ -72,13 +72,10 @@ TEST(FluidBoundaries, ALidAtRestLeavesTheWaterAtRest) {
 TEST(FluidBoundaries, ARunWithABoundaryRestartsBitForBit) {
   // The same run uninterrupted and stopped after step 7 (checkpoints every 5 steps), then restarted: the
   // boundary's step start and counters come back from the checkpoint.
-  const std::string text = lid_over_water("monolithic_pspg", 0.05);
-  const std::string opts = "--quiet --threads 1 --set output.checkpoint.every_steps=5";
-  const RunResult full = run_case_text(fresh_dir("lid_full"), text, opts);
+  const auto [full, stopped, part] = run_and_restart(
+      lid_over_water("monolithic_pspg", 0.05), "--quiet --threads 1 --set output.checkpoint.every_steps=5", 7, "lid");
   ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
-  const fs::path dir = fresh_dir("lid_part");
-  ASSERT_EQ(run_case_text(dir, text, opts + " --stop-after-step 7").exit_code, 0);
-  const RunResult part = run_case_text(dir, text, opts + " --restart \"" + (dir / "out").string() + "\"");
+  ASSERT_EQ(stopped.exit_code, 0) << stopped.stderr_text;
   ASSERT_EQ(part.exit_code, 0) << part.stderr_text;
   EXPECT_EQ(file_text(part.out_dir / "probes.csv"), file_text(full.out_dir / "probes.csv"));
   EXPECT_EQ(summary_of(part)["bodies"][0]["boundaries"], summary_of(full)["bodies"][0]["boundaries"]);

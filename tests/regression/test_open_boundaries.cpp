@@ -123,13 +123,10 @@ TEST(OpenBoundaries, AnInflowAloneFillsTheChannelAtItsFlux) {
 }
 
 TEST(OpenBoundaries, AChannelRunRestartsBitForBit) {
-  const std::string text = channel("monolithic_pspg", 0.3);
-  const std::string opts = "--quiet --threads 1 --set output.checkpoint.every_steps=10";
-  const RunResult full = run_case_text(fresh_dir("channel_full"), text, opts);
+  const auto [full, stopped, part] = run_and_restart(
+      channel("monolithic_pspg", 0.3), "--quiet --threads 1 --set output.checkpoint.every_steps=10", 17, "channel");
   ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
-  const fs::path dir = fresh_dir("channel_part");
-  ASSERT_EQ(run_case_text(dir, text, opts + " --stop-after-step 17").exit_code, 0);
-  const RunResult part = run_case_text(dir, text, opts + " --restart \"" + (dir / "out").string() + "\"");
+  ASSERT_EQ(stopped.exit_code, 0) << stopped.stderr_text;
   ASSERT_EQ(part.exit_code, 0) << part.stderr_text;
   EXPECT_EQ(file_text(part.out_dir / "probes.csv"), file_text(full.out_dir / "probes.csv"));
   EXPECT_EQ(summary_of(part)["bodies"][0]["boundaries"], summary_of(full)["bodies"][0]["boundaries"]);

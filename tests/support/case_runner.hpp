@@ -74,6 +74,22 @@ inline RunResult run_case_text(const fs::path& dir, const std::string& text, con
   return r;
 }
 
+/// A case run whole (`full`, in fresh_dir(tag + "_full")) and the same run stopped after step `stop_step`
+/// (`stopped`) then restarted from its last checkpoint (`restarted`), both in fresh_dir(tag + "_part"); `options`
+/// must ask for checkpoints often enough. The caller checks the exit codes and compares the outputs.
+struct RestartRuns {
+  RunResult full, stopped, restarted;
+};
+inline RestartRuns run_and_restart(const std::string& text, const std::string& options, int stop_step,
+                                   const std::string& tag) {
+  RestartRuns r;
+  r.full = run_case_text(fresh_dir(tag + "_full"), text, options);
+  const fs::path dir = fresh_dir(tag + "_part");
+  r.stopped = run_case_text(dir, text, options + " --stop-after-step " + std::to_string(stop_step));
+  r.restarted = run_case_text(dir, text, options + " --restart \"" + (dir / "out").string() + "\"");
+  return r;
+}
+
 /// A CSV file with a header row ('#' lines skipped): every column as numbers (NaN where a cell is not one) and
 /// as text (for label columns such as a series or component name).
 struct Csv {

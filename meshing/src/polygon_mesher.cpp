@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -37,7 +38,49 @@ using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;
 using Fb = CGAL::Triangulation_face_base_with_info_2<int, K, CGAL::Delaunay_mesh_face_base_2<K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+/// The size criterion with a local size: a face is imperatively bad when its longest edge exceeds
+/// `scale` times size(centroid) (the uniform criterion when no size function is given).
+class Criteria : public CGAL::Delaunay_mesh_size_criteria_2<CDT> {
+ public:
+  using Base = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+  using SizeFunction = std::function<double(const Vec2&)>;
+  Criteria(double aspect_bound, double size_bound, SizeFunction size = nullptr, double scale = 1.0)
+      : Base(aspect_bound, size_bound), size_(std::move(size)), scale_(scale) {}
+
+  class Is_bad : public Base::Is_bad {
+   public:
+    Is_bad(const Base::Is_bad& uniform, const SizeFunction* size, double scale)
+        : Base::Is_bad(uniform), size_(size), scale_(scale) {}
+    using Base::Is_bad::operator();
+    CGAL::Mesh_2::Face_badness operator()(const CDT::Face_handle& fh, Quality& q) const {
+      const CGAL::Mesh_2::Face_badness uniform = Base::Is_bad::operator()(fh, q);
+      if (size_ == nullptr || !*size_ || uniform == CGAL::Mesh_2::IMPERATIVELY_BAD) return uniform;
+      const Point& a = fh->vertex(0)->point();
+      const Point& b = fh->vertex(1)->point();
+      const Point& c = fh->vertex(2)->point();
+      const double longest2 =
+          std::max({CGAL::to_double(CGAL::squared_distance(a, b)), CGAL::to_double(CGAL::squared_distance(b, c)),
+                    CGAL::to_double(CGAL::squared_distance(c, a))});
+      const Vec2 centroid((a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0);
+      const double s = scale_ * (*size_)(centroid);
+      q.second = longest2 / (s * s);
+      if (q.size() > 1) {
+        q.first = 1;
+        return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      }
+      return uniform;
+    }
+
+   private:
+    const SizeFunction* size_;
+    double scale_;
+  };
+  Is_bad is_bad_object() const { return Is_bad(Base::is_bad_object(), &size_, scale_); }
+
+ private:
+  SizeFunction size_;
+  double scale_;
+};
 /// First pass: refines faces only (a point that would encroach a constrained edge is dropped), so
 /// the evenly spaced boundary nodes are kept.
 using FaceMesher = CGAL::Delaunay_mesher_no_edge_refinement_2<CDT, Criteria>;
@@ -216,7 +259,8 @@ void check_angles(const std::vector<const std::vector<Vec2>*>& loops) {
 
 }  // namespace
 
-TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements) {
+TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
+                     const std::function<double(const Vec2&)>& size) {
   // ---- validation
   if (!std::isfinite(h) || h <= 0.0) fail("target size h must be finite and > 0 (got " + std::to_string(h) + ")");
   std::vector<Vec2> outer = region.outer;
@@ -319,11 +363,13 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements)
       }
   };
   {
-    FaceMesher mesher(cdt, Criteria(kShapeBound, h));
+    // With a local size the uniform bound is off (0): each face is held to its own size.
+    FaceMesher mesher(cdt, size ? Criteria(kShapeBound, 0.0, size, 1.0) : Criteria(kShapeBound, h));
     refine(mesher);
   }
   {
-    Mesher mesher(cdt, Criteria(kShapeBound, kSecondPassSize * h));
+    Mesher mesher(
+        cdt, size ? Criteria(kShapeBound, 0.0, size, kSecondPassSize) : Criteria(kShapeBound, kSecondPassSize * h));
     refine(mesher);
   }
 

@@ -200,6 +200,35 @@ TEST(MeshPolygon, ClockwiseOuterLoop) {
   }
 }
 
+TEST(MeshPolygon, AGradedSizeGivesEdgesThatFollowIt) {
+  // A size that grows from h at the bottom edge by g per unit height: every element's longest edge is below the size
+  // at its centroid (1.5 times it in the second pass), the elements well above the bottom are several times larger
+  // than those along it (the boundary itself is split at h everywhere), and the mesh has far fewer elements than the
+  // uniform one at h.
+  const double h = 0.02, g = 0.25;
+  const auto size = [&](const Vec2& x) { return h + g * x.y(); };
+  const TriMesh graded = lagfsi::meshing::mesh_polygon({rect(0.0, 0.0, 1.0, 1.0), {}}, h, 5e6, size);
+  const TriMesh uniform = lagfsi::meshing::mesh_polygon({rect(0.0, 0.0, 1.0, 1.0), {}}, h);
+  expect_valid(graded);
+  EXPECT_NEAR(total_area(graded), 1.0, 1e-12);
+  EXPECT_GE(min_angle_deg(graded), 20.0);
+  double bottom = 0, top = 0;
+  int n_bottom = 0, n_top = 0;
+  for (Index e = 0; e < graded.num_elements(); ++e) {
+    const Index* c = graded.element(e);
+    const Vec2 a = graded.nodes[c[0]], b = graded.nodes[c[1]], d = graded.nodes[c[2]];
+    const double longest = std::max({(a - b).norm(), (b - d).norm(), (d - a).norm()});
+    const Vec2 centroid = (a + b + d) / 3.0;
+    EXPECT_LE(longest, 1.5 * size(centroid) * (1 + 1e-9)) << "element " << e;
+    if (centroid.y() < 0.05) bottom += longest, ++n_bottom;
+    if (centroid.y() > 0.6 && centroid.y() < 0.8) top += longest, ++n_top;
+  }
+  ASSERT_GT(n_bottom, 0);
+  ASSERT_GT(n_top, 0);
+  EXPECT_GT(top / n_top, 3.0 * bottom / n_bottom);
+  EXPECT_LT(graded.num_elements(), uniform.num_elements() / 4);
+}
+
 TEST(MeshPolygon, LShape) {
   const std::vector<Vec2> L{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   const double h = 0.1;

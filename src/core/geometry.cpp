@@ -137,7 +137,28 @@ std::vector<Vec2> circle_cut_outline(Params g, double h) {
   return circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
 }
 
-TriMesh build_mesh(Params g, Params m) {
+std::vector<std::vector<Vec2>> geometry_loops(Params g, double h) {
+  if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
+  const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});
+  std::vector<std::vector<Vec2>> loops;
+  g.validate(type == "rectangle" ? kRectangleKeys : type == "polygon" ? kPolygonKeys : kCircleCutKeys);
+  if (type == "rectangle") {
+    const Vec2 o = g.has("origin") ? g.vec2("origin") : Vec2::Zero(), s = g.vec2("size");
+    loops.push_back({o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())});
+  } else if (type == "polygon") {
+    loops.push_back(g.points("points"));
+    const Params holes = g.at("holes");
+    for (size_t i = 0; i < holes.size(); ++i) {
+      Params hp(Json{{"p", holes.json()[i]}}, g.file(), holes.path() + "/" + std::to_string(i));
+      loops.push_back(hp.points("p"));
+    }
+  } else {
+    loops.push_back(circle_cut_outline(g, h));
+  }
+  return loops;
+}
+
+TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>& size) {
   if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
   const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});
   m.validate(kMeshKeys);
@@ -176,7 +197,7 @@ TriMesh build_mesh(Params g, Params m) {
       } else {
         meshing::PolygonRegion r;
         r.outer = {o, o + Vec2(s.x(), 0), o + s, o + Vec2(0, s.y())};
-        linear = meshing::mesh_polygon(r, h, max_elements);
+        linear = meshing::mesh_polygon(r, h, max_elements, size);
       }
     } else {
       if (mtype == "structured") m.fail("type", "a structured mesh needs a rectangle geometry");
@@ -189,12 +210,12 @@ TriMesh build_mesh(Params g, Params m) {
           Params hp(Json{{"p", holes.json()[i]}}, g.file(), holes.path() + "/" + std::to_string(i));
           r.holes.push_back(hp.points("p"));
         }
-        linear = meshing::mesh_polygon(r, h, max_elements);
+        linear = meshing::mesh_polygon(r, h, max_elements, size);
       } else {
         g.validate(kCircleCutKeys);
         meshing::PolygonRegion r;
         r.outer = circle_cut(g, g.points("points"), g.vec2("centre"), g.positive("radius"), h);
-        linear = meshing::mesh_polygon(r, h, max_elements);
+        linear = meshing::mesh_polygon(r, h, max_elements, size);
       }
     }
   } catch (const std::invalid_argument& e) {

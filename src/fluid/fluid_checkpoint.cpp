@@ -38,7 +38,7 @@ void RemeshPipeline::serialize(StateArchive& ar) {
   ar.io(domain_lo_, domain_hi_, remesh_dA_, remesh_dKE_, remesh_area_added_, remesh_area_removed_, remesh_ke_total_,
         remesh_pe_total_);
   ar.io(merged_, merged_meeting_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_,
-        area_excess_);
+        area_excess_, coarsened_);
 }
 
 void VolumeCorrection::serialize(StateArchive& ar) {

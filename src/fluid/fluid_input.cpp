@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -64,6 +65,9 @@ const KeyTable kFluidKeys(
      {"boundaries", Json::array(),
       "Boundary conditions on segments of the fluid's boundary, each chosen by its type (see "
       "/bodies/*/boundaries/* (fluid body, type inflow), (type outflow) and (type prescribed_velocity))."},
+     {"size_field", Json{{"type", "uniform"}},
+      "The particle size: uniform (the spacing everywhere) or adaptive (fine at the surface and walls, coarse in "
+      "the bulk; see /bodies/*/size_field (fluid body, type adaptive))."},
      {"initial_velocity", Json::array({0.0, 0.0}), "Initial velocity [vx, vy] (m/s) of the fluid particles."},
      {"initial_pressure", Json{{"type", "zero"}},
       "Initial pressure (see /bodies/*/initial_pressure (fluid body, ...))."},
@@ -258,6 +262,7 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
 }
 
 void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs) {
+  SizeField::expand_shorthand(b.json());
   b.validate(kFluidKeys, {{"domain_detection", d.detection},
                           {"contact_gap", d.contact_gap},
                           {"wall_model", d.wall_model},
@@ -304,6 +309,21 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
   if (navier) walls_.set_navier_friction(c_.mu, slip_length);
+  // The particle size field (size_field.hpp): an adaptive one needs the conservative management (the alpha
+  // detection removes particles instead of merging them) and graded regions (unstructured particles).
+  SizeField size;
+  size.read(b, c_.h);
+  if (size.adaptive()) {
+    if (!c_.remesh) b.at("size_field").fail("type", "\"adaptive\" needs \"remesh\": true");
+    if (rs.detection == meshing::DomainDetection::Alpha)
+      b.at("size_field")
+          .fail("type",
+                "\"adaptive\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
+                "detection removes particles where an adaptive field merges them)");
+    if (b.string("particles") != "unstructured")
+      b.at("size_field").fail("type", "\"adaptive\" needs \"particles\": \"unstructured\" (graded regions)");
+  }
+  remesh_.set_size_field(std::move(size));
 }
 
 bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::Settings& rs, PspgSettings& ps,
@@ -420,7 +440,8 @@ void FluidModel::build_particles(Params b) {
   Params regions = b.at("regions");
   if (regions.size() == 0) regions.fail("at least one fluid region is needed");
   const std::string layout = b.choice("particles", {"structured", "unstructured"});
-  std::vector<Index> fixed_conn;  // fixed-connectivity mode: the initial mesh
+  std::vector<Index> fixed_conn;                // fixed-connectivity mode: the initial mesh
+  std::vector<std::pair<Index, double>> sizes;  // the fluid particles' initial sizes
   // The walls' bounding box (also the start of the domain box below): a region reaching beyond it by more
   // than the walls' own extent (on an axis where they have one) is a typing error (a size 1000 times too
   // large), which would otherwise be meshed into millions of particles before anything else is checked.
@@ -468,7 +489,15 @@ void FluidModel::build_particles(Params b) {
           {"divisions", {std::max(1, (int)std::lround(sz.x() / h)), std::max(1, (int)std::lround(sz.y() / h))}},
           {"pattern", "crossed"}};
     }
-    mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+    const SizeField& size = remesh_.size_field();
+    // An adaptive field: the size at the distance from the region's outline (SizeField::initial_size).
+    std::function<double(const Vec2&)> local_size;
+    if (size.adaptive()) local_size = size.initial_size(geometry_loops(g, h));
+    if (local_size) {
+      mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"), size.mesher_size(local_size));
+    } else {
+      mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+    }
     for (size_t e = 0; e + 2 < mesh.conn.size(); e += 3)
       remesh_.add_region_triangle(
           {mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});
@@ -482,6 +511,7 @@ void FluidModel::build_particles(Params b) {
       if (near_wall || duplicate) continue;
       map[k] = static_cast<Index>(pts.size());
       new_particles.push_back(map[k]);
+      sizes.emplace_back(map[k], local_size ? local_size(q) : h);
       pts.push_back(q);
       kind.push_back(ParticleKind::Fluid);
     }
@@ -497,6 +527,7 @@ void FluidModel::build_particles(Params b) {
   if (c_.remesh) remesh_.set_domain(wall_lo, wall_hi, pts);
   walls_.set_fluid_sides(pts, kind);
   cloud_.assign(pts, kind, h);
+  for (const auto& [i, s] : sizes) cloud_.set_h(i, s);
   set_initial_state(b, pts, kind);
 
   if (!c_.remesh) {

@@ -306,6 +306,11 @@ void FluidModel::write_output(double t) {
     id.values.push_back(i);
   }
   d.point_fields = {vel, pres, fs, kd, id};
+  if (remesh_.size_field().adaptive()) {  // the particles' sizes (the size field's targets at the last remesh)
+    Field hs{"particle_size", 1, {}};
+    for (Index i = 0; i < np; ++i) hs.values.push_back(cloud_.h(i));
+    d.point_fields.push_back(hs);
+  }
   if (volume_.type() == VolumeCorrection::Type::particle) {  // the area each particle is owed, over h^2
     Field ow{"owed_area", 1, {}};
     for (Index i = 0; i < np; ++i) ow.values.push_back(cloud_.owed()[i] / (cloud_.h(i) * cloud_.h(i)));

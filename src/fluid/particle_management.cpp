@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 namespace lagfsi::fluid {
 
@@ -140,6 +141,7 @@ bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<s
     merge_pressed_against_walls(m);
     merge_close_pairs(m);
   }
+  if (size_.adaptive()) coarsen(m);
   // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
   // its elements are gone).
   if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05) * c_.h);
@@ -319,6 +321,42 @@ void RemeshPipeline::merge_close_pairs(Management& m) {
       untouched.add(m.pts[i], i);
     }
   }
+}
+
+void RemeshPipeline::follow_size_field(const BoundaryChains& chain, const std::vector<char>& on_wall, double t) {
+  const Index np = cloud_.n();
+  std::vector<char> source(static_cast<size_t>(np), 0);
+  for (Index i = 0; i < np; ++i)
+    source[i] = !cloud_.is_fluid(i) || chain.next[i] >= 0 || chain.prev[i] >= 0 ||
+                (!on_wall.empty() && on_wall[static_cast<size_t>(i)] != 0);
+  std::vector<double> h;
+  size_.targets(cloud_.positions(), mesh_.tri, source, t, h);
+  for (Index i = 0; i < np; ++i)
+    if (cloud_.is_fluid(i)) cloud_.set_h(i, h[static_cast<size_t>(i)]);
+}
+
+void RemeshPipeline::coarsen(Management& m) {
+  // An adaptive size field: two interior fluid particles joined by an edge of the advected mesh and closer than
+  // kCoarsenFraction times their mean size are merged (merge_pair: mass-weighted state at their centre of mass,
+  // so neither the domain, nor the area, nor the momentum changes), the closest pairs (relative to their size)
+  // first, each particle at most once a remesh; the insertion in oversized elements refines where the size falls.
+  // Equilibrium: edges between kCoarsenFraction h and about 1.5 h (an element larger than insert_area_factor h^2).
+  constexpr double kCoarsenFraction = 0.6;
+  std::vector<std::tuple<double, Index, Index>> pairs;
+  const auto interior = [&](Index i) { return cloud_.is_fluid(i) && !m.on_boundary(i) && m.walled(i) == 0; };
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], c = t[(k + 1) % 3];
+      if (a > c || !interior(a) || !interior(c)) continue;  // each interior edge once (it has two elements)
+      const double ratio = (m.pts[a] - m.pts[c]).norm() / (0.5 * (cloud_.h(a) + cloud_.h(c)));
+      if (ratio < kCoarsenFraction) pairs.emplace_back(ratio, a, c);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [ratio, a, c] : pairs)
+    if (!m.touched[a] && !m.touched[c]) {
+      merge_pair(m, a, c);
+      ++coarsened_;
+    }
 }
 
 void RemeshPipeline::split_long_edges(Management& m) {

@@ -93,6 +93,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     if (insert_particles()) remesh_now();
   } else {
     const BoundaryChains chain = boundary_chains();
+    if (size_.adaptive()) follow_size_field(chain, on_wall, t_new);
     meshing::PreviousDomain previous = advected_domain(chain);
     std::vector<std::uint8_t> meshed;
     std::vector<std::pair<Index, Index>> edges, all_edges;
@@ -352,19 +353,21 @@ void RemeshPipeline::append_particle(const Vec2& x, const Vec2& v, const Vec2& a
 }
 
 Json RemeshPipeline::summary() const {
-  return {{"area_added", remesh_area_added_},
-          {"area_removed", remesh_area_removed_},
-          {"kinetic_energy_change", remesh_ke_total_},
-          {"potential_energy_change", remesh_pe_total_},
-          {"particles_merged", merged_},
-          {"pairs_merged_meeting", merged_meeting_},
-          {"edges_split", split_},
-          {"particles_inserted", inserted_},
-          {"particles_removed_at_walls", wall_removed_},
-          {"elements_added_outside", added_outside_},
-          {"edges_kept", kept_edges_},
-          {"elements_separated", separated_},
-          {"area_of_added_minus_separated_elements", area_excess_}};
+  Json j = {{"area_added", remesh_area_added_},
+            {"area_removed", remesh_area_removed_},
+            {"kinetic_energy_change", remesh_ke_total_},
+            {"potential_energy_change", remesh_pe_total_},
+            {"particles_merged", merged_},
+            {"pairs_merged_meeting", merged_meeting_},
+            {"edges_split", split_},
+            {"particles_inserted", inserted_},
+            {"particles_removed_at_walls", wall_removed_},
+            {"elements_added_outside", added_outside_},
+            {"edges_kept", kept_edges_},
+            {"elements_separated", separated_},
+            {"area_of_added_minus_separated_elements", area_excess_}};
+  if (size_.adaptive()) j["particles_coarsened"] = coarsened_;
+  return j;
 }
 
 }  // namespace lagfsi::fluid

@@ -15,6 +15,7 @@
 #include "fluid_energy.hpp"
 #include "fluid_mesh.hpp"
 #include "ghosts.hpp"
+#include "size_field.hpp"
 #include "volume_correction.hpp"
 
 #include <lagfsi/meshing/previous_domain.hpp>
@@ -33,6 +34,10 @@ class RemeshPipeline {
   RemeshPipeline(const FluidConstants& c, ParticleCloud& cloud, FluidMesh& mesh, const Ghosts& ghosts)
       : c_(c), cloud_(cloud), mesh_(mesh), ghosts_(ghosts) {}
   void configure(const Settings& s) { s_ = s; }
+  /// The particle size field (size_field.hpp): with an adaptive one the fluid particles take its targets at every
+  /// remesh, and the management merges interior pairs that are close for them (coarsen).
+  void set_size_field(SizeField f) { size_ = std::move(f); }
+  const SizeField& size_field() const { return size_; }
   const Settings& settings() const { return s_; }
 
   /// The domain box: the walls' box (wall_lo, wall_hi; empty without walls) and the particles `pts`,
@@ -137,6 +142,7 @@ class RemeshPipeline {
   void merge_onto_walls(Management& m);
   void merge_pressed_against_walls(Management& m);
   void merge_close_pairs(Management& m);
+  void coarsen(Management& m);
   void split_long_edges(Management& m);
   void insert_in_large_elements(Management& m);
   void carry_topology(Management& m, bool all_edges) const;
@@ -147,6 +153,9 @@ class RemeshPipeline {
   /// fluid particle f, which the wall or ghost particle g then stands for.
   void merge_pair(Management& m, Index i, Index j);
   void leave_to_wall(Management& m, Index f, Index g);
+  /// An adaptive size field: the fluid particles' sizes become its targets on the advected mesh at t (sources: the
+  /// mesh's boundary, the wall and ghost particles and the particles on walls).
+  void follow_size_field(const BoundaryChains& chain, const std::vector<char>& on_wall, double t);
   /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
   /// particle go, the others are renumbered (renumber_).
   bool drop_particles(const std::vector<char>& drop);
@@ -158,6 +167,7 @@ class RemeshPipeline {
   FluidMesh& mesh_;
   const Ghosts& ghosts_;
   Settings s_;
+  SizeField size_;
   Vec2 domain_lo_ = Vec2::Constant(1.0), domain_hi_ = Vec2::Constant(-1.0);  // empty: fixed connectivity
   Vec2 walls_lo_ = Vec2::Constant(1.0), walls_hi_ = Vec2::Constant(-1.0);    // moving walls' box (follow_walls)
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
@@ -171,7 +181,7 @@ class RemeshPipeline {
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
   long merged_ = 0, merged_meeting_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0,
-       wall_removed_ = 0, kept_edges_ = 0;
+       wall_removed_ = 0, kept_edges_ = 0, coarsened_ = 0;
   double area_excess_ = 0;  // area of the elements added outside the advected domain, less those torn off
 };
 

@@ -83,6 +83,32 @@ TEST(StillWater, WallConstraintsStayStill) { expect_still("advected", "none", "c
 // The Robin free-surface pressure (fluid_element.hpp): the surface particles keep their continuity equation.
 TEST(StillWater, RobinFreeSurfaceStaysStill) { expect_still("advected", "none", "constraints", "robin"); }
 
+// An adaptive size field (size_field.hpp) with the defaults: graded particles (fine at the surface and the walls,
+// coarser below) stay still, and the management neither merges nor inserts any of them (the graded regions start where
+// its coarsening leaves the particles).
+TEST(StillWater, AGradedSizeFieldStaysStill) {
+  nlohmann::json j = nlohmann::json::parse(still_tank("advected", "none", "constraints", "robin"));
+  auto& b = j["bodies"][0];
+  b.erase("domain_detection");
+  b.erase("wall_model");
+  b.erase("scheme");
+  b["particles"] = "unstructured";
+  b["size_field"] = "adaptive";
+  const RunResult r = run_case_text(fresh_dir("still_water_graded"), j.dump());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const auto& v = p["max_speed"];
+  ASSERT_GT(v.size(), 1999u);
+  EXPECT_LT(*std::max_element(v.begin(), v.end()), 1e-4 * std::sqrt(9.81 * 0.2));
+  const auto& a = p["area"];
+  EXPECT_NEAR(a.back(), a.front(), 1e-6 * a.front());
+  const auto remeshing = summary_of(r)["bodies"][0]["remeshing"];
+  EXPECT_EQ(remeshing["particles_coarsened"].get<long>(), 0);
+  EXPECT_EQ(remeshing["particles_inserted"].get<long>(), 0);
+  const Csv log = read_csv(r.out_dir / "log.csv");
+  EXPECT_EQ(log["nodes"].front(), log["nodes"].back());
+}
+
 /// The still tank (slip walls) carried at (0.5, 0.3) m/s for 1 s, its water moving with it from the start.
 std::string carried_tank(const std::string& detection, const std::string& walls) {
   nlohmann::json j =

@@ -6,6 +6,7 @@
 #include <lagfsi/mesh.hpp>
 #include <lagfsi/types.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,12 @@ struct PolygonRegion {
 /// self-intersecting loop, h <= 0 or h not finite, a feature thinner than h/50, or more than `max_elements`
 /// elements: expected from the area before meshing, or counted during the refinement, which small input
 /// angles can drive far beyond the area's estimate).
-TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements = 5e6);
+/// A graded mesh: `size` (when given) is the local target edge size at a point, at least h (the boundary is
+/// still split at h, the finest size, and the faces are refined until their longest edge is below the size at
+/// their centroid); its gradation is the caller's (a size that grows by g per unit length gives elements that
+/// grow by about g per layer).
+TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements = 5e6,
+                     const std::function<double(const Vec2&)>& size = nullptr);
 
 /// Structured linear mesh of the rectangle [x0, x1] x [y0, y1] with nx x ny cells, each cut into two
 /// triangles. pattern: "right" (all diagonals bottom-left to top-right), "left", or "crossed"

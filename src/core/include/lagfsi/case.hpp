@@ -68,10 +68,13 @@ const Json& case_defaults();
 /// cuts its boundary in exactly two points, e.g. a flag clamped on a cylinder).
 /// mesh: {"size": h, "order": 1|2|3, "type": "unstructured"|"structured", "divisions": [nx, ny],
 /// "pattern": "crossed"|"right"|"left"} ("structured" for rectangles only).
-TriMesh build_mesh(Params geometry, Params mesh);
+/// `size` (unstructured meshes): a local target size at a point, at least the mesh's "size" (meshing::mesh_polygon).
+TriMesh build_mesh(Params geometry, Params mesh, const std::function<double(const Vec2&)>& size = nullptr);
 
 /// The outline of a "circle_cut" geometry (counter-clockwise like its polygon), the arc in pieces of about h.
 std::vector<Vec2> circle_cut_outline(Params geometry, double h);
+/// The loops that bound a geometry (its outer loop, then its holes; a circle_cut's arc in pieces of about h).
+std::vector<std::vector<Vec2>> geometry_loops(Params geometry, double h);
 
 /// Node selection: {"type": "point", "at": [x, y]} (the nearest node, which must lie within
 /// "tolerance" — default 1e-6 of the body size), {"type": "segment", "from": [..], "to": [..]} (nodes

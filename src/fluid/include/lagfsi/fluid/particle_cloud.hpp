@@ -39,6 +39,8 @@ class ParticleCloud {
   /// Per-particle spacing (the alpha test's and the filters' local h).
   const std::vector<double>& h() const { return hvec_; }
   double h(Index i) const { return hvec_[i]; }
+  /// A particle's size (an adaptive size field's target, size_field.hpp).
+  void set_h(Index i, double h) { hvec_[static_cast<size_t>(i)] = h; }
 
   /// x, v, a of all particles (2 per particle; t is not used). The arrays' sizes are the cloud's: change
   /// them only through compact, append and rebuild.

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, particle_steps, save
 
 out = out_dir_from_argv("out/dam_break_tank")
 here = os.path.dirname(__file__)
@@ -53,6 +53,7 @@ drift = [100 * (a / a0 - 1) for a in p["fluid_area"]]
 record("front_rms_pysph", rms)
 record("front_rms_dualsphysics", rms2)
 record("impact", impact)
+record("particle_steps", particle_steps(out))
 record("front_rms_delayed_pysph", best[0])
 record("best_delay_pysph", best[1])
 record("area_drift_end", drift[-1] / 100)

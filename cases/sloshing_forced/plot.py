@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, particle_steps, save
 
 out = out_dir_from_argv("out/sloshing_forced")
 d = 0.5
@@ -46,6 +46,7 @@ for col in ("eta_left", "eta_right"):
     lines.append("%s: RMS error / linear peak %.3f over 0-3 s (peak %.1f mm), %.3f over 0-%.1f s" %
                  (col, r3, 1e3 * pk3, ra, t_end))
 a0 = p["fluid_area"][0]
+record("particle_steps", particle_steps(out))
 record("area_drift_max", max(abs(a / a0 - 1) for a in p["fluid_area"]))
 lines.append("area drift at the end %+.3f %% (max |drift| %.3f %%)" %
              (100 * (p["fluid_area"][-1] / a0 - 1), max(abs(100 * (a / a0 - 1)) for a in p["fluid_area"])))

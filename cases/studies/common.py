@@ -16,6 +16,7 @@ import csv
 import json
 import math
 import os
+import resource
 import shlex
 import subprocess
 import sys
@@ -99,7 +100,7 @@ class Study:
                     and os.path.isfile(os.path.join(out, "summary.json"))):
                 self.run_wall += old["wall"]
                 self.n_runs += 1
-                return Run(out, old["rc"], old["wall"], cmd, old.get("stderr", ""))
+                return Run(out, old["rc"], old["wall"], cmd, old.get("stderr", ""), old.get("cpu"))
         if os.path.isdir(out):
             for root, dirs, files in os.walk(out, topdown=False):
                 for f in files:
@@ -110,6 +111,7 @@ class Study:
         full = cmd if self.args.no_nice else ["nice", "-n", "19"] + cmd
         load = os.getloadavg()[0]
         t = time.time()
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         try:
             p = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout,
                                universal_newlines=True)
@@ -117,12 +119,14 @@ class Study:
         except subprocess.TimeoutExpired:
             rc, err = -1, "timeout after %s s" % timeout
         wall = time.time() - t
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)  # the run's own, whatever shares the machine
         self.run_wall += wall
         self.n_runs += 1
         with open(stamp, "w") as f:
-            json.dump({"cmd": cmd, "exe_mtime": exe_mtime, "rc": rc, "wall": wall, "load_before": load,
+            json.dump({"cmd": cmd, "exe_mtime": exe_mtime, "rc": rc, "wall": wall, "cpu": cpu, "load_before": load,
                        "stderr": err[-2000:]}, f, indent=1)
-        r = Run(out, rc, wall, cmd, err)
+        r = Run(out, rc, wall, cmd, err, cpu)
         print("  %-44s rc=%d (%s) %6.1f s%s" % (tag, rc, EXIT_NAMES.get(rc, "?"), wall,
                                                  "" if rc == 0 else "  " + r.message[:110]), flush=True)
         return r
@@ -206,10 +210,11 @@ def run_key(cmd):
 
 
 class Run:
-    """One finished (or failed) lagfsi run: rc, wall (s, measured around the process), out folder."""
+    """One finished (or failed) lagfsi run: rc, wall and cpu (s, measured around the process; cpu: user + system of
+    the process, None for a run recorded before it was measured), out folder."""
 
-    def __init__(self, out, rc, wall, cmd, stderr):
-        self.out, self.rc, self.wall, self.cmd = out, rc, wall, cmd
+    def __init__(self, out, rc, wall, cmd, stderr, cpu=None):
+        self.out, self.rc, self.wall, self.cmd, self.cpu = out, rc, wall, cmd, cpu
         self.summary = {}
         try:
             with open(os.path.join(out, "summary.json")) as f:

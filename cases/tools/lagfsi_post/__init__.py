@@ -27,6 +27,12 @@ def read_csv(path):
     return cols
 
 
+def particle_steps(out_dir):
+    """The particles (nodes of the mesh, walls' and structures' ghost particles included) summed over the steps of a
+    run (its log.csv): the work a run did, whatever its particle sizes and steps."""
+    return sum(read_csv(os.path.join(out_dir, "log.csv"))["nodes"])
+
+
 def out_dir_from_argv(default):
     return sys.argv[1] if len(sys.argv) > 1 else default
 

@@ -9,6 +9,7 @@
 
 #include <lagfsi/app/analysis.hpp>
 #include <lagfsi/error.hpp>
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/output_file.hpp>
 #include <lagfsi/stopwatch.hpp>
 
@@ -143,9 +144,11 @@ void start_or_resume(Simulation& sim, Case& c, const RunOptions& opt, std::uniqu
     sim.resume(pos, tot);
     return;
   }
-  // A new run: the checkpoints of an earlier one in the folder are not its own.
-  for (const char* f : {kCheckpointFile, kCheckpointPrevFile}) fs::remove(c.ctx.out_dir / f);
-  write_file_atomic(c.ctx.out_dir / "resolved_case.json", json_text(c.root.json()));
+  // A new run: the checkpoints of an earlier one in the folder are not its own (an MPI run: process 0 writes).
+  if (mpi_run::writer()) {
+    for (const char* f : {kCheckpointFile, kCheckpointPrevFile}) fs::remove(c.ctx.out_dir / f);
+    write_file_atomic(c.ctx.out_dir / "resolved_case.json", json_text(c.root.json()));
+  }
   sim.start();
 }
 
@@ -241,8 +244,11 @@ int run_case(const RunOptions& opt) {
     return 128 + sig;
   }
   Case& c = *cp;
+  // An MPI run (mpi_run.hpp): every process runs the case, process 0 alone writes the folder (the others print
+  // nothing: app_main silenced them).
+  const bool writer = mpi_run::writer();
   OutputLock lock;
-  if (!prepare_output_folder(opt, c.ctx.out_dir, lock)) return kInputError;
+  if (mpi_run::any(writer && !prepare_output_folder(opt, c.ctx.out_dir, lock))) return kInputError;
   RunPosition pos{case_hash(c.root.json())};
   RunTotals tot;
   std::unique_ptr<StateArchive> restart;
@@ -256,21 +262,23 @@ int run_case(const RunOptions& opt) {
   SummaryWriter::Status status;
   Simulation sim(c.ctx.analysis, pointers(c.models), pointers(c.couplings), c.steppers);
   RunOutputs outputs(c, opt, progress, status, threads, t_start, restart ? pos.step : -1);
-  outputs.attach(sim);
+  if (writer) outputs.attach(sim);
   int code = run_loop(
       sim,
       [&] {
         start_or_resume(sim, c, opt, restart, pos, tot);
-        sim.run([&](const Simulation& s) {
-          return InterruptGuard::received() || (opt.stop_after_step > 0 && s.step() >= opt.stop_after_step);
+        sim.run([&](const Simulation& s) {  // every process stops at the same step
+          return mpi_run::any(InterruptGuard::received() || (opt.stop_after_step > 0 && s.step() >= opt.stop_after_step));
         });
         sim.end(sim.finished() ? RunEnd::completed : RunEnd::stopped);
       },
       status);
   if (code != kOk) std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << status.message << "\n";
+  // Process 0's output failed (the only failure the processes do not all see): the others are stopped with it.
+  if (code == kOutputError) mpi_run::abort_all(code);
   code = settle_status(sim, code, status);
   try {
-    outputs.summary.write(sim);
+    if (writer) outputs.summary.write(sim);
   } catch (const std::exception& e) {
     // After a failure its message has been printed: one line per run.
     if (code == kOk || code > 128) {

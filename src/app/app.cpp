@@ -2,10 +2,12 @@
 
 #include <lagfsi/app/analysis.hpp>
 #include <lagfsi/app/app.hpp>
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/text.hpp>
 
 #include <Eigen/Core>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -97,6 +99,12 @@ int max_threads() {
 }  // namespace
 
 int app_main(int argc, char** argv, const char* git_commit) {
+  // Under an MPI launcher every process runs the same command (mpi_run.hpp); process 0 alone prints.
+  mpi_run::start();
+  if (!mpi_run::writer()) {
+    if (std::freopen("/dev/null", "w", stdout) == nullptr || std::freopen("/dev/null", "w", stderr) == nullptr)
+      return kOutputError;
+  }
   std::vector<std::string> args(argv + 1, argv + argc);
   // Every argument ends up in messages and in summary.json: it must be UTF-8.
   for (size_t i = 0; i < args.size(); ++i)

@@ -2,6 +2,7 @@
 
 #include "interrupt.hpp"
 
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/stopwatch.hpp>
 
 #include <iomanip>
@@ -179,6 +180,7 @@ void SummaryWriter::write(const Simulation& sim) const {
   if (!couplings.empty()) s["couplings"] = couplings;
   if (couplings.size() == 1) s["coupling"] = couplings[0];
   s["threads"] = p_.threads;
+  if (mpi_run::size() > 1) s["mpi_processes"] = mpi_run::size();  // mpi_run.hpp: replicated data, distributed solves
   write_file_atomic(p_.file, json_text(s));
 }
 

@@ -43,9 +43,11 @@ void check(PetscErrorCode code, const char* what) {
   throw SolverError(std::string("petsc: ") + what + " failed (" + (text ? text : "PETSc error") + ")");
 }
 
+}  // namespace
+
 /// PETSc (and MPI under it) start with the first solver and stop at exit; PETSc's signal handlers are not
 /// installed and its errors are not printed (they become SolverError).
-void ensure_petsc() {
+void start_petsc() {
   static const bool started = [] {
     PetscBool initialized = PETSC_FALSE;
     PetscInitialized(&initialized);
@@ -62,6 +64,8 @@ void ensure_petsc() {
   }();
   (void)started;
 }
+
+namespace {
 
 /// The kind's default options ("mumps": PETSc's interface to the MUMPS multifrontal LU, Amestoy et al. 2001, a
 /// direct solver for any kind).
@@ -137,7 +141,7 @@ const char* reason_text(KSPConvergedReason r) {
 class PetscSolver final : public LinearSolver {
  public:
   explicit PetscSolver(const LinearSolverSettings& s) : s_(s) {
-    ensure_petsc();
+    start_petsc();
     if (s.distributed) comm_ = PETSC_COMM_WORLD;
     static std::atomic<int> count{0};
     prefix_ = "lagfsi" + std::to_string(count++) + "_";
@@ -312,6 +316,8 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   check(VecGetArrayRead(x_, &px), "VecGetArrayRead");
   std::copy(px, px + (hi - lo), x.data() + lo);
   check(VecRestoreArrayRead(x_, &px), "VecRestoreArrayRead");
+  if (s_.distributed && s_.gather)  // each entry from one process, zeros from the others: the same bits everywhere
+    MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(n), MPIU_SCALAR, MPI_SUM, comm_);
   // The true relative residual (one product): the report's number whatever norm the method monitored.
   ::Vec r = nullptr;
   check(VecDuplicate(b_, &r), "VecDuplicate");

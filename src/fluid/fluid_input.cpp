@@ -4,6 +4,7 @@
 #include "point_grid.hpp"
 
 #include <lagfsi/linear_solver_input.hpp>
+#include <lagfsi/mpi_run.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -367,7 +368,7 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
     ls.direct = "klu";
     ls.type = "auto";
     ls.auto_threshold = kPspgKrylovFrom;
-    ps.solver = read_linear_solver(s, "linear_solver", ls, kPspgDirect);
+    ps.solver = mpi_run::distribute(read_linear_solver(s, "linear_solver", ls, kPspgDirect));
   } else {
     // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
     fs.viscous_step = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
@@ -376,7 +377,7 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
     ls.direct = "cholmod";
     ls.type = "auto";
     ls.auto_threshold = kFractionalStepKrylovFrom;
-    fs.solver = read_linear_solver(s, "linear_solver", ls, kFractionalStepDirect);
+    fs.solver = mpi_run::distribute(read_linear_solver(s, "linear_solver", ls, kFractionalStepDirect));
     fs.retry_inverted = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
     // The conservative detections keep the area where the topology does not change, so the steps must keep it
     // too (fractional_step.cpp); the alpha shape re-detects the domain and corrects its area at every remesh.

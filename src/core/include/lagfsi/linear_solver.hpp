@@ -64,6 +64,9 @@ struct LinearSolverSettings {
   /// solve() reads those entries of b and writes those of x (the others are zero). Off: one process
   /// (PETSC_COMM_SELF) with every row.
   bool distributed = false;
+  /// Distributed: every process receives the whole x (each entry from the process that owns its row; an MPI
+  /// run's replicated data, mpi_run.hpp). Off: each process's x holds its own rows, zeros elsewhere.
+  bool gather = false;
 };
 
 /// The last setup and solve.

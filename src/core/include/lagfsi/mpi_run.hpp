@@ -1,0 +1,45 @@
+#pragma once
+/// @file mpi_run.hpp
+/// A run over MPI processes (`mpirun -n P lagfsi run CASE.json`): replicated data, distributed solves.
+///
+/// Every process builds the same case and holds every particle, node and element; each step's remeshing, assembly
+/// and particle management are the same computation on each (the same input, the same operations, the same
+/// results bit for bit). The fluid's linear systems are PETSc matrices over all the processes, each process
+/// filling and solving the rows PETSc gives it (LinearSolverSettings::distributed), and the solution is summed
+/// over the processes (each entry comes from one process, the others add zeros: every process receives the same
+/// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints; the others
+/// run quiet. This distributes the linear solves only: the domain decomposition of the particles and the
+/// remeshing (each process meshing its own part with a ghost layer) is not done.
+///
+/// MPI starts (through PETSc, which owns it) only when an MPI launcher started the program (its environment
+/// variables say so); a program run without one never starts MPI.
+#include <lagfsi/linear_solver.hpp>
+#include <lagfsi/types.hpp>
+
+namespace lagfsi::mpi_run {
+
+/// True when an MPI launcher (Open MPI's mpirun, or a PMI-based one) started this process.
+bool launched();
+/// Starts MPI (and PETSc) if launched(); call first thing in main. Idempotent.
+void start();
+/// This process's rank and the number of processes (0 and 1 without MPI).
+int rank();
+int size();
+/// True on the process that writes the output (rank 0, or the only process).
+inline bool writer() { return rank() == 0; }
+/// x summed over the processes, in place (nothing with one process).
+void sum(Vec& x);
+/// The largest of v over the processes (v with one process).
+double max(double v);
+/// True on every process when `flag` is true on at least one (a decision all of them must take together: to stop,
+/// to give up).
+bool any(bool flag);
+/// Stops every process at once with `code` (after a failure only one process saw: process 0's output); returns
+/// with one process.
+void abort_all(int code);
+/// A solver's settings for a run over several processes: "petsc" and "mumps" spread over them with the solution
+/// gathered, "auto" becoming "petsc" (a direct type stays on each process, which then solves the whole system);
+/// unchanged with one process.
+LinearSolverSettings distribute(LinearSolverSettings s);
+
+}  // namespace lagfsi::mpi_run

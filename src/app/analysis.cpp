@@ -268,7 +268,8 @@ int run_case(const RunOptions& opt) {
       [&] {
         start_or_resume(sim, c, opt, restart, pos, tot);
         sim.run([&](const Simulation& s) {  // every process stops at the same step
-          return mpi_run::any(InterruptGuard::received() || (opt.stop_after_step > 0 && s.step() >= opt.stop_after_step));
+          return mpi_run::any(InterruptGuard::received() ||
+                              (opt.stop_after_step > 0 && s.step() >= opt.stop_after_step));
         });
         sim.end(sim.finished() ? RunEnd::completed : RunEnd::stopped);
       },

@@ -47,6 +47,14 @@ const KeyTable kSelectSegmentKeys("selection (type segment)", "The nodes on a se
                                    {"to", nullptr, "The other end [x, y] (m)."},
                                    {"tolerance", 0.0, kSelectionTolerance, kDerived}});
 
+const KeyTable kSelectPolylineKeys(
+    "selection (type polyline)",
+    "The nodes on a polyline (e.g. the wet faces of a flag, without the arc it is clamped on).",
+    {{"type", "polyline", "`polyline`."},
+     {"points", nullptr,
+      "Its vertices [[x, y], ...] (m), at least two, in order (open: the last is not joined to the first)."},
+     {"tolerance", 0.0, kSelectionTolerance, kDerived}});
+
 const KeyTable kSelectBoxKeys("selection (type box)", "The nodes in an axis-aligned box (its edges included).",
                               {{"type", "box", "`box`."},
                                {"min", nullptr, "Lower-left corner [x, y] (m)."},
@@ -59,6 +67,14 @@ const KeyTable kSelectCircleKeys("selection (type circle)", "The nodes on a circ
                                   {"tolerance", 0.0, kSelectionTolerance, kDerived}});
 
 const KeyTable kSelectAllKeys("selection (type all)", "Every node.", {{"type", "all", "`all`."}});
+
+/// Distance from p to the segment [a, b] (to a when the segment is a point).
+double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
 
 double bbox_diagonal(const std::vector<Vec2>& pts) {
   if (pts.empty()) return 1.0;
@@ -226,7 +242,7 @@ TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>&
 
 std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
   if (!s.json().is_object() || !s.has("type")) s.fail("type", "required key is missing");
-  const std::string type = s.choice("type", {"point", "segment", "box", "circle", "all"});
+  const std::string type = s.choice("type", {"point", "segment", "polyline", "box", "circle", "all"});
   const double L = bbox_diagonal(nodes);
   std::vector<Index> out;
   if (type == "point") {
@@ -250,12 +266,19 @@ std::vector<Index> select_nodes(Params s, const std::vector<Vec2>& nodes) {
     s.validate(kSelectSegmentKeys, {{"tolerance", 1e-6 * L}});
     const Vec2 a = s.vec2("from"), b = s.vec2("to");
     const double tol = s.positive("tolerance");
-    const Vec2 d = b - a;
-    const double len2 = d.squaredNorm();
-    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i) {
-      const double t = len2 > 0 ? std::clamp((nodes[i] - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-      if ((nodes[i] - (a + t * d)).norm() <= tol) out.push_back(i);
-    }
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
+      if (distance_to_segment(nodes[i], a, b) <= tol) out.push_back(i);
+  } else if (type == "polyline") {
+    s.validate(kSelectPolylineKeys, {{"tolerance", 1e-6 * L}});
+    const std::vector<Vec2> v = s.points("points");
+    if (v.size() < 2) s.fail("points", "a polyline needs at least two points");
+    const double tol = s.positive("tolerance");
+    for (Index i = 0; i < static_cast<Index>(nodes.size()); ++i)
+      for (size_t k = 0; k + 1 < v.size(); ++k)
+        if (distance_to_segment(nodes[i], v[k], v[k + 1]) <= tol) {
+          out.push_back(i);
+          break;
+        }
   } else if (type == "box") {
     s.validate(kSelectBoxKeys);
     const Vec2 lo = s.vec2("min"), hi = s.vec2("max");

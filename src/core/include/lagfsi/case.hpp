@@ -78,7 +78,8 @@ std::vector<std::vector<Vec2>> geometry_loops(Params geometry, double h);
 
 /// Node selection: {"type": "point", "at": [x, y]} (the nearest node, which must lie within
 /// "tolerance" — default 1e-6 of the body size), {"type": "segment", "from": [..], "to": [..]} (nodes
-/// within tolerance of the segment), {"type": "box", "min": [..], "max": [..]}, {"type": "circle",
+/// within tolerance of the segment), {"type": "polyline", "points": [[..], ..]} (nodes within tolerance of
+/// one of its segments), {"type": "box", "min": [..], "max": [..]}, {"type": "circle",
 /// "centre": [..], "radius": r} (nodes within tolerance of the circle), {"type": "all"}.
 /// An empty selection is an error.
 std::vector<Index> select_nodes(Params select, const std::vector<Vec2>& nodes);

@@ -1,0 +1,71 @@
+"""Writes the case files of turek_hron_fsi1: the fluid's side is turek_hron_cfd1's (its make_case.py: the obstacle's
+outline cut into segments of about h, the fluid region's hole following the same points), with the flag an
+elastic solid coupled to the fluid instead of a rigid wall; one file per resolution: case.json (h = 0.01 m),
+case_coarse.json (h = 0.02 m), case_fine.json (h = 0.007 m), each with dt = min(h, 0.01) s and 12 s of flow (the flag
+settles after about 3.5 s).
+Usage: /usr/bin/python3 cases/turek_hron_fsi1/make_case.py (rewrites the three)."""
+import importlib.util
+import json
+import os
+
+here = os.path.dirname(os.path.abspath(__file__))
+spec = importlib.util.spec_from_file_location("cfd1", os.path.join(here, "..", "turek_hron_cfd1", "make_case.py"))
+cfd1 = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(cfd1)
+
+XC, YC, R = cfd1.XC, cfd1.YC, cfd1.R
+FLAG_END, FLAG_T = cfd1.FLAG_END, cfd1.FLAG_T
+TIP = [FLAG_END, YC]  # point A
+
+
+def case(h, dt, end_time, tag):
+    c = cfd1.case(h, dt, end_time, tag)
+    cyl, flag = cfd1.outline(h)
+    water = c["bodies"][0]
+    # The flag is no longer a wall of the fluid: the coupling's ghost particles carry its three wet faces.
+    water["walls"] = [w for w in water["walls"] if w["name"] != "flag"]
+    solid = {
+        "name": "flag",
+        "type": "solid",
+        "material": {"type": "svk", "young": 1.4e6, "poisson": 0.4, "density": 1000.0, "hypothesis": "plane_strain"},
+        "geometry": {"type": "circle_cut", "points": [[XC, YC - FLAG_T / 2], [FLAG_END, YC - FLAG_T / 2],
+                                                      [FLAG_END, YC + FLAG_T / 2], [XC, YC + FLAG_T / 2]],
+                     "centre": [XC, YC], "radius": R},
+        "mesh": {"type": "unstructured", "size": h, "order": 3},
+        "boundary_conditions": [
+            {"type": "fixed", "select": {"type": "circle", "centre": [XC, YC], "radius": R, "tolerance": 2e-4}}],
+    }
+    coupling = {
+        "type": "dirichlet_neumann",
+        "name": "fsi",
+        "fluid": "water",
+        "structure": "flag",
+        # the lower face, the end and the upper face; not the arc the flag is clamped on (inside the cylinder)
+        "interface": {"type": "polyline", "points": flag, "tolerance": 1e-5},
+        "ghost_spacing": h,
+        "acceleration": {"type": "iqn_imvj"},
+        "tolerance": 1e-3,
+        "reference_floor": 1e-7,
+    }
+    c["name"] = "turek_hron_fsi1"
+    c["description"] = ("Turek & Hron (2006) FSI1: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with an elastic "
+                        "flag 0.35 x 0.02 m (SVK, rho = 1000, mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow "
+                        "of mean 0.2 m/s (Re = 20): drag, lift, the tip's displacement (%s)" % tag)
+    c["bodies"] = [water, solid]
+    c["couplings"] = [coupling]
+    probes = [p for p in c["probes"] if p["name"] not in ("drag_flag", "lift_flag")]
+    probes[2:2] = [
+        {"name": "drag_flag", "type": "interface_force", "body": "fsi", "component": "x"},
+        {"name": "lift_flag", "type": "interface_force", "body": "fsi", "component": "y"},
+        {"name": "tip_ux", "type": "displacement", "body": "flag", "at": TIP, "component": "x"},
+        {"name": "tip_uy", "type": "displacement", "body": "flag", "at": TIP, "component": "y"},
+        {"name": "fsi_iterations", "type": "iterations", "body": "fsi"},
+    ]
+    c["probes"] = probes
+    return c
+
+
+if __name__ == "__main__":
+    for name, h, dt in (("case.json", 0.01, 0.01), ("case_coarse.json", 0.02, 0.01), ("case_fine.json", 0.007, 0.007)):
+        with open(os.path.join(here, name), "w") as f:
+            f.write(cfd1.compact(json.dumps(case(h, dt, 12.0, "h = %g m, dt = %g s" % (h, dt)), indent=2)) + "\n")

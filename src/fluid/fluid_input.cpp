@@ -25,6 +25,13 @@ const KeyTable kFluidKeys(
      {"density", nullptr, "Mass density (kg/m^3)."},
      {"viscosity", nullptr, "Dynamic viscosity (Pa s), >= 0."},
      {"spacing", nullptr, "Particle spacing h (m): the mesh size; lengths below are often multiples of it."},
+     {"preset", "conservative",
+      "The family of defaults of the keys marked derived: conservative (the advected domain, walls as constraints "
+      "sliding against their Navier friction, the Robin free-surface pressure with the monolithic scheme, particle "
+      "volumes; needs remeshing) or classic (the alpha shape, wall particles, p = 0 on the free surface, the surface "
+      "correction); default: conservative with the monolithic scheme and remeshing, classic otherwise. A key given "
+      "in the case overrides its preset's value.",
+      kDerived},
      {"alpha", 1.2, "Alpha-shape parameter in [1, 5]: triangles with a circumradius above alpha h are not fluid."},
      {"domain_detection", "alpha",
       "Which new triangles are fluid: alpha (the alpha shape), advected (the previous domain moved with the "
@@ -195,7 +202,7 @@ const KeyTable kStateSolitaryKeys("/bodies/*/initial_state (fluid body, type sol
 // and the surface correction. The peek reads a key only when it has the right type; the validation below
 // reports any other value.
 struct FluidDefaults {
-  std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
+  std::string preset, detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
   double contact_gap = 0.0, volume_relaxation_time = 0.1;
 };
 
@@ -218,8 +225,11 @@ FluidDefaults fluid_defaults(const Json& body) {
   const bool remesh =
       !(body.is_object() && body.contains("remesh") && body.at("remesh").is_boolean()) || body.at("remesh").get<bool>();
   const Json scheme = body.is_object() && body.contains("scheme") ? body.at("scheme") : Json::object();
-  const bool conservative = remesh && peek(scheme, "type", "monolithic_pspg") == "monolithic_pspg";
   FluidDefaults d;
+  // The preset: conservative for the monolithic scheme with remeshing, classic otherwise (a fixed mesh is classic
+  // whatever it asks: read_body_keys refuses the combination).
+  d.preset = remesh && peek(scheme, "type", "monolithic_pspg") == "monolithic_pspg" ? "conservative" : "classic";
+  const bool conservative = remesh && peek(body, "preset", d.preset) == "conservative";
   d.detection = conservative ? "advected" : "alpha";
   const std::string detection = peek(body, "domain_detection", d.detection);
   const bool alpha = detection == "alpha";
@@ -264,7 +274,8 @@ FluidModel::FluidModel(Params b, const CaseContext& ctx) : ctx_(ctx) {
 
 void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs) {
   SizeField::expand_shorthand(b.json());
-  b.validate(kFluidKeys, {{"domain_detection", d.detection},
+  b.validate(kFluidKeys, {{"preset", d.preset},
+                          {"domain_detection", d.detection},
                           {"contact_gap", d.contact_gap},
                           {"wall_model", d.wall_model},
                           {"wall_friction", d.wall_friction}});
@@ -277,6 +288,8 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
   rs.alpha = b.positive("alpha");
   if (rs.alpha < 1.0 || rs.alpha > 5.0) b.fail("alpha", "must lie in [1, 5] (the literature uses 1.0-1.5)");
   c_.remesh = b.boolean("remesh");
+  if (b.choice("preset", {"conservative", "classic"}) == "conservative" && !c_.remesh)
+    b.fail("preset", "\"conservative\" needs \"remesh\": true (its domain and walls act at the remeshing)");
   const std::string detection = b.choice("domain_detection", {"alpha", "advected", "level_set"});
   rs.detection = detection == "alpha"      ? meshing::DomainDetection::Alpha
                  : detection == "advected" ? meshing::DomainDetection::Advected

@@ -218,23 +218,36 @@ void FluidModel::finalize_step() {
 }
 
 StepLimit FluidModel::stable_step(double courant) const {
-  // Over the fluid particles at the step's start (drops in flight included: one about to land needs the small
-  // step): the Courant limit C h_i / |v_i| (a particle crosses at most C of its spacing in a step; Courant,
-  // Friedrichs & Lewy 1928) and the acceleration limit C sqrt(h_i / |a_i|) (started from rest, it moves at most
-  // C^2 h_i / 2: the force criterion of SPH, Monaghan 1992), which sets the first steps of a flow at rest.
+  // A Lagrangian Courant limit: the mesh moves with the fluid, so a step is limited by how much it deforms the
+  // elements, not by how far it carries them. Over every edge (a, b) of the step's mesh, Δt |v_a - v_b| <= C |x_a - x_b|
+  // (an edge changes its length or turns by at most C of itself; a uniform motion, a film or a jet in one piece,
+  // limits nothing); over the fluid particles outside the mesh (drops in flight, which meet the rest only when they
+  // land), Δt |v_i| <= C h_i (Courant, Friedrichs & Lewy 1928); and over every fluid particle the acceleration limit
+  // C sqrt(h_i / |a_i|) (started from rest, it moves at most C^2 h_i / 2: the force criterion of SPH, Monaghan 1992),
+  // which sets the first steps of a flow at rest.
   StepLimit l;
   const KinematicState& s = cloud_.state();
+  const auto limit = [&](double dt, const char* by) {
+    if (dt < l.dt) {
+      l.dt = dt;
+      l.by = by;
+    }
+  };
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], b = t[(k + 1) % 3];  // an interior edge twice: the same limit
+      const double dv = (s.v.segment<2>(2 * a) - s.v.segment<2>(2 * b)).norm();
+      const double le = (s.x.segment<2>(2 * a) - s.x.segment<2>(2 * b)).norm();
+      if (le > 0 && dv * l.dt > courant * le) limit(courant * le / dv, "courant");
+    }
   for (Index i = 0; i < cloud_.n(); ++i) {
     if (!cloud_.is_fluid(i)) continue;
-    const double h = cloud_.h(i), v = s.v.segment<2>(2 * i).norm(), a = s.a.segment<2>(2 * i).norm();
-    if (v * l.dt > courant * h) {
-      l.dt = courant * h / v;
-      l.by = "courant";
+    const double h = cloud_.h(i), a = s.a.segment<2>(2 * i).norm();
+    if (mesh_.connected.size() != static_cast<size_t>(cloud_.n()) || !mesh_.connected[i]) {
+      const double v = s.v.segment<2>(2 * i).norm();
+      if (v * l.dt > courant * h) limit(courant * h / v, "courant");
     }
-    if (a * l.dt * l.dt > courant * courant * h) {
-      l.dt = courant * std::sqrt(h / a);
-      l.by = "acceleration";
-    }
+    if (a * l.dt * l.dt > courant * courant * h) limit(courant * std::sqrt(h / a), "acceleration");
   }
   return l;
 }

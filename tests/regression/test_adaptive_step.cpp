@@ -1,6 +1,7 @@
 // The adaptive time step (/analysis/time_step, type adaptive; src/app/simulation.cpp): each step is the smallest of
-// the ceiling, the growth limit and the bodies' stable steps (a fluid's Courant and acceleration limits), on the
-// dam break in a tank (cases/dam_break_tank) over its first 0.4 s, through the wall impact.
+// the ceiling, the growth limit and the bodies' stable steps (a fluid's Lagrangian Courant limit over its mesh's
+// edges and its acceleration limit), on the dam break in a tank (cases/dam_break_tank) over its first 0.4 s,
+// through the wall impact.
 #include "case_runner.hpp"
 #include "fluid_checks.hpp"
 #include "process.hpp"
@@ -56,8 +57,7 @@ TEST(AdaptiveStep, EveryStepIsTheSmallestOfItsLimitsAndTheFlowKeepsItsAccuracy) 
   EXPECT_EQ(summary["time_step"]["type"], "adaptive");
   EXPECT_NEAR(summary["time"].get<double>(), 0.4, 1e-12);
   // The fixed step's accuracy (DamBreakTank.FrontReachesTheWallAndAreaIsKept: front RMS against Koshizuka & Oka
-  // 0.348 at dt = 1 ms, below 0.40; the impact between 0.23 and 0.32 s). Measured: 0.348 at C = 0.25 in 742 steps
-  // (the fixed step: 400), the larger steps before the impact and the smaller ones after it.
+  // below 0.40, the impact between 0.23 and 0.32 s).
   const auto [rms, t_impact] = dam_break_tank_front(probes_of(r));
   EXPECT_LT(rms, 0.40);
   EXPECT_GT(t_impact, 0.23);

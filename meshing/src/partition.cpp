@@ -45,32 +45,22 @@ int SpacePartition::divide(std::vector<Index>& ids, size_t from, size_t to, int 
     return xa < xb || (xa == xb && a < b);
   };
   if (n_low > from && n_low < to) {
+    // Between the n_low-th point and the next.
     std::nth_element(ids.begin() + static_cast<long>(from), ids.begin() + static_cast<long>(n_low),
                      ids.begin() + static_cast<long>(to), before);
-    const double high_min = points[static_cast<size_t>(ids[n_low])][axis];
     double low_max = -std::numeric_limits<double>::infinity();
     for (size_t k = from; k < n_low; ++k) low_max = std::max(low_max, points[static_cast<size_t>(ids[k])][axis]);
-    cut.at = 0.5 * (low_max + high_min);
-    // Points exactly on the cut belong to the high side ([lo, hi) boxes): move them there.
-    size_t split = from;
-    for (size_t k = from; k < to; ++k)
-      if (points[static_cast<size_t>(ids[k])][axis] < cut.at) std::swap(ids[k], ids[split++]);
-    std::sort(ids.begin() + static_cast<long>(from), ids.begin() + static_cast<long>(split), before);
-    std::sort(ids.begin() + static_cast<long>(split), ids.begin() + static_cast<long>(to), before);
-    const size_t mid = split;
-    std::pair<Vec2, Vec2> low_box = box, high_box = box;
-    low_box.second[axis] = cut.at;
-    high_box.first[axis] = cut.at;
-    const int k = static_cast<int>(cuts_.size());
-    cuts_.push_back(cut);
-    const int low = divide(ids, from, mid, low_parts, points, low_box);
-    const int high = divide(ids, mid, to, parts - low_parts, points, high_box);
-    cuts_[static_cast<size_t>(k)].low = low;
-    cuts_[static_cast<size_t>(k)].high = high;
-    return k;
+    cut.at = 0.5 * (low_max + points[static_cast<size_t>(ids[n_low])][axis]);
+  } else if (to > from) {  // too few points to divide in proportion: their middle
+    cut.at = 0.5 * (lo[axis] + hi[axis]);
+  } else {  // no point: anywhere inside the box
+    const double a = box.first[axis], b = box.second[axis];
+    cut.at = std::isfinite(a) && std::isfinite(b) ? 0.5 * (a + b)
+             : std::isfinite(a)                   ? a + 1.0
+             : std::isfinite(b)                   ? b - 1.0
+                                                  : 0.0;
   }
-  // Too few points to divide in proportion: the box is cut at its points' middle (or at 0 when it holds none).
-  cut.at = to > from ? 0.5 * (lo[axis] + hi[axis]) : (std::isfinite(box.first[axis]) ? box.first[axis] + 1.0 : 0.0);
+  // Points exactly on the cut belong to the high side ([lo, hi) boxes).
   size_t split = from;
   for (size_t k = from; k < to; ++k)
     if (points[static_cast<size_t>(ids[k])][axis] < cut.at) std::swap(ids[k], ids[split++]);

@@ -1,0 +1,42 @@
+"""Writes the case file of turek_hron_fsi2: turek_hron_fsi1's (its make_case.py: turek_hron_cfd1's channel with the
+flag an elastic solid coupled to the fluid) with the inflow's mean speed 1 m/s (Re = 100), the flag's density
+10000 kg/m^3 and a time step for the Courant number (peak speed 1.5 m/s: 1.5 dt / h = 0.375): case.json (h = 0.01 m,
+dt = 0.0025 s, 12 s of flow: the flag's oscillation grows from the remeshing's noise and becomes periodic).
+Usage: /usr/bin/python3 cases/turek_hron_fsi2/make_case.py (rewrites it)."""
+import importlib.util
+import json
+import os
+
+here = os.path.dirname(os.path.abspath(__file__))
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(name, os.path.join(here, "..", "turek_hron_" + name, "make_case.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+cfd1, fsi1 = load("cfd1"), load("fsi1")
+U = 1.0  # m/s, the inflow's mean speed (peak 1.5 U)
+RHO_S = 10000.0  # kg/m^3, the flag's density (ten times the fluid's)
+
+
+def case(h, dt, end_time, tag):
+    c = fsi1.case(h, dt, end_time, tag)
+    water, flag = c["bodies"]
+    inflow = water["boundaries"][0]
+    assert inflow["type"] == "inflow" and flag["name"] == "flag"
+    inflow["velocity"] = [U, 0]
+    flag["material"]["density"] = RHO_S
+    c["name"] = "turek_hron_fsi2"
+    c["description"] = ("Turek & Hron (2006) FSI2: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with an elastic "
+                        "flag 0.35 x 0.02 m (SVK, rho = 10000, mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow "
+                        "of mean 1 m/s (Re = 100): the flag's periodic oscillation, drag, lift, the tip's displacement "
+                        "(%s)" % tag)
+    return c
+
+
+if __name__ == "__main__":
+    with open(os.path.join(here, "case.json"), "w") as f:
+        f.write(cfd1.compact(json.dumps(case(0.01, 0.0025, 12.0, "h = 0.01 m, dt = 0.0025 s"), indent=2)) + "\n")

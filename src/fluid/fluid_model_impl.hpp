@@ -26,7 +26,7 @@
 
 namespace lagfsi::fluid {
 
-struct FluidDefaults;  // the defaults that follow from other keys (fluid_input.cpp)
+struct FluidDefaults;  // the defaults that follow from other keys (fluid_defaults.hpp)
 
 class FluidModel final : public PhysicsModel, public InterfaceFluid {
  public:

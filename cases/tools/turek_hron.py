@@ -1,6 +1,6 @@
-"""The rigid Turek & Hron (2006) CFD tests (cases/turek_hron_cfd1, cases/turek_hron_cfd2): the drag and the lift of
-the cylinder with its flag, time means over the last `window` seconds of a run against the benchmark's values, their
-records (claims_record) and the comparison picture."""
+"""The Turek & Hron (2006) cases (cases/turek_hron_*): the benchmark's values, the drag and the lift of the cylinder
+with its flag, time means over the last seconds of a run; for the rigid CFD tests their records (claims_record) and
+the comparison picture (cfd_forces)."""
 import math
 import os
 
@@ -11,22 +11,27 @@ from claims_record import record  # noqa: E402
 from lagfsi_post import read_csv, save  # noqa: E402
 
 
-def cfd_forces(out, case_dir, test, window, q_in, lift_span):
-    """Records drag, lift (N/m: the cylinder's and the flag's forces added), drag_std, lift_std (their standard
-    deviations over the window), drag_cylinder, lift_cylinder (the cylinder's share) and discharge (the flow rate at
-    x = 1.5 m over the inflow's `q_in`, same window) of the run in `out`, against reference/turek_hron_2006_<test>.csv
-    of `case_dir`; draws them (the lift's axis `lift_span` N/m either side of the reference)."""
-    tag = os.path.basename(os.path.normpath(out))
+def reference(case_dir, test):
+    """The rows of `test` (CFD1, FSI2, ...) in case_dir/reference/turek_hron_2006_<test>.csv: {quantity: [mean,
+    amplitude, frequency]} (None where the table has no value)."""
     ref = {}
     with open(os.path.join(case_dir, "reference", "turek_hron_2006_%s.csv" % test.lower())) as f:
         for line in f:
             if line.startswith(test + ","):
                 c = line.split(",")
-                ref[c[1]] = float(c[2])
-    p = read_csv(os.path.join(out, "probes.csv"))
-    t = p["time"]
-    drag = [a + b for a, b in zip(p["drag_cylinder"], p["drag_flag"])]
-    lift = [a + b for a, b in zip(p["lift_cylinder"], p["lift_flag"])]
+                ref[c[1]] = [float(x) if x.strip() else None for x in c[2:5]]
+    return ref
+
+
+def total_forces(p):
+    """The drag and the lift (N/m) of probes `p`: the cylinder's and the flag's added."""
+    return ([a + b for a, b in zip(p["drag_cylinder"], p["drag_flag"])],
+            [a + b for a, b in zip(p["lift_cylinder"], p["lift_flag"])])
+
+
+def window_stats(t, window):
+    """The start t0 of the last `window` seconds of the times `t`, and the mean and the standard deviation of a
+    series over them."""
     t0 = t[-1] - window
     late = [k for k, tk in enumerate(t) if tk >= t0 - 1e-9]
 
@@ -37,6 +42,20 @@ def cfd_forces(out, case_dir, test, window, q_in, lift_span):
         m = mean(v)
         return math.sqrt(sum((v[k] - m) ** 2 for k in late) / len(late))
 
+    return t0, mean, std
+
+
+def cfd_forces(out, case_dir, test, window, q_in, lift_span):
+    """Records drag, lift (N/m: the cylinder's and the flag's forces added), drag_std, lift_std (their standard
+    deviations over the window), drag_cylinder, lift_cylinder (the cylinder's share) and discharge (the flow rate at
+    x = 1.5 m over the inflow's `q_in`, same window) of the run in `out`, against reference/turek_hron_2006_<test>.csv
+    of `case_dir`; draws them (the lift's axis `lift_span` N/m either side of the reference)."""
+    tag = os.path.basename(os.path.normpath(out))
+    ref = {k: v[0] for k, v in reference(case_dir, test).items()}
+    p = read_csv(os.path.join(out, "probes.csv"))
+    t = p["time"]
+    drag, lift = total_forces(p)
+    t0, mean, std = window_stats(t, window)
     values = {"drag": mean(drag), "lift": mean(lift), "drag_std": std(drag), "lift_std": std(lift),
               "drag_cylinder": mean(p["drag_cylinder"]), "lift_cylinder": mean(p["lift_cylinder"]),
               "discharge": mean(p["discharge"]) / q_in}

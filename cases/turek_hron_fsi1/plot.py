@@ -7,7 +7,6 @@ standard deviations over the window (drag_std, lift_std, uy_std), drag_cylinder 
 (the flow rate at x = 1.5 m over the inflow's 0.082 m^2/s, same window), iterations (coupling passes per step, mean
 over the run).
 Usage: /usr/bin/python3 cases/turek_hron_fsi1/plot.py OUTDIR (the picture is named after OUTDIR's last part)"""
-import math
 import os
 import sys
 
@@ -17,6 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save
+from turek_hron import reference, total_forces, window_stats
 
 out = out_dir_from_argv("out/turek_hron_fsi1")
 tag = os.path.basename(os.path.normpath(out))
@@ -24,31 +24,13 @@ here = os.path.dirname(__file__)
 WINDOW = 8.0  # s, the averaging window at the end of the run (the flag swings slowly, by about 0.1 mm over 2-3 s)
 Q_IN = 0.2 * 0.41  # the inflow's flow rate
 
-ref = {}
-with open(os.path.join(here, "reference", "turek_hron_2006_fsi1.csv")) as f:
-    for line in f:
-        if line.startswith("FSI1,"):
-            c = line.split(",")
-            ref[c[1]] = float(c[2])
-
+ref = {k: v[0] for k, v in reference(here, "FSI1").items()}
 p = read_csv(os.path.join(out, "probes.csv"))
 t = p["time"]
-drag = [a + b for a, b in zip(p["drag_cylinder"], p["drag_flag"])]
-lift = [a + b for a, b in zip(p["lift_cylinder"], p["lift_flag"])]
+drag, lift = total_forces(p)
 ux, uy = p["tip_ux"], p["tip_uy"]
-t0 = t[-1] - WINDOW
-late = [k for k, tk in enumerate(t) if tk >= t0 - 1e-9]
+t0, mean, std = window_stats(t, WINDOW)
 steps = [k for k in range(len(t)) if p["fsi_iterations"][k] > 0]
-
-
-def mean(v):
-    return sum(v[k] for k in late) / len(late)
-
-
-def std(v):
-    m = mean(v)
-    return math.sqrt(sum((v[k] - m) ** 2 for k in late) / len(late))
-
 
 values = {"drag": mean(drag), "lift": mean(lift), "ux_A": mean(ux), "uy_A": mean(uy),
           "drag_std": std(drag), "lift_std": std(lift), "uy_std": std(uy),

@@ -26,6 +26,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
 from lagfsi_post import read_csv, out_dir_from_argv, save, last_period_stats
+from turek_hron import reference, total_forces
 
 out = out_dir_from_argv("out/turek_hron_fsi2")
 tag = os.path.basename(os.path.normpath(out))
@@ -33,19 +34,13 @@ here = os.path.dirname(__file__)
 WINDOW = 4.0  # s, the window of the statistics at the end of the run (about eight periods of u_y)
 SMOOTH = 0.025  # s, the forces' centred running mean
 
-ref = {}
-with open(os.path.join(here, "reference", "turek_hron_2006_fsi2.csv")) as f:
-    for line in f:
-        if line.startswith("FSI2,"):
-            c = line.split(",")
-            ref[c[1]] = {"mean": float(c[2]), "amplitude": float(c[3]), "frequency": float(c[4])}
+ref = {k: dict(zip(("mean", "amplitude", "frequency"), v)) for k, v in reference(here, "FSI2").items()}
 
 p = read_csv(os.path.join(out, "probes.csv"))
 t = p["time"]
 dt = t[1] - t[0]
-series = {"drag": [a + b for a, b in zip(p["drag_cylinder"], p["drag_flag"])],
-          "lift": [a + b for a, b in zip(p["lift_cylinder"], p["lift_flag"])],
-          "ux_A": p["tip_ux"], "uy_A": p["tip_uy"]}
+drag, lift = total_forces(p)
+series = {"drag": drag, "lift": lift, "ux_A": p["tip_ux"], "uy_A": p["tip_uy"]}
 steps = [k for k in range(len(t)) if p["fsi_iterations"][k] > 0]
 
 

@@ -1,5 +1,5 @@
-// A run over MPI processes (mpi_run.hpp): starting MPI through PETSc, the rank and size, the sums that keep
-// the processes' copies identical.
+// A run over MPI processes (mpi_run.hpp): starting MPI through PETSc, the rank and size, the decisions the
+// processes take together, and a solver's settings spread over them.
 #include <lagfsi/mpi_run.hpp>
 
 #include "petsc_solver.hpp"
@@ -34,11 +34,6 @@ void start() {
 int rank() { return my_rank; }
 int size() { return my_size; }
 
-void sum(Vec& x) {
-  if (my_size <= 1 || x.size() == 0) return;
-  MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(x.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-}
-
 bool any(bool flag) {
   if (my_size <= 1) return flag;
   int f = flag ? 1 : 0, r = 0;
@@ -55,13 +50,6 @@ LinearSolverSettings distribute(LinearSolverSettings s) {
   if (s.type == "auto") s.type = "petsc";
   if (s.type == "petsc" || s.type == "mumps") s.distributed = s.gather = true;
   return s;
-}
-
-double max(double v) {
-  if (my_size <= 1) return v;
-  double m = v;
-  MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return m;
 }
 
 }  // namespace lagfsi::mpi_run

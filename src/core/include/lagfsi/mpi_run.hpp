@@ -27,10 +27,6 @@ int rank();
 int size();
 /// True on the process that writes the output (rank 0, or the only process).
 inline bool writer() { return rank() == 0; }
-/// x summed over the processes, in place (nothing with one process).
-void sum(Vec& x);
-/// The largest of v over the processes (v with one process).
-double max(double v);
 /// True on every process when `flag` is true on at least one (a decision all of them must take together: to stop,
 /// to give up).
 bool any(bool flag);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <stdexcept>
 #include <string>
 
 namespace lagfsi::fluid {
@@ -46,7 +47,14 @@ const std::map<std::string, BoundaryBuilder>& boundary_registry() {
 }
 }  // namespace
 
+void FluidBoundaries::set_walls(std::unique_ptr<FluidWalls> walls) {
+  if (!list_.empty()) throw std::logic_error("FluidBoundaries: the walls come first");
+  walls_ = walls.get();
+  list_.push_back(std::move(walls));
+}
+
 void FluidBoundaries::read(Params boundaries, const BoundaryContext& ctx) {
+  if (!walls_) throw std::logic_error("FluidBoundaries: the walls come first");
   if (!boundaries.json().is_array()) boundaries.fail("expected an array of boundaries");
   std::vector<std::string> types;
   for (const auto& [k, v] : boundary_registry()) types.push_back(k);
@@ -57,7 +65,7 @@ void FluidBoundaries::read(Params boundaries, const BoundaryContext& ctx) {
     const std::string type = b.choice("type", types);
     BoundaryContext bc = ctx;
     bc.name = "boundary" + std::to_string(j);
-    boundaries_.push_back(boundary_registry().at(type)(b, bc));
+    list_.push_back(boundary_registry().at(type)(b, bc));
     const std::string name = b.identifier("name");
     for (const auto& n : names_)
       if (n == name) b.fail("name", "duplicate boundary name '" + name + "'");
@@ -65,84 +73,111 @@ void FluidBoundaries::read(Params boundaries, const BoundaryContext& ctx) {
   }
 }
 
+bool FluidBoundaries::finds_contacts() const {
+  return std::any_of(list_.begin(), list_.end(), [](const auto& b) { return b->finds_contacts(); });
+}
+
+void FluidBoundaries::find(const ParticleCloud& cloud, double t) {
+  for (auto& b : list_) b->find(cloud, t);
+}
+
+std::vector<char> FluidBoundaries::held(Index n) const {
+  std::vector<char> on(static_cast<size_t>(n), 0);
+  for (const auto& b : list_) b->count_held(on);
+  return on;
+}
+
+bool FluidBoundaries::along(const Vec2& p) const {
+  return std::any_of(list_.begin(), list_.end(), [&](const auto& b) { return b->along(p); });
+}
+
+void FluidBoundaries::settle(const std::vector<std::uint8_t>& free) {
+  for (auto& b : list_) b->settle(free);
+}
+
 void FluidBoundaries::update(const ParticleCloud& cloud, double t) {
-  all_ = walls_.constraints();
-  if (boundaries_.empty()) return;
-  const std::vector<char> taken = walls_.on_wall(cloud.n());
-  for (size_t b = 0; b < boundaries_.size(); ++b) {
+  all_.clear();
+  frictions_.clear();
+  first_.clear();
+  std::vector<char> taken(static_cast<size_t>(cloud.n()), 0);
+  for (size_t b = 0; b < list_.size(); ++b) {
+    first_.push_back(all_.size());
     scratch_.clear();
-    boundaries_[b]->constrain(cloud, taken, t, scratch_);
-    for (const BoundaryConstraint& k : scratch_) {
-      WallConstraint w{k.i, k.c, k.base, -1};
-      w.boundary = static_cast<int>(b) + 1;
-      all_.push_back(w);
+    list_[b]->constrain(cloud, taken, t, scratch_);
+    for (BoundaryConstraint k : scratch_) {
+      k.boundary = static_cast<int>(b);
+      all_.push_back(k);
     }
+    const size_t nf = frictions_.size();
+    list_[b]->frictions(frictions_);
+    for (size_t f = nf; f < frictions_.size(); ++f) frictions_[f].boundary = static_cast<int>(b);
+    for (size_t k = first_.back(); k < all_.size(); ++k)
+      if (all_[k].i < cloud.n()) taken[static_cast<size_t>(all_[k].i)] = 1;
   }
-}
-
-namespace {
-BoundaryConstraint own(const WallConstraint& k) { return {k.i, k.c, k.base}; }
-}  // namespace
-
-double FluidBoundaries::position(const WallConstraint& k, double t) const {
-  return k.boundary == 0 ? walls_.constraint_position(k, t)
-                         : boundaries_[static_cast<size_t>(k.boundary - 1)]->position(own(k), t);
-}
-
-double FluidBoundaries::velocity(const WallConstraint& k, double t) const {
-  return k.boundary == 0 ? walls_.constraint_velocity(k, t)
-                         : boundaries_[static_cast<size_t>(k.boundary - 1)]->velocity(own(k), t);
+  first_.push_back(all_.size());
 }
 
 std::vector<char> FluidBoundaries::on_wall(Index n) const {
-  std::vector<char> on = walls_.on_wall(n);
-  for (const WallConstraint& k : all_)
-    if (k.boundary > 0 && k.i < n) ++on[static_cast<size_t>(k.i)];
+  std::vector<char> on(static_cast<size_t>(n), 0);
+  for (const BoundaryConstraint& k : all_)
+    if (k.i < n) ++on[static_cast<size_t>(k.i)];
   return on;
 }
 
 void FluidBoundaries::place(double t, const Vec& X0, Vec& x) const {
-  walls_.place(t, X0, x);
-  for (const WallConstraint& k : all_)
-    if (k.boundary > 0) x[2 * k.i + k.c] = position(k, t);
+  for (const auto& b : list_) b->place_own(t, X0, x);
+  const ParticleFrames& f = frames();
+  for (const BoundaryConstraint& k : all_) f.set_component(x, k.i, k.c, position(k, t));
 }
 
 void FluidBoundaries::set_motion(double t, Vec& v, Vec& a) const {
-  walls_.set_wall_motion(t, v, a);
-  for (const WallConstraint& k : all_)
-    if (k.boundary > 0) {
-      const FluidBoundary& b = *boundaries_[static_cast<size_t>(k.boundary - 1)];
-      v[2 * k.i + k.c] = b.velocity(own(k), t);
-      a[2 * k.i + k.c] = b.acceleration(own(k), t);
-    }
+  // The prescribed components' velocities and accelerations, also on fixed walls (zero): a particle put on a wall
+  // at the end of the last step arrives with its own velocity, which the constraint's first step would otherwise
+  // reflect (the trapezoidal rule's v_{n+1} = 2 (x_{n+1} - x_n) / dt - v_n).
+  move_own(t, v, a);
+  const ParticleFrames& f = frames();
+  for (const BoundaryConstraint& k : all_) {
+    const FluidBoundary& b = *list_[index(k)];
+    f.set_component(v, k.i, k.c, b.velocity(k, t));
+    f.set_component(a, k.i, k.c, b.acceleration(k, t));
+  }
 }
 
-double FluidBoundaries::after_step(ParticleCloud& cloud, const Vec& x_start, double t) {
+bool FluidBoundaries::inviscid(const std::array<Index, 3>& t) const {
+  return std::any_of(list_.begin(), list_.end(), [&](const auto& b) { return b->inviscid(t); });
+}
+
+double FluidBoundaries::after_step(ParticleCloud& cloud, const Vec& x_start, double t, const FluidMesh& mesh,
+                                   const Vec& force) {
+  const bool forces = static_cast<size_t>(force.size()) == all_.size() && first_.size() == list_.size() + 1;
   double added = 0.0;
-  for (auto& b : boundaries_) added += b->after_step(cloud, x_start, t);
+  for (size_t b = 0; b < list_.size(); ++b) {
+    const Vec own =
+        forces ? Vec(force.segment(static_cast<Index>(first_[b]), static_cast<Index>(first_[b + 1] - first_[b])))
+               : Vec();
+    added += list_[b]->after_step({cloud, x_start, t, mesh, own});
+  }
   return added;
 }
 
 bool FluidBoundaries::open() const {
-  return std::any_of(boundaries_.begin(), boundaries_.end(), [](const auto& b) { return b->open(); });
+  return std::any_of(list_.begin(), list_.end(), [](const auto& b) { return b->open(); });
 }
 
 int FluidBoundaries::taker(const Vec2& x) const {
-  for (size_t b = 0; b < boundaries_.size(); ++b)
-    if (boundaries_[b]->takes(x)) return static_cast<int>(b);
+  for (size_t b = 0; b < list_.size(); ++b)
+    if (list_[b]->takes(x)) return static_cast<int>(b);
   return -1;
 }
 
 void FluidBoundaries::clear_free_surface(std::vector<std::uint8_t>& free) const {
-  for (const WallConstraint& k : all_)
-    if (k.boundary > 0 && boundaries_[static_cast<size_t>(k.boundary - 1)]->holds_pressure() &&
-        static_cast<size_t>(k.i) < free.size())
-      free[static_cast<size_t>(k.i)] = 0;
+  for (const BoundaryConstraint& k : all_)
+    if (list_[index(k)]->holds_pressure() && static_cast<size_t>(k.i) < free.size()) free[static_cast<size_t>(k.i)] = 0;
 }
 
 void FluidBoundaries::fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,
                                           std::vector<char>& fixed) const {
-  for (const auto& b : boundaries_)
+  for (const auto& b : list_)
     if (b->open())
       for (Index i = 0; i < cloud.n(); ++i)
         if (cloud.is_fluid(i) && free[static_cast<size_t>(i)] && b->zero_pressure(cloud.pos(i))) fixed[3 * i + 2] = 1;
@@ -150,20 +185,20 @@ void FluidBoundaries::fix_outlet_pressure(const ParticleCloud& cloud, const std:
 
 std::vector<std::array<Vec2, 3>> FluidBoundaries::fluid_regions() const {
   std::vector<std::array<Vec2, 3>> out;
-  for (const auto& b : boundaries_) b->fluid_regions(out);
+  for (const auto& b : list_) b->fluid_regions(out);
   return out;
 }
 
 Json FluidBoundaries::summary() const {
   Json s = Json::object();
-  for (size_t b = 0; b < boundaries_.size(); ++b) s[names_[b]] = boundaries_[b]->summary();
+  for (size_t b = 1; b < list_.size(); ++b) s[names_[b - 1]] = list_[b]->summary();
   return s;
 }
 
 void FluidBoundaries::serialize(StateArchive& ar) {
-  for (size_t b = 0; b < boundaries_.size(); ++b) {
-    ar.section("boundary " + names_[b]);
-    boundaries_[b]->serialize(ar);
+  for (size_t b = 0; b < list_.size(); ++b) {
+    if (b > 0) ar.section("boundary " + names_[b - 1]);
+    list_[b]->serialize(ar);
   }
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 /// @file fluid_boundaries.hpp (private to src/fluid)
-/// The fluid's boundary conditions as the schemes see them: the walls (fluid_walls.hpp) and the boundaries of the
-/// case file's "boundaries" (fluid_boundary.hpp), with one list of the step's prescribed components. The walls'
-/// come first, in the walls' own order (FluidWalls::constraints), so that a wall's constraint k is entry k here;
-/// each entry's `boundary` says whose it is (0: the walls; b > 0: the case's boundary b - 1).
+/// The fluid's boundary conditions as the schemes see them: one list of boundaries (fluid_boundary.hpp), the walls
+/// first (fluid_walls.hpp: their model's implementation), then the case file's "boundaries" in their order, and
+/// the step's prescribed components and frictions of them all. A boundary's index in the list is its constraints'
+/// and frictions' `boundary`; the walls' constraints come first, in the walls' own order (FluidWalls::constraints),
+/// so that a wall's constraint k is entry k here.
 #include "fluid_boundary.hpp"
 #include "fluid_walls.hpp"
 
@@ -16,32 +17,75 @@ namespace lagfsi::fluid {
 
 class FluidBoundaries {
  public:
-  explicit FluidBoundaries(FluidWalls& walls) : walls_(walls) {}
+  /// The walls: the first boundary (before read).
+  void set_walls(std::unique_ptr<FluidWalls> walls);
+  FluidWalls& walls() { return *walls_; }
+  const FluidWalls& walls() const { return *walls_; }
   /// Reads /bodies/i/boundaries (an array; each entry's "type" picks the builder from the registry).
   void read(Params boundaries, const BoundaryContext& ctx);
-  bool empty() const { return boundaries_.empty(); }
+  /// Whether the case has boundaries besides the walls.
+  bool empty() const { return list_.size() <= 1; }
 
-  /// The step's prescribed components, from the walls' current constraints and every boundary's (a boundary
-  /// leaves a particle on a wall to the wall); called at the start of every step, after the walls found theirs.
+  // --- The start of a step.
+
+  /// Whether a boundary finds the particles it holds at every step (FluidBoundary::finds_contacts).
+  bool finds_contacts() const;
+  /// Every boundary finds the particles it holds (FluidBoundary::find).
+  void find(const ParticleCloud& cloud, double t);
+  /// Per particle (n of them): how many of its components the boundaries found hold (before update).
+  std::vector<char> held(Index n) const;
+  /// Whether p lies along a boundary (free-surface marking).
+  bool along(const Vec2& p) const;
+  /// Every boundary adjusts what it holds to the marked free surface.
+  void settle(const std::vector<std::uint8_t>& free);
+  /// The step's prescribed components and frictions, every boundary's in turn (a boundary leaves a particle that a
+  /// boundary before it holds to that one); called at the start of every step, after find.
   void update(const ParticleCloud& cloud, double t);
-  const std::vector<WallConstraint>& constraints() const { return all_; }
-  double position(const WallConstraint& k, double t) const;
-  double velocity(const WallConstraint& k, double t) const;
+
+  // --- The step's prescribed components.
+
+  const std::vector<BoundaryConstraint>& constraints() const { return all_; }
+  double position(const BoundaryConstraint& k, double t) const { return list_[index(k)]->position(k, t); }
+  double velocity(const BoundaryConstraint& k, double t) const { return list_[index(k)]->velocity(k, t); }
   /// Per particle (n of them): how many of its components are prescribed (0, 1 or 2).
   std::vector<char> on_wall(Index n) const;
-  /// The walls' prescribed positions at time t into x (FluidWalls::place), then the boundaries' components.
+  /// The boundaries' own particles and the prescribed components at their positions at time t (X0: the initial
+  /// positions).
   void place(double t, const Vec& X0, Vec& x) const;
-  /// The walls' prescribed velocities and accelerations at time t (FluidWalls::set_wall_motion), then the
-  /// boundaries' components.
+  /// The same for the velocities and accelerations.
   void set_motion(double t, Vec& v, Vec& a) const;
-  /// Every boundary's after_step; the area they added (inflows).
-  double after_step(ParticleCloud& cloud, const Vec& x_start, double t);
+  /// The boundaries' own particles' velocities and accelerations at time t (FluidBoundary::move_own).
+  void move_own(double t, Vec& v, Vec& a) const {
+    for (const auto& b : list_) b->move_own(t, v, a);
+  }
+  /// The particles' frames (the walls'; particle_frames.hpp).
+  const ParticleFrames& frames() const { return walls_->frames() ? *walls_->frames() : no_frames_; }
+
+  // --- What the boundaries add to the system.
+
+  /// The step's components sliding against a boundary's friction, and its coefficient and velocity.
+  const std::vector<BoundaryFriction>& frictions() const { return frictions_; }
+  double friction_coefficient(const BoundaryFriction& f) const { return list_[index(f)]->friction_coefficient(f); }
+  double friction_velocity(const BoundaryFriction& f, double t) const {
+    return list_[index(f)]->friction_velocity(f, t);
+  }
+  /// Whether element t carries no viscous stress.
+  bool inviscid(const std::array<Index, 3>& t) const;
+
+  // --- After the step.
+
+  /// Every boundary's after_step (force: the step's constraint forces, FluidStep::constraint_force, each boundary
+  /// receiving its own); the area they added (inflows).
+  double after_step(ParticleCloud& cloud, const Vec& x_start, double t, const FluidMesh& mesh, const Vec& force);
+
+  // --- Open boundaries.
+
   /// Open boundaries present (an outflow or an inflow).
   bool open() const;
   /// The outflow that takes a fluid particle at x (its index), or -1 (none does).
   int taker(const Vec2& x) const;
   /// Boundary b took `particles` particles and `area` of the mesh.
-  void left(int b, long particles, double area) { boundaries_[static_cast<size_t>(b)]->left(particles, area); }
+  void left(int b, long particles, double area) { list_[static_cast<size_t>(b)]->left(particles, area); }
   /// The particles held by a boundary that keeps their pressure unknown are not free surface (`free`, per
   /// particle); the step's constraints (update) must be current.
   void clear_free_surface(std::vector<std::uint8_t>& free) const;
@@ -51,16 +95,24 @@ class FluidBoundaries {
                            std::vector<char>& fixed) const;
   /// The triangles the boundaries add to the advected domain.
   std::vector<std::array<Vec2, 3>> fluid_regions() const;
-  /// summary.json: each boundary's numbers by its name (empty without boundaries).
+  /// summary.json: each boundary's numbers by its name (the case's boundaries; empty without them).
   Json summary() const;
+  /// Checkpoints: the walls' section, then each boundary's.
   void serialize(StateArchive& ar);
 
  private:
-  FluidWalls& walls_;
-  std::vector<std::unique_ptr<FluidBoundary>> boundaries_;
-  std::vector<std::string> names_;
-  std::vector<WallConstraint> all_;
+  template <class K>
+  static size_t index(const K& k) {
+    return static_cast<size_t>(k.boundary);
+  }
+  FluidWalls* walls_ = nullptr;                       // list_[0]
+  std::vector<std::unique_ptr<FluidBoundary>> list_;  // the walls, then the case's boundaries
+  std::vector<std::string> names_;                    // the case's boundaries' names (list_[b + 1]'s)
+  std::vector<BoundaryConstraint> all_;
+  std::vector<BoundaryFriction> frictions_;
+  std::vector<size_t> first_;  // per boundary: the index of its first constraint in all_ (and all_.size() last)
   std::vector<BoundaryConstraint> scratch_;
+  ParticleFrames no_frames_;
 };
 
 }  // namespace lagfsi::fluid

@@ -63,8 +63,7 @@ void FluidModel::serialize(StateArchive& ar) {
   ar.section("fluid " + c_.name);
   cloud_.serialize(ar);
   mesh_.serialize(ar);
-  walls_.serialize(ar);
-  boundaries_.serialize(ar);  // nothing without boundaries
+  boundaries_.serialize(ar);  // the walls, then the case's boundaries
   ghosts_.serialize(ar);
   remesh_.serialize(ar);
   volume_.serialize(ar);

@@ -48,15 +48,16 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, c
       L += v.segment<2>(2 * t[k]) * grad.transpose();
       gw += c_.rho * A / 3.0 * c_.gravity.dot(x_new.segment<2>(2 * t[k]) - x.segment<2>(2 * t[k]));
     }
-    if (c_.mu > 0 && !walls_.inviscid(t)) {
+    if (c_.mu > 0 && !boundaries_.inviscid(t)) {
       const Mat2 eps = 0.5 * (L + L.transpose());
       diss += dt * 2.0 * c_.mu * A * (eps.array() * eps.array()).sum();
     }
   }
   // The friction of the no-slip walls under "navier" (fluid_walls.hpp): k |v_t - v_wall,t|^2 dt.
-  for (const WallFriction& f : walls_.frictions()) {
-    const double dv = walls_.component(v, f.i, f.c) - walls_.friction_velocity(f, t);
-    diss += dt * walls_.friction_coefficient() * dv * dv;
+  const ParticleFrames& frames = boundaries_.frames();
+  for (const BoundaryFriction& f : boundaries_.frictions()) {
+    const double dv = frames.component(v, f.i, f.c) - boundaries_.friction_velocity(f, t);
+    diss += dt * boundaries_.friction_coefficient(f) * dv * dv;
   }
   gravity_work_ += gw;
   dissipation_ += diss;
@@ -73,7 +74,8 @@ void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, c
   const auto& ks = boundaries_.constraints();
   if (static_cast<size_t>(constraint_force.size()) == ks.size())
     for (size_t k = 0; k < ks.size(); ++k) {
-      const double dx = walls_.component(x_new, ks[k].i, ks[k].c) - walls_.component(x, ks[k].i, ks[k].c);
+      const double dx =
+          boundaries_.frames().component(x_new, ks[k].i, ks[k].c) - boundaries_.frames().component(x, ks[k].i, ks[k].c);
       boundary_work_ += constraint_force[static_cast<Index>(k)] * dx;
     }
 }

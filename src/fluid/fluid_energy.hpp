@@ -6,15 +6,14 @@
 #include "fluid_boundaries.hpp"
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
-#include "fluid_walls.hpp"
 
 namespace lagfsi::fluid {
 
 class FluidEnergy {
  public:
-  FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh, const FluidWalls& walls,
+  FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh,
               const FluidBoundaries& boundaries)
-      : c_(c), cloud_(cloud), mesh_(mesh), walls_(walls), boundaries_(boundaries) {}
+      : c_(c), cloud_(cloud), mesh_(mesh), boundaries_(boundaries) {}
   double kinetic() const;
   /// Potential energy of gravity over the current mesh, -rho integral of g . x dA (exact on linear triangles:
   /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
@@ -44,7 +43,6 @@ class FluidEnergy {
   const FluidConstants& c_;
   const ParticleCloud& cloud_;
   const FluidMesh& mesh_;
-  const FluidWalls& walls_;
   const FluidBoundaries& boundaries_;
   double gravity_work_ = 0, dissipation_ = 0, boundary_work_ = 0;
   Vec boundary_force_prev_;  // the boundary forces at the start of the step

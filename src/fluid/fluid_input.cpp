@@ -260,7 +260,18 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
            "\"navier\" is for \"wall_model\": \"constraints\" (wall particles hold the fluid by the mesh)");
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
-  if (navier) walls_.set_navier_friction(c_.mu, slip_length);
+  // The walls' model (fluid_walls.hpp); a ceiling lets go of a particle it pulls with more than 1 % of its weight
+  // (not the noise of a contact line; WallContacts::release_pulled).
+  std::unique_ptr<FluidWalls> walls;
+  if (!c_.remesh)
+    walls = std::make_unique<FixedMeshWalls>();
+  else if (wall_constraints_)
+    walls = std::make_unique<WallContacts>(c_.h, c_.wall_snap_fraction, c_.gravity,
+                                           0.01 * c_.rho * c_.gravity.norm() * c_.h * c_.h);
+  else
+    walls = std::make_unique<WallParticles>();
+  if (navier) walls->set_navier_friction(c_.mu, slip_length);
+  boundaries_.set_walls(std::move(walls));
   // The particle size field (size_field.hpp): an adaptive one needs the conservative management (the alpha
   // detection removes particles instead of merging them) and graded regions (unstructured particles).
   SizeField size;
@@ -362,8 +373,9 @@ void FluidModel::build_particles(Params b) {
   const double h = c_.h;
   // Walls first (their particles take precedence over fluid particles at the same place).
   Params walls = b.at("walls");
-  walls_.read(walls, h, ctx_.base_dir, wall_constraints_);
-  if (wall_constraints_ && walls_.inclined() && !scheme_->wall_frames())
+  FluidWalls& fluid_walls = boundaries_.walls();
+  fluid_walls.read(walls, h, ctx_.base_dir);
+  if (wall_constraints_ && fluid_walls.inclined() && !scheme_->wall_frames())
     walls.fail(
         "inclined segments with \"wall_model\": \"constraints\" need the monolithic scheme (the fractional "
         "step constrains the x and y components)");
@@ -371,7 +383,8 @@ void FluidModel::build_particles(Params b) {
   std::vector<Vec2> pts;
   std::vector<ParticleKind> kind;
   PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);  // the particles so far, for the proximity tests
-  if (c_.remesh && !wall_constraints_) walls_.place_particles(walls, h, pts, kind, wall_grid);
+  if (auto* particles = dynamic_cast<WallParticles*>(&fluid_walls))
+    particles->place_particles(walls, h, pts, kind, wall_grid);
   boundaries_.read(b.at("boundaries"), {h, ctx_.base_dir, ""});
   if (boundaries_.open()) {
     if (!c_.remesh) b.fail("boundaries", "an inflow or outflow needs \"remesh\": true");
@@ -398,10 +411,10 @@ void FluidModel::build_particles(Params b) {
   // than the walls' own extent (on an axis where they have one) is a typing error (a size 1000 times too
   // large), which would otherwise be meshed into millions of particles before anything else is checked.
   Vec2 wall_lo, wall_hi;
-  walls_.bounding_box(wall_lo, wall_hi);
+  fluid_walls.bounding_box(wall_lo, wall_hi);
   for (size_t r = 0; r < regions.size(); ++r) {
     Params g = regions.at(r);
-    if (!walls_.empty() && g.json().is_object() && g.has("type")) {
+    if (!fluid_walls.empty() && g.json().is_object() && g.has("type")) {
       std::vector<Vec2> corners;
       const std::string rt = g.string("type");
       if (rt == "rectangle" && g.has("size")) {
@@ -477,7 +490,7 @@ void FluidModel::build_particles(Params b) {
   if (pts.size() == static_cast<size_t>(n_wall)) regions.fail("the regions contain no fluid particle");
 
   if (c_.remesh) remesh_.set_domain(wall_lo, wall_hi, pts);
-  walls_.set_fluid_sides(pts, kind);
+  fluid_walls.set_fluid_sides(pts, kind);
   cloud_.assign(pts, kind, h);
   for (const auto& [i, s] : sizes) cloud_.set_h(i, s);
   set_initial_state(b, pts, kind);
@@ -487,7 +500,7 @@ void FluidModel::build_particles(Params b) {
     mesh_.tri.clear();
     for (size_t e = 0; e + 2 < fixed_conn.size(); e += 3)
       mesh_.tri.push_back({fixed_conn[e], fixed_conn[e + 1], fixed_conn[e + 2]});
-    walls_.constrain_fixed_mesh(b, pts, h, scheme_->wall_frames());
+    dynamic_cast<FixedMeshWalls&>(fluid_walls).constrain_fixed_mesh(b, pts, h, scheme_->wall_frames());
   }
 }
 

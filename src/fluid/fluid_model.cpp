@@ -18,10 +18,10 @@ namespace lagfsi {
 namespace fluid {
 
 namespace {
-/// The free-surface flags with walls that constrain the fluid particles on them (the constraints, or a fixed
-/// mesh): an unshared edge between two particles on walls is a wall where it runs along one.
-void mark_free_surface(RemeshPipeline& remesh, const FluidWalls& walls, Index n) {
-  remesh.mark_free_surface(walls.on_wall(n), [&walls](const Vec2& p) { return walls.on_a_segment(p); });
+/// The free-surface flags with boundaries that hold the fluid particles on them (walls as constraints, or a fixed
+/// mesh's): an unshared edge between two held particles is a boundary where it runs along one.
+void mark_free_surface(RemeshPipeline& remesh, const FluidBoundaries& boundaries, Index n) {
+  remesh.mark_free_surface(boundaries.held(n), [&boundaries](const Vec2& p) { return boundaries.along(p); });
 }
 }  // namespace
 
@@ -51,6 +51,13 @@ void FluidModel::set_dirichlet(double t_start) {
   }
 }
 
+void FluidModel::hold(double t) {
+  boundaries_.find(cloud_, t);
+  if (!boundaries_.finds_contacts()) return;
+  mark_free_surface(remesh_, boundaries_, cloud_.n());
+  boundaries_.settle(mesh_.free);
+}
+
 // ------------------------------------------------------------------------------------------ lifecycle
 
 void FluidModel::initialize() {
@@ -61,14 +68,10 @@ void FluidModel::initialize() {
   const std::vector<ParticleKind>& kind = cloud_.kind();
   if (c_.remesh) {
     remesh_.initial_mesh();
-    if (walls_.constraint_model()) {  // the particles on the walls: constrained, and not free surface
-      walls_.find_contacts(cloud_.x(), kind, 0.0, c_.h);
-      mark_free_surface(remesh_, walls_, np);
-      walls_.free_contact_line(mesh_.free);
-    }
+    hold(0.0);
   } else {
     // Free surface of the fixed mesh: nodes of unshared edges that do not lie on a wall.
-    mark_free_surface(remesh_, walls_, np);
+    mark_free_surface(remesh_, boundaries_, np);
   }
   remesh_.free_regions();  // only the initial domain needs them
   volume_.start(mesh_.area(cloud_.x()));
@@ -112,8 +115,8 @@ void FluidModel::initialize() {
     s.a.segment<2>(2 * i) = mass[i] > 0 ? Vec2(force.segment<2>(2 * i) / mass[i]) : c_.gravity;
   }
   for (const auto& k : boundaries_.constraints()) {
-    walls_.set_component(s.a, k.i, k.c, 0.0);
-    walls_.set_component(s.v, k.i, k.c, 0.0);
+    boundaries_.frames().set_component(s.a, k.i, k.c, 0.0);
+    boundaries_.frames().set_component(s.v, k.i, k.c, 0.0);
   }
   boundaries_.set_motion(0.0, s.v, s.a);
   times_.assembly += seconds_since(t0);
@@ -141,20 +144,16 @@ void FluidModel::predict(double t_new, double dt) {
   if (c_.remesh && solved_once_ && !keep_mesh) {
     step_meshed_ = false;
     // The particles on walls (those put on one at the end of the last step included): merging keeps them there.
-    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
-    const std::vector<char> on_wall = walls_.constraint_model() ? walls_.on_wall(cloud_.n()) : std::vector<char>();
-    if (walls_.moving()) {  // the domain box follows them
+    boundaries_.find(cloud_, t_new - dt);
+    const std::vector<char> on_wall = boundaries_.finds_contacts() ? boundaries_.held(cloud_.n()) : std::vector<char>();
+    if (const FluidWalls& walls = boundaries_.walls(); walls.moving()) {  // the domain box follows them
       Vec2 lo, hi;
-      walls_.bounding_box_at(t_new - dt, lo, hi);
+      walls.bounding_box_at(t_new - dt, lo, hi);
       remesh_.follow_walls(lo, hi);
     }
     remesh_.remesh_step(t_new, volume_, energy_, on_wall);
   }
-  if (walls_.constraint_model()) {  // the step's constraints, and the walls are not free surface
-    walls_.find_contacts(cloud_.x(), cloud_.kind(), t_new - dt, c_.h);
-    mark_free_surface(remesh_, walls_, cloud_.n());
-    walls_.free_contact_line(mesh_.free);
-  }
+  hold(t_new - dt);
   step_meshed_ = true;
   times_.remesh += seconds_since(t0);
   t0 = SteadyClock::now();
@@ -204,14 +203,9 @@ void FluidModel::finalize_step() {
                     step_.constraint_force);
   const Vec x_start = cloud_.x();
   scheme_->end_step();
-  if (walls_.constraint_model()) {
-    // A ceiling that pulls lets go (more than 1 % of a particle's weight: not the noise of a contact line).
-    walls_.release_pulled(cloud_, step_.constraint_force, c_.gravity, 0.01 * c_.rho * c_.gravity.norm() * c_.h * c_.h);
-    walls_.snap_to_walls(cloud_, x_start, step_.t_new, c_.wall_snap_fraction);
-  } else if (c_.remesh) {
-    walls_.keep_inside_walls(cloud_, mesh_, x_start, step_.t_new);
-  }
-  const double entered = boundaries_.after_step(cloud_, x_start, step_.t_new);  // an inflow's new particles
+  // The walls put back or on a wall the particles that crossed or reached one, a ceiling lets go of those it
+  // pulls, an inflow adds its new particles.
+  const double entered = boundaries_.after_step(cloud_, x_start, step_.t_new, mesh_, step_.constraint_force);
   if (entered > 0) volume_.add_entered(entered);
   volume_.set_end(mesh_.area(cloud_.x()));
   step_.p_scale = std::max(step_.p_scale, cloud_.p().cwiseAbs().maxCoeff());
@@ -219,8 +213,8 @@ void FluidModel::finalize_step() {
 
 StepLimit FluidModel::stable_step(double courant) const {
   // A Lagrangian Courant limit: the mesh moves with the fluid, so a step is limited by how much it deforms the
-  // elements, not by how far it carries them. Over every edge (a, b) of the step's mesh, Δt |v_a - v_b| <= C |x_a - x_b|
-  // (an edge changes its length or turns by at most C of itself; a uniform motion, a film or a jet in one piece,
+  // elements, not by how far it carries them. Over every edge (a, b) of the step's mesh, Δt |v_a - v_b| <= C |x_a -
+  // x_b| (an edge changes its length or turns by at most C of itself; a uniform motion, a film or a jet in one piece,
   // limits nothing); over the fluid particles outside the mesh (drops in flight, which meet the rest only when they
   // land), Δt |v_i| <= C h_i (Courant, Friedrichs & Lewy 1928); and over every fluid particle the acceleration limit
   // C sqrt(h_i / |a_i|) (started from rest, it moves at most C^2 h_i / 2: the force criterion of SPH, Monaghan 1992),
@@ -277,13 +271,11 @@ Json FluidModel::summary() const {
   remeshing["domain_detection"] = c_.remesh ? detection : "none (fixed connectivity)";
   remeshing["volume_correction_energy"] = volume_.correction_energy();
   Json s = {{"fluid_area", volume_.summary()},
-            {"wall_model", !c_.remesh                  ? "constraints (fixed connectivity)"
-                           : walls_.constraint_model() ? "constraints"
-                                                       : "particles"},
-            {"wall_friction", walls_.navier() ? "navier" : "held"},
-            {"wall_crossings", walls_.crossings()},
-            {"wall_snaps", walls_.snaps()},
-            {"wall_releases", walls_.releases()},
+            {"wall_model", boundaries_.walls().model()},
+            {"wall_friction", boundaries_.walls().navier() ? "navier" : "held"},
+            {"wall_crossings", boundaries_.walls().crossings()},
+            {"wall_snaps", boundaries_.walls().snaps()},
+            {"wall_releases", boundaries_.walls().releases()},
             {"inverted_elements_kept", scheme_->inverted_kept()},
             {"linear_solvers", scheme_->linear_solvers()},
             {"particles", {{"initial", n_initial_}, {"final", cloud_.n()}}},
@@ -330,11 +322,11 @@ void FluidModel::write_output(double t) {
     d.point_fields.push_back(ow);
   }
   series_->write(t, d);
-  if (c_.remesh && !walls_.empty()) {
+  if (c_.remesh && !boundaries_.walls().empty()) {
     if (!wall_series_) wall_series_ = std::make_unique<PvdSeries>(ctx_.out_dir, c_.name + "_walls");
     VtpData w;
     Field wp{"pressure", 1, {}};
-    for (const auto& wall : walls_.all()) {
+    for (const auto& wall : boundaries_.walls().all()) {
       std::vector<Index> line;
       for (Index j : wall.particles) {
         line.push_back(static_cast<Index>(w.points.size()));
@@ -371,7 +363,7 @@ std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
 }
 
 int FluidModel::wall_index(const std::string& name) const {
-  const auto& all = walls_.all();
+  const auto& all = boundaries_.walls().all();
   for (size_t w = 0; w < all.size(); ++w)
     if (all[w].name == name) return static_cast<int>(w);
   return -1;
@@ -379,25 +371,26 @@ int FluidModel::wall_index(const std::string& name) const {
 
 Vec2 FluidModel::wall_force(int wall) const {
   Vec2 f = Vec2::Zero();
-  if (walls_.constraint_model()) {
+  if (boundaries_.walls().finds_contacts()) {
     // The reaction of each constrained component (the force the wall applies to the fluid along it), and the
     // friction of the particles sliding on a no-slip wall ("navier": -k (v_t - v_wall,t) on the fluid).
     const auto& ks = boundaries_.constraints();
+    const ParticleFrames& frames = boundaries_.frames();
     if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
       for (size_t k = 0; k < ks.size(); ++k)
-        if (ks[k].boundary == 0 && ks[k].wall == wall)
-          f -= step_.constraint_force[static_cast<Index>(k)] * walls_.direction(ks[k].i, ks[k].c);
-    const double kf = walls_.friction_coefficient();
-    for (const WallFriction& w : walls_.frictions())
-      if (w.wall == wall && w.i < cloud_.n())
-        f += kf * (walls_.component(cloud_.v(), w.i, w.c) - walls_.friction_velocity(w, step_.t_new)) *
-             walls_.direction(w.i, w.c);
+        if (ks[k].boundary == 0 && ks[k].part == wall)
+          f -= step_.constraint_force[static_cast<Index>(k)] * frames.direction(ks[k].i, ks[k].c);
+    for (const BoundaryFriction& w : boundaries_.frictions())
+      if (w.boundary == 0 && w.part == wall && w.i < cloud_.n())
+        f += boundaries_.friction_coefficient(w) *
+             (frames.component(cloud_.v(), w.i, w.c) - boundaries_.friction_velocity(w, step_.t_new)) *
+             frames.direction(w.i, w.c);
     return f;
   }
   // Wall particles: the force each applied to the fluid in the step's solve. A particle shared by two walls (a
   // corner) splits its force along the two walls' normals there, f = a n1 + b n2 (each wall takes its own
   // normal's part: the pressure on its half of the corner), half each where they are parallel (a joint).
-  const auto& all = walls_.all();
+  const auto& all = boundaries_.walls().all();
   const Index nb = static_cast<Index>(step_.boundary_force.size() / 2);
   // The normal of the segment of wall w nearest to particle j.
   const auto normal_at = [&](const Wall& w, Index j) {

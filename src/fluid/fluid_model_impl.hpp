@@ -76,7 +76,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   bool is_connected(Index i) const { return mesh_.connected[i] != 0; }
   double spacing() const { return c_.h; }
   /// The walls' polylines' bounding box (lo > hi without walls).
-  void walls_box(Vec2& lo, Vec2& hi) const { walls_.bounding_box(lo, hi); }
+  void walls_box(Vec2& lo, Vec2& hi) const { boundaries_.walls().bounding_box(lo, hi); }
   /// The index of the wall named `name` (FluidWalls::all), or -1.
   int wall_index(const std::string& name) const;
   /// The force (N per m of thickness) the fluid applied to wall `wall` in the last step: minus the reactions of
@@ -122,21 +122,23 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// Dirichlet flags of the step (step_.fixed): wall positions, slip constraints, free-surface and
   /// unconnected pressures.
   void set_dirichlet(double t_start);
+  /// The boundaries find the particles they hold at time t; where they hold those they find on them (walls as
+  /// constraints), the free surface is marked again (a held particle is not free surface) and they settle on it.
+  void hold(double t);
   /// The step's first iterate (after remeshing, or again when a coupling re-solves the step): pressures
   /// of the last step, positions moved with the last velocities, walls and ghosts at their prescribed places.
   void start_iterations();
-  FluidParts parts() { return {c_, cloud_, mesh_, walls_, boundaries_, ghosts_, volume_, step_, times_}; }
+  FluidParts parts() { return {c_, cloud_, mesh_, boundaries_, ghosts_, volume_, step_, times_}; }
 
   FluidConstants c_;
   CaseContext ctx_;
   ParticleCloud cloud_;
   FluidMesh mesh_;
-  FluidWalls walls_;
-  FluidBoundaries boundaries_{walls_};  // the walls and the case's other boundaries (fluid_boundaries.hpp)
+  FluidBoundaries boundaries_;  // the walls and the case's other boundaries (fluid_boundaries.hpp)
   Ghosts ghosts_;
   VolumeCorrection volume_{c_, cloud_, mesh_};
   RemeshPipeline remesh_{c_, cloud_, mesh_, ghosts_};
-  FluidEnergy energy_{c_, cloud_, mesh_, walls_, boundaries_};
+  FluidEnergy energy_{c_, cloud_, mesh_, boundaries_};
   FluidStep step_;
   std::unique_ptr<FluidScheme> scheme_;
 

@@ -9,7 +9,6 @@
 #include "fluid_boundaries.hpp"
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
-#include "fluid_walls.hpp"
 #include "ghosts.hpp"
 #include "volume_correction.hpp"
 
@@ -34,7 +33,7 @@ struct FluidStep {
                             // and ghosts' forces: the schemes set boundary_force
   Vec boundary_force;       // per non-fluid particle (walls, ghosts: stable indices), 2 each: the force it
                             // applies to the fluid in the step's solve
-  Vec constraint_force;     // per wall constraint (FluidWalls::constraints): the force the wall applies
+  Vec constraint_force;     // per prescribed component (FluidBoundaries::constraints): the force the wall applies
                             // along its component
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
@@ -45,7 +44,6 @@ struct FluidParts {
   const FluidConstants& c;
   ParticleCloud& cloud;
   FluidMesh& mesh;
-  const FluidWalls& walls;
   const FluidBoundaries& boundaries;  ///< the step's prescribed components: the walls' and the case's boundaries'
   Ghosts& ghosts;
   const VolumeCorrection& volume;
@@ -59,7 +57,7 @@ class FluidScheme {
   /// The free-surface pressure: prescribed (p = 0: FluidModel::set_dirichlet; the fractional step's only one),
   /// or unknown, traction-free weakly (natural) or with the Robin condition of the element (fluid_element.hpp).
   virtual FreeSurfacePressure free_surface_pressure() const { return FreeSurfacePressure::dirichlet; }
-  /// Whether it solves particles on inclined walls in their walls' frames (FluidWalls::frames); without it
+  /// Whether it solves particles on inclined walls in their walls' frames (particle_frames.hpp); without it
   /// the walls held by constraints must be horizontal or vertical.
   virtual bool wall_frames() const { return false; }
   /// A new step on a new mesh (predict, after remeshing, the Dirichlet flags set): patterns, matrices and

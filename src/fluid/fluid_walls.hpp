@@ -1,11 +1,13 @@
 #pragma once
 /// @file fluid_walls.hpp (private to src/fluid)
 /// The fluid's rigid walls (/bodies/i/walls): their polylines, motions and slip flags, and how they hold the
-/// fluid:
-///  - PFEM mode, "wall_model": "particles" (the classic PFEM; Idelsohn, Oñate & Del Pin 2004): a line of fixed
+/// fluid, one boundary implementation (fluid_boundary.hpp) per wall model:
+///  - WallParticles, PFEM mode, "wall_model": "particles" (the classic PFEM; Idelsohn, Oñate & Del Pin 2004): a line of
+///  fixed
 ///    wall particles, spaced h, that the Delaunay mesh connects to the fluid; the fluid particles that crossed
 ///    one are put back (keep_inside_walls);
-///  - PFEM mode, "wall_model": "constraints": no wall particles; the fluid particles lying on a wall carry its
+///  - WallContacts, PFEM mode, "wall_model": "constraints": no wall particles; the fluid particles lying on a wall
+///  carry its
 ///    condition as constraints (the normal component on a slip wall; on a no-slip one the tangential
 ///    component too, "wall_friction": "held", or a friction force instead, "navier", below), found again at
 ///    every step (find_contacts). On a horizontal or vertical segment the components are x and y; a particle
@@ -18,7 +20,7 @@
 ///    numerical friction in gentle flows (fluid sliding past a zero-velocity wall particle has a discrete
 ///    divergence that the continuity equation resists: cases/studies/conservation); nodes on the wall with a
 ///    normal constraint slide freely, as in a fixed mesh;
-///  - fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
+///  - FixedMeshWalls, fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
 ///
 /// No-slip walls as constraints, "wall_friction": "navier" (the monolithic scheme's default; "held" the fractional
 /// step's): holding the tangential component of every fluid particle on the wall holds a layer of fluid one spacing
@@ -32,16 +34,19 @@
 ///   F_t = -(mu / s) (v_t - v_wall,t),
 /// independent of h. Its dissipation (mu / s) |v_t - v_wall,t|^2 joins the viscous dissipation. The
 /// monolithic scheme adds it to its momentum rows, the fractional step to its viscous predictor (implicitly).
-#include <lagfsi/fluid/particle_cloud.hpp>
+#include "fluid_boundary.hpp"
 #include "fluid_common.hpp"
 #include "fluid_mesh.hpp"
+#include "particle_frames.hpp"
 #include "point_grid.hpp"
 
+#include <lagfsi/fluid/particle_cloud.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/time_function.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -50,6 +55,11 @@
 #include <vector>
 
 namespace lagfsi::fluid {
+
+/// Whether a segment of direction d is horizontal or vertical.
+inline bool axis_aligned(const Vec2& d) {
+  return std::abs(d.x()) <= 1e-12 * d.norm() || std::abs(d.y()) <= 1e-12 * d.norm();
+}
 
 /// A rigid wall: a polyline of particles (PFEM mode) or a line of constraints (fixed-connectivity mode),
 /// optionally moving: x(t) = X + value * f(t) (or value * int f for a prescribed velocity).
@@ -100,60 +110,27 @@ struct Wall {
   }
 };
 
-/// A fluid particle on a no-slip wall with "wall_friction": "navier": its component c (tangential to the wall;
-/// in the particle's frame, FluidWalls::direction) feels the wall's friction, -k (v_c - v_wall,c) with
-/// k = mu / slip_length.
-struct WallFriction {
-  Index i;
-  int c;
-  int wall;
-};
-
-/// A constrained component of a fluid particle on a wall: d . x_i = base + d . the wall's offset(t), with d the
-/// direction of component c in the particle's frame (FluidWalls::direction: the axis c, or n / t on an
-/// inclined wall; x[2 i + c] = base + offset(t)[c] on the axes); side (+1 / -1) the direction of the wall's
-/// fluid side along d for the normal component of a particle on a wall with one fluid side ("wall_model":
-/// "constraints"), 0 otherwise.
-struct WallConstraint {
-  Index i;
-  int c;
-  double base;
-  int wall;
-  int side = 0;
-  bool tangential = false;  // the tangential component of a particle on a no-slip wall
-  int boundary = 0;         // whose: 0 the walls, b > 0 the case's fluid boundary b - 1 (fluid_boundaries.hpp)
-};
-
-class FluidWalls {
+/// The walls as one boundary: their polylines and motions, the components of the fluid particles they hold
+/// (constraints: d . x_i = base + d . the wall's offset(t), d the direction of component c in the particle's frame,
+/// particle_frames.hpp; `part` is the wall's index), and those that slide against the Navier friction. The wall
+/// models below say which particles they hold and what they do after a step.
+class FluidWalls : public FluidBoundary {
  public:
-  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths. `constraints`:
-  /// PFEM mode with "wall_model": "constraints".
-  void read(Params walls, double h, const std::filesystem::path& base_dir, bool constraints = false);
+  /// Reads the walls of the case (`walls`: /bodies/i/walls); h checks their segments' lengths.
+  void read(Params walls, double h, const std::filesystem::path& base_dir);
+  /// "particles", "constraints" or "constraints (fixed connectivity)" (summary.json).
+  virtual const char* model() const = 0;
   /// Whether a wall has a segment that is neither horizontal nor vertical.
   bool inclined() const;
-  /// PFEM mode with "wall_model": "constraints" (no wall particles; find_contacts, snap_to_walls).
-  bool constraint_model() const { return constraint_model_; }
-  /// "wall_friction": "navier" with the walls as constraints: the fluid particles on no-slip walls slide
-  /// against the friction k (v_t - v_wall,t), k = mu / s (s the slip length in spacings); off: they are held.
+  /// "wall_friction": "navier": the fluid particles on no-slip walls slide against the friction k (v_t - v_wall,t),
+  /// k = mu / s (s the slip length in spacings); off: they are held.
   void set_navier_friction(double mu, double slip_length) {
     navier_ = true;
     friction_k_ = mu / slip_length;
   }
   bool navier() const { return navier_; }
-  double friction_coefficient() const { return friction_k_; }
-  /// The step's particles on no-slip walls with "navier" friction (find_contacts).
-  const std::vector<WallFriction>& frictions() const { return frictions_; }
-  /// The tangential velocity of the wall under friction f at time t.
-  double friction_velocity(const WallFriction& f, double t) const {
-    return along(walls_[static_cast<size_t>(f.wall)].velocity_at(t), f.i, f.c);
-  }
   bool empty() const { return walls_.empty(); }
   const std::vector<Wall>& all() const { return walls_; }
-
-  /// PFEM mode: the walls' particles, spaced at most h along each polyline (a corner shared with an earlier
-  /// wall reuses its particle), appended to pts and kind and added to `grid`; `walls` names the errors.
-  void place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
-                       PointGrid& grid);
   /// The polylines' bounding box (lo > hi without walls); at time t, where their motions have taken them.
   void bounding_box(Vec2& lo, Vec2& hi) const;
   void bounding_box_at(double t, Vec2& lo, Vec2& hi) const;
@@ -165,110 +142,46 @@ class FluidWalls {
   }
   /// The fluid side of each wall segment from the initial particles (`pts`, of kinds `kind`).
   void set_fluid_sides(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind);
-  /// Fixed-connectivity mode: the particles (at `pts`) on a wall are constrained (both components, or the
-  /// normal one on a slip wall: in the wall's frame on an inclined one, which needs a scheme that solves in
-  /// `frames`); `body` names the errors.
-  void constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h, bool frames);
-  /// The constrained components of fluid particles on walls: fixed connectivity's (constrain_fixed_mesh), or
-  /// the step's contacts ("wall_model": "constraints", find_contacts).
-  const std::vector<WallConstraint>& constraints() const { return constraints_; }
-  /// "wall_model": "constraints": the fluid particles (positions x at time t, of kinds `kind`) that lie on a
-  /// wall segment (within 1e-6 h of it) become the step's constraints (and, on no-slip walls with "navier"
-  /// friction, the step's frictions); h the spacing. A no-op otherwise.
-  void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t, double h);
-  /// A free-surface particle (`free`) on a no-slip wall is held in the normal direction only: the contact
-  /// line moves (held, it would pin the water's edge where it first touched).
-  void free_contact_line(const std::vector<std::uint8_t>& free);
-  /// Per particle (n of them): how many of its components are constrained (0, 1 or 2; free-surface marking:
-  /// an unshared edge between two particles on walls is a wall, not a free surface, where it runs along one,
-  /// on_a_segment; particle management: a particle on a wall keeps its place when merged).
-  std::vector<char> on_wall(Index n) const;
-  /// Whether p lies on a wall segment (within 1e-6 h, at the time of the last find_contacts or
-  /// constrain_fixed_mesh): free-surface marking asks it of the midpoint of an unshared edge between two
-  /// particles on walls, which is a wall only if it runs along one. One from a floor particle to a side
-  /// wall's particle (the long side of a corner's triangle) is a free surface.
-  bool on_a_segment(const Vec2& p) const;
-  /// The prescribed position and velocity of a constrained component at time t.
-  double constraint_position(const WallConstraint& k, double t) const {
-    return k.base + along(walls_[static_cast<size_t>(k.wall)].offset(t), k.i, k.c);
-  }
-  double constraint_velocity(const WallConstraint& k, double t) const {
-    return along(walls_[static_cast<size_t>(k.wall)].velocity_at(t), k.i, k.c);
-  }
-
-  /// Frames of the step's particles on inclined walls (find_contacts): frames()[i] is the unit normal n of
-  /// particle i's wall (its components are u_n = n . u and u_t = t . u, t = (-n_y, n_x)), zero for a particle
-  /// in the x-y frame; empty when no particle is on an inclined wall.
-  const std::vector<Vec2>& frames() const { return frames_; }
-  bool rotated(Index i) const {
-    return i < static_cast<Index>(frames_.size()) && (frames_[static_cast<size_t>(i)].array() != 0.0).any();
-  }
-  /// Particle i's frame as the columns of a rotation, [n t] (the identity off inclined walls): its components
-  /// u_l = Q^T u, and u = Q u_l.
-  Mat2 frame(Index i) const {
-    Mat2 q;
-    q << direction(i, 0), direction(i, 1);
-    return q;
-  }
-  /// The unit vector of component c (0, 1) of particle i in its frame: n, t on an inclined wall, else x, y.
-  Vec2 direction(Index i, int c) const {
-    if (!rotated(i)) return c == 0 ? Vec2::UnitX() : Vec2::UnitY();
-    const Vec2 n = frames_[static_cast<size_t>(i)];
-    return c == 0 ? n : Vec2(-n.y(), n.x());
-  }
-  /// Component c of particle i's vector in its frame: of a global vector u (2 per particle), and of a 2-vector.
-  double component(const Vec& u, Index i, int c) const {
-    return rotated(i) ? direction(i, c).dot(u.segment<2>(2 * i)) : u[2 * i + c];
-  }
-  double along(const Vec2& w, Index i, int c) const { return rotated(i) ? direction(i, c).dot(w) : w[c]; }
-  /// Sets component c of particle i's vector in its frame to `value`, the other one unchanged.
-  void set_component(Vec& u, Index i, int c, double value) const {
-    if (!rotated(i)) {
-      u[2 * i + c] = value;
-      return;
-    }
-    const Vec2 d = direction(i, c);
-    u.segment<2>(2 * i) += (value - d.dot(u.segment<2>(2 * i))) * d;
-  }
-
-  /// Slip walls in PFEM mode: the elements that touch a slip-wall particle carry no viscous stress, so the
-  /// wall transmits no shear (the free-slip condition, applied over the first layer of elements); the
-  /// normal velocity is still stopped by the wall particles' positions.
-  bool inviscid(const std::array<Index, 3>& t) const {
-    for (Index i : t)
-      if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
-    return false;
-  }
-  /// Velocity and acceleration of the moving walls' particles, and of the constrained components of the
-  /// particles on them, at time t (their prescribed motion).
-  void set_wall_motion(double t, Vec& v, Vec& a) const;
-  /// The wall particles' prescribed positions at time t into x (X0 their initial positions), and the
-  /// constrained components of the particles on walls.
-  void place(double t, const Vec& X0, Vec& x) const;
-  /// Fluid particles whose step crossed a wall segment go back to its fluid side (PFEM mode; x_start the
-  /// positions at the start of the step, t the end of the step).
-  void keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t);
-  /// "wall_model": "constraints": a particle that a ceiling pulls instead of pushing (force[k], the force of
-  /// constraint k on the fluid, FluidStep::constraint_force, below -threshold along its fluid side, on a wall
-  /// whose fluid side faces along gravity: water hanging from a ceiling or an overhang) is let go: moved 1e-3 h
-  /// off the wall, it is no longer found on it and falls (snap_to_walls puts it back if it comes back). Only
-  /// ceilings: on floors and side walls the reaction's sign flickers at the contact line and under a moving
-  /// wall (releasing there took 8 % of the dam break's energy before the impact and lost 58 % of the shaken
-  /// tank's water). Returns how many were let go.
-  long release_pulled(ParticleCloud& cloud, const Vec& force, const Vec2& gravity, double threshold);
-  /// "wall_model": "constraints": a fluid particle whose step (from x_start) ends beyond a wall segment, or
-  /// within snap_fraction h of it while approaching it, is put on the segment and loses its velocity into
-  /// the wall relative to the wall's (an inelastic impact); it is constrained from the next step on.
-  void snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double t, double snap_fraction);
-  /// Fluid particles put back inside a wall so far (keep_inside_walls, snap_to_walls from beyond a wall),
-  /// and put on a wall from its fluid side (snap_to_walls).
+  /// The constrained components of fluid particles on walls (constrain_fixed_mesh, or the step's contacts).
+  const std::vector<BoundaryConstraint>& constraints() const { return constraints_; }
+  /// Fluid particles put back inside a wall so far (keep_inside_walls, snap_to_walls from beyond a wall), put on
+  /// a wall from its fluid side (snap_to_walls) and let go by a wall pulling them (release_pulled).
   long crossings() const { return wall_crossings_; }
   long snaps() const { return wall_snaps_; }
   long releases() const { return wall_releases_; }
-  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
-  void serialize(StateArchive& ar);
 
- private:
+  // FluidBoundary: the constrained components of the particles on walls (in their frames), the walls' particles'
+  // motion, the frictions of "navier".
+  void count_held(std::vector<char>& held) const override;
+  bool along(const Vec2& p) const override;
+  void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
+                 std::vector<BoundaryConstraint>& out) override;
+  double position(const BoundaryConstraint& k, double t) const override {
+    return k.base + frames_.along(walls_[static_cast<size_t>(k.part)].offset(t), k.i, k.c);
+  }
+  double velocity(const BoundaryConstraint& k, double t) const override {
+    return frames_.along(walls_[static_cast<size_t>(k.part)].velocity_at(t), k.i, k.c);
+  }
+  double acceleration(const BoundaryConstraint& k, double t) const override {
+    return frames_.along(walls_[static_cast<size_t>(k.part)].acceleration_at(t), k.i, k.c);
+  }
+  void place_own(double t, const Vec& X0, Vec& x) const override;
+  void move_own(double t, Vec& v, Vec& a) const override;
+  const ParticleFrames* frames() const override { return &frames_; }
+  void frictions(std::vector<BoundaryFriction>& out) const override {
+    out.insert(out.end(), frictions_.begin(), frictions_.end());
+  }
+  double friction_coefficient(const BoundaryFriction& f) const override {
+    (void)f;
+    return friction_k_;
+  }
+  double friction_velocity(const BoundaryFriction& f, double t) const override {
+    return frames_.along(walls_[static_cast<size_t>(f.part)].velocity_at(t), f.i, f.c);
+  }
+  /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
+  void serialize(StateArchive& ar) override;
+
+ protected:
   /// A fluid particle on an inclined segment: the segment's unit normal (towards its fluid side when it has
   /// one), the line n . x = base (without the wall's offset), the wall and whether it has a fluid side.
   struct Skew {
@@ -277,21 +190,100 @@ class FluidWalls {
     double base;
     int wall, side;
   };
-  /// find_contacts on inclined segments: the frames, corners, constraints and frictions of those particles.
+  /// The frames, corners, constraints and frictions of the particles on inclined segments.
   void add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, double t);
 
   std::vector<Wall> walls_;
-  std::vector<char> slip_particle_;          // per wall particle (wall particles come first and are never removed)
-  std::vector<WallConstraint> constraints_;  // fixed connectivity, or the step's contacts ("constraints")
-  std::vector<WallFriction> frictions_;      // the step's particles on no-slip walls, "navier" friction
-  std::vector<Vec2> frames_;                 // the step's particles on inclined walls: their walls' normals
-  bool navier_ = false;                      // "wall_friction": "navier"
-  double friction_k_ = 0;                    // mu / slip_length
-  bool constraint_model_ = false;            // PFEM mode with "wall_model": "constraints"
-  double contact_t_ = 0, contact_tol_ = 0;   // the time and tolerance of the last contacts (on_a_segment)
-  long wall_crossings_ = 0;                  // fluid particles put back inside a wall (keep_inside_walls)
-  long wall_snaps_ = 0;                      // fluid particles put on a wall from its fluid side
-  long wall_releases_ = 0;                   // fluid particles let go by a wall pulling them
+  std::vector<BoundaryConstraint> constraints_;  // fixed connectivity's, or the step's contacts
+  std::vector<BoundaryFriction> frictions_;      // the step's particles on no-slip walls, "navier" friction
+  ParticleFrames frames_;                        // the step's particles on inclined walls: their walls' normals
+  bool navier_ = false;                          // "wall_friction": "navier"
+  double friction_k_ = 0;                        // mu / slip_length
+  double contact_t_ = 0, contact_tol_ = 0;       // the time and tolerance of the last contacts (along)
+  long wall_crossings_ = 0;                      // fluid particles put back inside a wall
+  long wall_snaps_ = 0;                          // fluid particles put on a wall from its fluid side
+  long wall_releases_ = 0;                       // fluid particles let go by a wall pulling them
+};
+
+/// "wall_model": "particles": a line of fixed particles along each wall that the Delaunay mesh connects to the
+/// fluid (wall_particles.cpp).
+class WallParticles final : public FluidWalls {
+ public:
+  const char* model() const override { return "particles"; }
+  /// The walls' particles, spaced at most h along each polyline (a corner shared with an earlier wall reuses its
+  /// particle), appended to pts and kind and added to `grid`; `walls` names the errors.
+  void place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
+                       PointGrid& grid);
+  /// Slip walls: the elements that touch a slip-wall particle carry no viscous stress, so the wall transmits no
+  /// shear (the free-slip condition, applied over the first layer of elements); the normal velocity is still
+  /// stopped by the wall particles' positions.
+  bool inviscid(const std::array<Index, 3>& t) const override {
+    for (Index i : t)
+      if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
+    return false;
+  }
+  /// Fluid particles whose step crossed a wall segment go back to its fluid side (x_start the positions at the
+  /// start of the step, t the end of the step).
+  void keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t);
+  double after_step(const StepEnd& s) override {
+    keep_inside_walls(s.cloud, s.mesh, s.x_start, s.t);
+    return 0.0;
+  }
+
+ private:
+  std::vector<char> slip_particle_;  // per wall particle (wall particles come first and are never removed)
+};
+
+/// "wall_model": "constraints": no wall particles; the fluid particles found on a wall at every step carry its
+/// condition as constraints (wall_contacts.cpp).
+class WallContacts final : public FluidWalls {
+ public:
+  /// h: the spacing (the contacts' tolerance); snap_fraction: see snap_to_walls; a ceiling lets a particle go when
+  /// it pulls it with more than `release_threshold` against gravity `g` (release_pulled).
+  WallContacts(double h, double snap_fraction, const Vec2& g, double release_threshold)
+      : h_(h), snap_fraction_(snap_fraction), gravity_(g), release_threshold_(release_threshold) {}
+  const char* model() const override { return "constraints"; }
+  /// The fluid particles (positions x at time t, of kinds `kind`) that lie on a wall segment (within 1e-6 h of
+  /// it) become the step's constraints (and, on no-slip walls with "navier" friction, the step's frictions).
+  void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t);
+  /// A free-surface particle (`free`) on a no-slip wall is held in the normal direction only: the contact line
+  /// moves (held, it would pin the water's edge where it first touched).
+  void free_contact_line(const std::vector<std::uint8_t>& free);
+  /// A particle that a ceiling pulls instead of pushing (force[k], the force of constraint k on the fluid, below
+  /// -threshold along its fluid side, on a wall whose fluid side faces along gravity: water hanging from a
+  /// ceiling or an overhang) is let go: moved 1e-3 h off the wall, it is no longer found on it and falls
+  /// (snap_to_walls puts it back if it comes back). Only ceilings: on floors and side walls the reaction's sign
+  /// flickers at the contact line and under a moving wall (releasing there took 8 % of the dam break's energy
+  /// before the impact and lost 58 % of the shaken tank's water). Returns how many were let go.
+  long release_pulled(ParticleCloud& cloud, const Vec& force);
+  /// A fluid particle whose step (from x_start) ends beyond a wall segment, or within snap_fraction h of it while
+  /// approaching it, is put on the segment and loses its velocity into the wall relative to the wall's (an
+  /// inelastic impact); it is constrained from the next step on.
+  void snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double t);
+
+  bool finds_contacts() const override { return true; }
+  void find(const ParticleCloud& cloud, double t) override { find_contacts(cloud.x(), cloud.kind(), t); }
+  void settle(const std::vector<std::uint8_t>& free) override { free_contact_line(free); }
+  double after_step(const StepEnd& s) override {
+    release_pulled(s.cloud, s.force);
+    snap_to_walls(s.cloud, s.x_start, s.t);
+    return 0.0;
+  }
+
+ private:
+  double h_, snap_fraction_;
+  Vec2 gravity_;
+  double release_threshold_;
+};
+
+/// Fixed connectivity: the mesh's nodes on a wall are constrained once, for the whole run (fixed_mesh_walls.cpp).
+class FixedMeshWalls final : public FluidWalls {
+ public:
+  const char* model() const override { return "constraints (fixed connectivity)"; }
+  /// The particles (at `pts`) on a wall are constrained (both components, or the normal one on a slip wall: in
+  /// the wall's frame on an inclined one, which needs a scheme that solves in frames, `frames`); `body` names the
+  /// errors.
+  void constrain_fixed_mesh(const Params& body, const std::vector<Vec2>& pts, double h, bool frames);
 };
 
 }  // namespace lagfsi::fluid

@@ -233,9 +233,10 @@ void FractionalStep::prescribe_velocities(Work& wk) {
       wk.ustar.segment<2>(2 * i) = v.segment<2>(2 * i) + dt * g;
     }
   }
-  for (const auto& w : f_.walls.all())  // moving walls: the prescribed velocity at the end of the step
-    if (w.fn)
-      for (const Vec2 vw = w.velocity_at(f_.step.t_new); Index j : w.particles) wk.ustar.segment<2>(2 * j) = vw;
+  {  // the boundaries' own particles (moving walls'): the prescribed velocity at the end of the step
+    Vec a_own = Vec::Zero(2 * np);
+    f_.boundaries.move_own(f_.step.t_new, wk.ustar, a_own);
+  }
   for (const auto& k : f_.boundaries.constraints()) {  // particles on walls: the wall's velocity component
     wk.vfixed[2 * k.i + k.c] = 1;
     wk.ustar[2 * k.i + k.c] = f_.boundaries.velocity(k, f_.step.t_new);
@@ -245,11 +246,11 @@ void FractionalStep::prescribe_velocities(Work& wk) {
   // are horizontal or vertical here (FluidScheme::wall_frames), so the component is x or y.
   wk.friction = Vec::Zero(2 * np);
   wk.friction_force = Vec::Zero(2 * np);  // k, k v_wall,t per component
-  for (const WallFriction& w : f_.walls.frictions()) {
+  for (const BoundaryFriction& w : f_.boundaries.frictions()) {
     const Index dof = 2 * w.i + w.c;
     if (wk.vfixed[dof]) continue;
-    wk.friction[dof] = f_.walls.friction_coefficient();
-    wk.friction_force[dof] = wk.friction[dof] * f_.walls.friction_velocity(w, f_.step.t_new);
+    wk.friction[dof] = f_.boundaries.friction_coefficient(w);
+    wk.friction_force[dof] = wk.friction[dof] * f_.boundaries.friction_velocity(w, f_.step.t_new);
   }
   // Ghost particles: the mean velocity of the structure's boundary over the step, (x_new{n+1} - x_n)/dt. The
   // fluid particles move by dt u^{n+1}, so this is the velocity whose divergence-free field keeps the
@@ -281,7 +282,7 @@ void FractionalStep::predict_velocities(Work& wk) {
     const auto& t = tri[e];
     const double pbar = (pres[t[0]] + pres[t[1]] + pres[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
-    if (f_.c.mu > 0 && !f_.walls.inviscid(tri[e]))
+    if (f_.c.mu > 0 && !f_.boundaries.inviscid(tri[e]))
       for (int k = 0; k < 3; ++k) L += v.segment<2>(2 * t[k]) * wk.grad[e][k].transpose();
     const Mat2 visc = wk.implicit ? Mat2(L.transpose()) : Mat2(L + L.transpose());
     for (int a = 0; a < 3; ++a) {
@@ -316,7 +317,7 @@ void FractionalStep::predict_velocities(Work& wk) {
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
         element_loop(ne, scatter_, {values_of(viscous_)}, [&](Index e, std::span<double* const> out) {
-          if (f_.walls.inviscid(tri[e])) return;
+          if (f_.boundaries.inviscid(tri[e])) return;
           const int* sc = poisson_pattern_.scatter(e);
           for (int b = 0; b < 3; ++b)
             for (int a = 0; a < 3; ++a)
@@ -442,7 +443,7 @@ void FractionalStep::correct(Work& wk) {
     if (!wk.implicit) return Ku;
     for (Index e = 0; e < ne; ++e) {
       const auto& t = tri[e];
-      if (f_.walls.inviscid(t) || !(wanted(t[0]) || wanted(t[1]) || wanted(t[2]))) continue;
+      if (f_.boundaries.inviscid(t) || !(wanted(t[0]) || wanted(t[1]) || wanted(t[2]))) continue;
       for (int a = 0; a < 3; ++a)
         if (wanted(t[a]))
           for (int b = 0; b < 3; ++b)
@@ -479,7 +480,7 @@ void FractionalStep::correct(Work& wk) {
   }
   if (!f_.boundaries.constraints().empty()) {
     // The same for the constrained components of the particles on walls (the energy balance, and whether the
-    // wall pushes or pulls: FluidWalls::release_pulled).
+    // wall pushes or pulls: WallContacts::release_pulled).
     const auto& ks = f_.boundaries.constraints();
     Vec& kf = f_.step.constraint_force;
     kf.resize(static_cast<Index>(ks.size()));
@@ -515,7 +516,7 @@ IterationReport FractionalStep::move_and_check(Work& wk) {
   // A particle of an element that moves more than 5 spacings in one step: the projection was not resolved (a
   // pocket of fluid whose pressure only the slight compressibility determines, when nothing prescribes it, took
   // a pressure of 1e8 Pa and threw a particle 70 m in one step of a dam break before the free surface at a
-  // corner was marked; FluidWalls::on_a_segment). The step fails and is retried with a smaller one; a
+  // corner was marked; FluidWalls::along). The step fails and is retried with a smaller one; a
   // resolved flow moves a fraction of a spacing.
   for (Index i = 0; i < np; ++i)
     if (kind[i] == ParticleKind::Fluid && wk.mass[i] > 0 &&

@@ -87,8 +87,9 @@ class Inflow final : public FluidBoundary {
     return held_velocity_[static_cast<size_t>(k.i)][k.c] * rate(t);
   }
 
-  double after_step(ParticleCloud& cloud, const Vec& x_start, double t) override {
-    (void)x_start;
+  double after_step(const StepEnd& end) override {
+    ParticleCloud& cloud = end.cloud;
+    const double t = end.t;
     // Each lane's distance travelled since its last particle entered; a lane that has travelled a spacing gets
     // the next one, where it would be had it entered at that instant (the injected area is the profile's flux).
     const double swept = integral(t) - integral(t0_);

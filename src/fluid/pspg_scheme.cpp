@@ -41,7 +41,7 @@ PspgElementInput FluidScheme::element_input(Index e, const Vec& x, const Vec& v,
     in.p_old[k] = p_old.size() == p.size() ? p_old[t[k]] : p[t[k]];
   }
   in.rho = f_.c.rho;
-  in.mu = f_.walls.inviscid(t) ? 0.0 : f_.c.mu;
+  in.mu = f_.boundaries.inviscid(t) ? 0.0 : f_.c.mu;
   in.dt = f_.step.dt;
   in.tau_U = tau_U_;
   in.bulk = f_.c.bulk;
@@ -213,10 +213,10 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
       gravity2 += g2;
       viscous2 += v2;
       // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
-      if (!f_.walls.frames().empty())
+      if (const ParticleFrames& frames = f_.boundaries.frames(); !frames.empty())
         for (int a = 0; a < 3; ++a)
-          if (f_.walls.rotated(t[a])) {
-            const Mat2 Q = f_.walls.frame(t[a]);
+          if (frames.rotated(t[a])) {
+            const Mat2 Q = frames.frame(t[a]);
             r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
             K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
             K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
@@ -261,17 +261,17 @@ void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCo
     if (has_mass[i] || kind[i] != ParticleKind::Fluid) continue;
     const Vec2 acc = ev.a.segment<2>(2 * i) - g;
     for (int c = 0; c < 2; ++c) {
-      R[3 * i + c] = m0 * f_.walls.along(acc, i, c);  // (in its frame on an inclined wall)
+      R[3 * i + c] = m0 * f_.boundaries.frames().along(acc, i, c);  // (in its frame on an inclined wall)
       diag(3 * i + c) += cf.c_m * m0;
     }
   }
   // No-slip walls with "navier" friction (fluid_walls.hpp): the tangential force k (v_t - v_wall,t) on each
   // fluid particle on one (d v / d x = c_c).
-  const double kf = f_.walls.friction_coefficient();
-  for (const WallFriction& w : f_.walls.frictions()) {
+  for (const BoundaryFriction& w : f_.boundaries.frictions()) {
     const Index dof = 3 * w.i + w.c;
     if (!has_mass[w.i] || fixed[dof]) continue;
-    R[dof] += kf * (f_.walls.component(ev.v, w.i, w.c) - f_.walls.friction_velocity(w, ev.t));
+    const double kf = f_.boundaries.friction_coefficient(w);
+    R[dof] += kf * (f_.boundaries.frames().component(ev.v, w.i, w.c) - f_.boundaries.friction_velocity(w, ev.t));
     diag(dof) += kf * cf.c_c;
   }
 }
@@ -296,7 +296,7 @@ double PspgScheme::apply_dirichlet(Vec& R, double sp) {
     for (int c = 0; c < 2; ++c) ghost_force[2 * gi + c] = f_.ghosts.merged(gi) ? 0.0 : -R[3 * f_.ghosts.index(gi) + c];
   // The force each wall or ghost particle applies to the fluid (its prescribed momentum row's residual):
   // the boundary work of the energy balance; that of each wall constraint also tells whether the wall
-  // pushes or pulls (FluidWalls::release_pulled).
+  // pushes or pulls (WallContacts::release_pulled).
   if (step.energy) {
     Vec& boundary_force = step.boundary_force;
     boundary_force.resize(2 * f_.cloud.n_boundary_particles());
@@ -339,9 +339,9 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
   Vec d;
   solver_->solve(-R, d);
   f_.times.solve += seconds_since(t0);
-  if (!f_.walls.frames().empty())  // back from the inclined walls' frames
+  if (const ParticleFrames& frames = f_.boundaries.frames(); !frames.empty())  // back from the inclined walls' frames
     for (Index i = 0; i < np; ++i)
-      if (f_.walls.rotated(i)) d.segment<2>(3 * i) = (f_.walls.frame(i) * d.segment<2>(3 * i)).eval();
+      if (frames.rotated(i)) d.segment<2>(3 * i) = (frames.frame(i) * d.segment<2>(3 * i)).eval();
   prev_dx_ = last_dx_;
   last_dx_ = last_dp_ = 0;
   for (Index i = 0; i < np; ++i) {

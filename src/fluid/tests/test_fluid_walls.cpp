@@ -1,4 +1,4 @@
-// The PFEM fluid's wall particles keep the fluid in (FluidWalls::keep_inside_walls, a white-box test of the
+// The PFEM fluid's wall particles keep the fluid in (WallParticles::keep_inside_walls, a white-box test of the
 // private src/fluid/fluid_walls.hpp): a particle whose step ends beyond a wall segment by more than the
 // tolerance (0.5 h for a particle in no element with a wall particle) is put back on the segment's fluid side.
 //  - A film sliding along a tank's floor a little below it leaves through the corner, where it is past the end
@@ -8,7 +8,7 @@
 //    segment's end only counts where the particle is beyond the neighbouring segment too.
 //  - The fluid side of a segment the initial fluid cannot see (an obstacle's downstream face, hidden by the
 //    obstacle) is its neighbours' along the polyline; a particle sliding along the floor into the obstacle's
-//    foot is then put on that face (FluidWalls::snap_to_walls), not let through it.
+//    foot is then put on that face (WallContacts::snap_to_walls), not let through it.
 #include <gtest/gtest.h>
 
 #include "fluid_mesh.hpp"
@@ -21,15 +21,17 @@ namespace {
 
 constexpr double kH = 0.0073;
 
+template <class W>
 struct WallScene {
-  FluidWalls walls;
+  W walls;
   ParticleCloud cloud;
   FluidMesh mesh;  // no elements: no particle is held by a wall particle's element
 };
 
 // Walls from JSON; the fluid side of each segment from the fluid particles `fluid` (the tested particle is the
 // cloud's last, at `start`).
-void make(WallScene& s, const Json& walls, const std::vector<Vec2>& fluid, const Vec2& start) {
+template <class W>
+void make(WallScene<W>& s, const Json& walls, const std::vector<Vec2>& fluid, const Vec2& start) {
   s.walls.read(Params(walls, "test.json", "/bodies/0/walls"), kH, ".");
   std::vector<Vec2> pts = fluid;
   std::vector<ParticleKind> kind(fluid.size(), ParticleKind::Fluid);
@@ -40,7 +42,7 @@ void make(WallScene& s, const Json& walls, const std::vector<Vec2>& fluid, const
 }
 
 // The tested particle's step from `start` to `end`; returns where keep_inside_walls leaves it.
-Vec2 step(WallScene& s, const Vec2& end) {
+Vec2 step(WallScene<WallParticles>& s, const Vec2& end) {
   const Index i = s.cloud.n() - 1;
   const Vec x_start = s.cloud.x();
   s.cloud.x().segment<2>(2 * i) = end;
@@ -50,7 +52,7 @@ Vec2 step(WallScene& s, const Vec2& end) {
 }
 
 TEST(FluidWalls, AFilmBelowTheFloorDoesNotLeaveThroughTheTanksCorner) {
-  WallScene s;
+  WallScene<WallParticles> s;
   const Json tank = Json::array({{{"name", "tank"}, {"points", {{0, 0.584}, {0, 0}, {0.584, 0}, {0.584, 0.584}}}}});
   // Below the floor by 2 mm (< 0.5 h: left alone), ending 5 mm beyond the right wall's line and below the
   // floor (past the right wall's lower end).
@@ -64,7 +66,7 @@ TEST(FluidWalls, AFilmBelowTheFloorDoesNotLeaveThroughTheTanksCorner) {
 }
 
 TEST(FluidWalls, AParticleFallingPastAnObstaclesCornerStaysBesideIt) {
-  WallScene s;
+  WallScene<WallParticles> s;
   const Json box = Json::array({{{"name", "box"}, {"points", {{0.3, 0.0}, {0.3, 0.1}, {0.4, 0.1}, {0.4, 0.0}}}}});
   // Fluid above the box and on both sides of it.
   make(s, box, {{0.35, 0.2}, {0.2, 0.05}, {0.5, 0.05}}, {0.403, 0.102});
@@ -75,7 +77,8 @@ TEST(FluidWalls, AParticleFallingPastAnObstaclesCornerStaysBesideIt) {
 }
 
 TEST(FluidWalls, AnObstaclesHiddenFaceTakesItsNeighboursFluidSide) {
-  WallScene s;
+  // Walls as constraints that put a particle arriving at a wall on it within 0.1 h.
+  WallScene<WallContacts> s{WallContacts(kH, 0.1, Vec2(0, -9.81), 0.0), {}, {}};
   // cases/dam_break_obstacle: the obstacle is a bump of the tank's polyline, the water a column left of it.
   const Json tank = Json::array(
       {{{"name", "tank"},
@@ -93,7 +96,7 @@ TEST(FluidWalls, AnObstaclesHiddenFaceTakesItsNeighboursFluidSide) {
   const Vec x_start = s.cloud.x();
   s.cloud.x().segment<2>(2 * i) = Vec2(0.30283, 0.0);
   s.cloud.v().segment<2>(2 * i) = Vec2(-4.6, 0.0);
-  s.walls.snap_to_walls(s.cloud, x_start, 0.0, 0.1);
+  s.walls.snap_to_walls(s.cloud, x_start, 0.0);
   EXPECT_NEAR(s.cloud.x()[2 * i], 0.304, 1e-12);
   EXPECT_NEAR(s.cloud.x()[2 * i + 1], 0.0, 1e-12);
   EXPECT_NEAR(s.cloud.v()[2 * i], 0.0, 1e-12);  // its velocity into the face is gone

@@ -2,7 +2,7 @@
 // "advected", a white-box test of the private src/fluid/remesh_pipeline.hpp) on hand-made meshes, with
 // "volume_correction": "particle", whose bookkeeping (mesh + owed + left the domain = the initial area) must
 // hold through every remesh:
-//  - three particles put on one wall corner in one step (FluidWalls::snap_to_walls lands a particle leaving
+//  - three particles put on one wall corner in one step (WallContacts::snap_to_walls lands a particle leaving
 //    through a corner on the corner) become one. The first pair was merged and the third was left on the
 //    survivor: the triangulation then failed on the duplicate point (cases/dam_break_obstacle with the
 //    advected domain, walls as constraints: twelve failed remeshes at the obstacle's corners in 1 s);
@@ -30,6 +30,7 @@
 #include "ghosts.hpp"
 #include "remesh_pipeline.hpp"
 
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -41,9 +42,8 @@ using fluid_test::kH;
 /// The scene with the remeshing's pieces, advected detection.
 struct Scene : fluid_test::FluidScene {
   Ghosts ghosts;
-  FluidWalls walls;
-  FluidBoundaries boundaries{walls};
-  FluidEnergy energy{c, cloud, mesh, walls, boundaries};
+  FluidBoundaries boundaries;
+  FluidEnergy energy{c, cloud, mesh, boundaries};
   RemeshPipeline remesh{c, cloud, mesh, ghosts};
   Scene(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri) : FluidScene(pts, tri) {
     volume.start(mesh.area(cloud.x()));
@@ -141,14 +141,15 @@ TEST(ParticleManagement, TheLongSideOfACornersTriangleIsAFreeSurface) {
   // the wall, and a second element 0-2-3 with 3 above the floor's particle, off the walls.
   const double X = 0.584;
   Scene s({{X - kH, 0}, {X, 0}, {X, kH}, {X - kH, kH}}, {{0, 1, 2}});
-  s.walls.read(Params(Json::array({{{"name", "tank"}, {"points", {{0, 0.584}, {0, 0}, {X, 0}, {X, 0.584}}}}}),
-                      "test.json", "/bodies/0/walls"),
-               kH, ".", true);
-  const std::vector<ParticleKind> fluid(4, ParticleKind::Fluid);
-  s.walls.find_contacts(s.cloud.x(), fluid, 0.0, kH);
-  const std::vector<char> on_wall = s.walls.on_wall(4);
+  WallContacts walls(kH, 0.1, s.c.gravity, 0.0);  // no-slip walls as constraints, held
+  walls.read(Params(Json::array({{{"name", "tank"}, {"points", {{0, 0.584}, {0, 0}, {X, 0}, {X, 0.584}}}}}),
+                    "test.json", "/bodies/0/walls"),
+             kH, ".");
+  walls.find(s.cloud, 0.0);
+  std::vector<char> on_wall(4, 0);
+  walls.count_held(on_wall);
   ASSERT_EQ(on_wall, (std::vector<char>{2, 2, 2, 0})) << "no-slip walls held: both components";
-  const auto along = [&](const Vec2& p) { return s.walls.on_a_segment(p); };
+  const std::function<bool(const Vec2&)> along = [&](const Vec2& p) { return walls.along(p); };
   EXPECT_TRUE(along({X - 0.5 * kH, 0}));
   EXPECT_TRUE(along({X, 0.5 * kH}));
   EXPECT_FALSE(along({X - 0.5 * kH, 0.5 * kH})) << "the long side's midpoint is in the water";

@@ -14,6 +14,7 @@ class DamageLaw : public Material {
  public:
   DamageLaw(double E, double nu, bool ps, double kappa0) : Material(E, nu, ps), k0_(kappa0) {}
   double strain_scale() const override { return k0_; }
+  std::vector<std::string> state_variables() const override { return {"kappa", "damage"}; }
   double damage(const History& h) const override { return h.h[1]; }
   void stress(const Vec3& eps, const History& h0, History& h1, Vec3& sig, Mat3& Es) const override {
     const double et = mazars_equivalent_strain(eps, eps_zz(eps));

@@ -6,6 +6,7 @@
 #include <lagfsi/stopwatch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -36,6 +37,16 @@ void EfgModel::write_output(double t) {
   series_->write(t, d);
   VtpData g;
   Field dmg{"damage", 1, {}}, sg{"stress", 3, {}}, ep{"strain", 3, {}};
+  // The laws' declared state variables (MaterialLaw::state_variables), one field each (0 where a region's law has
+  // none of that name); "damage" is written above for every law.
+  std::vector<Field> state;
+  const auto declare = [&](const Material& m) {
+    for (const std::string& name : m.state_variables())
+      if (name != "damage" && std::none_of(state.begin(), state.end(), [&](const Field& f) { return f.name == name; }))
+        state.push_back({name, 1, {}});
+  };
+  declare(*material_);
+  for (const auto& m : region_materials_) declare(*m);
   for (size_t i = 0; i < gps_.size(); ++i) {
     const GaussPoint& gp = gps_[i];
     g.points.push_back(gp.x);
@@ -52,12 +63,18 @@ void EfgModel::write_output(double t) {
     Mat3 E;
     mat.stress(e, hist0_[i], h, s, E);
     dmg.values.push_back(mat.damage(hist0_[i]));
+    const std::vector<std::string> names = mat.state_variables();
+    for (Field& f : state) {
+      const auto k = static_cast<size_t>(std::find(names.begin(), names.end(), f.name) - names.begin());
+      f.values.push_back(k < names.size() && k < hist0_[i].h.size() ? hist0_[i].h[k] : 0.0);
+    }
     for (int k = 0; k < 3; ++k) {
       sg.values.push_back(s[k]);
       ep.values.push_back(e[k]);
     }
   }
   g.point_fields = {dmg, sg, ep};
+  g.point_fields.insert(g.point_fields.end(), state.begin(), state.end());
   gauss_series_->write(t, g);
   times_.output += std::chrono::duration<double>(SteadyClock::now() - t0).count();
 }

@@ -57,7 +57,7 @@ std::unique_ptr<Material> make_exponential_damage(Params p, double E, double nu,
 std::unique_ptr<Material> make_smeared_crack(Params p, double E, double nu, bool ps);
 
 Material::Material(double young, double poisson, bool plane_strain)
-    : E_(young), nu_(poisson), plane_strain_(plane_strain) {
+    : MaterialLaw(young, poisson, 0.0), plane_strain_(plane_strain) {
   if (plane_strain) {
     const double c = young / ((1 + poisson) * (1 - 2 * poisson));
     D0_ << c * (1 - poisson), c * poisson, 0, c * poisson, c * (1 - poisson), 0, 0, 0, c * (1 - 2 * poisson) / 2;

@@ -26,6 +26,9 @@ class SmearedCrack final : public Material {
   }
   std::string type() const override { return "smeared_crack"; }
   double strain_scale() const override { return e0_; }
+  std::vector<std::string> state_variables() const override {
+    return {"tension_strain_max", "compression_strain_max", "tension_damage"};
+  }
   double damage(const History& h) const override { return h.h[2]; }
 
   /// Tensile envelope at equivalent strain k > 0.

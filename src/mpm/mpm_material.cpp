@@ -30,10 +30,8 @@ const KeyTable kMpmMohrCoulombKeys("/bodies/*/material (mpm body, type mohr_coul
 
 }  // namespace
 
-MpmMaterial::MpmMaterial(double young, double poisson, double density) : E_(young), nu_(poisson), rho_(density) {
-  mu_ = E_ / (2 * (1 + nu_));
-  lambda_ = E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_));
-}
+MpmMaterial::MpmMaterial(double young, double poisson, double density)
+    : MaterialLaw(young, poisson, density), lambda_(lame_lambda()), mu_(shear_modulus()) {}
 
 void MpmMaterial::add_elastic_increment(Stress& s, double dxx, double dyy, double dxy) const {
   const double tr = dxx + dyy;

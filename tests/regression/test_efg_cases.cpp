@@ -3,6 +3,7 @@
 // against the homogeneous solution (lambda = 2.0), and a coarse L-panel (probes load and node_A_uy, the limit point
 // passed), plus a bad-input check.
 #include "case_runner.hpp"
+#include "process.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,6 +53,14 @@ TEST(EfgCases, TensionPlateMazarsPeak) {
               c["damage_max"].back());
   EXPECT_NEAR(peak, 2.0, 0.02);
   EXPECT_LT(lam.back(), 0.8 * peak);  // the limit point was passed
+  // The Gauss points' output carries the law's declared state variables (Mazars: kappa; damage as for every law).
+  fs::path last;
+  for (const auto& e : fs::directory_iterator(r.out_dir / "plate_gauss"))
+    if (e.path().extension() == ".vtp" && e.path() > last) last = e.path();
+  ASSERT_FALSE(last.empty());
+  const std::string vtp = file_text(last);
+  EXPECT_NE(vtp.find("Name=\"kappa\""), std::string::npos) << last;
+  EXPECT_NE(vtp.find("Name=\"damage\""), std::string::npos) << last;
 }
 
 TEST(EfgCases, LPanelCoarse) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using namespace lagfsi;
@@ -100,6 +101,8 @@ std::vector<Mat2> sample_for(const std::string& law, PlaneHypothesis h, unsigned
 }
 
 }  // namespace
+
+static_assert(std::is_base_of_v<MaterialLaw, SolidMaterial>, "the solids' laws are material laws");
 
 TEST(Material, FactoryAndAccessors) {
   auto m = make_solid_material("svk", 100.0, 0.25, 7.8, PlaneHypothesis::PlaneStress);

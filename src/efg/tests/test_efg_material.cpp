@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 using namespace lagfsi;
 using namespace lagfsi::efg;
@@ -29,6 +32,38 @@ double uniaxial(const Material& m, double exx, History& h0) {
   return s[0];
 }
 }  // namespace
+
+static_assert(std::is_base_of_v<MaterialLaw, Material>, "the EFG laws are material laws");
+
+TEST(EfgMaterial, EachLawNamesTheEntriesOfItsHistory) {
+  EXPECT_TRUE(law({{"type", "linear_elastic"}, {"young", 2e4}, {"poisson", 0.2}})->state_variables().empty());
+  const auto m = law({{"type", "exponential_damage"},
+                      {"young", 2e4},
+                      {"poisson", 0.2},
+                      {"kappa0", 1e-4},
+                      {"alpha", 0.99},
+                      {"beta", 1e4}});
+  ASSERT_EQ(m->state_variables(), (std::vector<std::string>{"kappa", "damage"}));
+  History h;
+  uniaxial(*m, 3e-4, h);  // past the peak (kappa0 = 1e-4): kappa and the damage grew
+  EXPECT_GT(h.h[0], 1e-4);
+  EXPECT_EQ(h.h[1], m->damage(h));
+  EXPECT_GT(h.h[1], 0.0);
+  const auto c = law({{"type", "smeared_crack"},
+                      {"young", 25850.0},
+                      {"poisson", 0.18},
+                      {"ft", 2.7},
+                      {"fc", 31.0},
+                      {"Gf", 0.065},
+                      {"band_width", 28.0}});
+  const std::vector<std::string> names = c->state_variables();
+  ASSERT_EQ(names.size(), 3u);
+  EXPECT_EQ(names[2], "tension_damage");
+  History hc;
+  uniaxial(*c, 5e-4, hc);  // cracked in tension
+  EXPECT_EQ(hc.h[2], c->damage(hc));
+  EXPECT_GT(hc.h[2], 0.0);
+}
 
 TEST(EfgMaterial, MazarsUniaxialPeakAndResidual) {
   const auto m = law({{"type", "mazars"},

@@ -15,6 +15,9 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 using namespace lagfsi;
 using namespace lagfsi::mpm;
@@ -46,6 +49,16 @@ Eigen::Vector3d D(const Eigen::Vector3d& n) {
 }  // namespace
 
 // ---------------------------------------------------------------- Mohr-Coulomb return mapping
+
+static_assert(std::is_base_of_v<MaterialLaw, MpmMaterial>, "the MPM laws are material laws");
+
+TEST(MpmMaterial, MohrCoulombDeclaresItsPlasticMultiplierAndTheElasticLawNothing) {
+  const MohrCoulomb mc(kE, kNu, kRho, kC, kPhi, 0.0);
+  EXPECT_EQ(mc.state_variables(), (std::vector<std::string>{"plastic_multiplier"}));
+  EXPECT_TRUE(LinearElastic(kE, kNu, kRho).state_variables().empty());
+  EXPECT_DOUBLE_EQ(mc.shear_modulus(), kMu);  // the constants of MaterialLaw
+  EXPECT_DOUBLE_EQ(mc.density(), kRho);
+}
 
 TEST(MpmMohrCoulomb, AdmissibleTrialIsUnchanged) {
   const MohrCoulomb mc(kE, kNu, kRho, kC, kPhi, 0.0);

@@ -15,6 +15,7 @@
 ///  - "neo_hookean" compressible Neo-Hookean (Bonet & Wood 2008, eq. 6.28):
 ///                  psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2,
 ///                  S = mu (I - C^-1) + lambda ln J C^-1.
+#include <lagfsi/material_law.hpp>
 #include <lagfsi/types.hpp>
 
 #include <Eigen/Dense>
@@ -33,23 +34,16 @@ struct MaterialResponse {
   double F33 = 1.0;                             ///< out-of-plane stretch (1 in plane strain)
 };
 
-class SolidMaterial {
+/// A hyperelastic law of the positional solids and shells (material_law.hpp: the constants and the type; no state
+/// variables: the stress follows from the current deformation alone).
+class SolidMaterial : public MaterialLaw {
  public:
-  SolidMaterial(double E, double nu, double rho, PlaneHypothesis h) : E_(E), nu_(nu), rho_(rho), hyp_(h) {}
-  virtual ~SolidMaterial() = default;
-  virtual std::string type() const = 0;
+  SolidMaterial(double E, double nu, double rho, PlaneHypothesis h) : MaterialLaw(E, nu, rho), hyp_(h) {}
   /// Evaluates the law at F. Throws SolverError if det F <= 0 (inverted element).
   virtual MaterialResponse evaluate(const Mat2& F) const = 0;
-
-  double young() const { return E_; }
-  double poisson() const { return nu_; }
-  double density() const { return rho_; }
-  double lame_lambda() const { return E_ * nu_ / ((1 + nu_) * (1 - 2 * nu_)); }
-  double shear_modulus() const { return E_ / (2 * (1 + nu_)); }
   PlaneHypothesis hypothesis() const { return hyp_; }
 
  protected:
-  double E_, nu_, rho_;
   PlaneHypothesis hyp_;
 };
 

@@ -21,6 +21,7 @@
 ///    exponential softening s = f_t exp[-(e - e0)/e_f], e0 = f_t/E0, e_f = G_f/(h f_t) - e0/2 (area under the
 ///    curve G_f/h: fracture energy over the crack band h; the digest's default for Boone et al. 1986) or Carreira & Chu
 ///    (1986) with f_t, e_t; shear modulus from coaxiality (s_1 - s_2)/(2 (e_1 - e_2)).
+#include <lagfsi/material_law.hpp>
 #include <lagfsi/params.hpp>
 
 #include <Eigen/Core>
@@ -33,18 +34,18 @@ namespace lagfsi::efg {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-/// Internal variables of one material point (meaning per law; h[0] is kappa for the damage laws).
+/// Internal variables of one material point (meaning and names per law: Material::state_variables).
 struct History {
   std::array<double, 3> h{0.0, 0.0, 0.0};
 };
 
 enum class Operator { secant, tangent };
 
-class Material {
+/// A law of the EFG module (material_law.hpp: the constants, the type and the names of its history's entries; no
+/// density: the EFG analyses are static).
+class Material : public MaterialLaw {
  public:
   Material(double young, double poisson, bool plane_strain);
-  virtual ~Material() = default;
-  virtual std::string type() const = 0;
   virtual bool linear() const { return false; }
   /// Stress and secant operator at strain eps from committed history h0; trial history into h1.
   virtual void stress(const Vec3& eps, const History& h0, History& h1, Vec3& sig, Mat3& Es) const = 0;
@@ -58,14 +59,11 @@ class Material {
   /// Stress, trial history and the operator asked for (tangent by forward differences of stress()).
   void evaluate(const Vec3& eps, const History& h0, History& h1, Vec3& sig, Mat3& E, Operator op) const;
   const Mat3& elastic() const { return D0_; }
-  double young() const { return E_; }
-  double poisson() const { return nu_; }
   bool plane_strain() const { return plane_strain_; }
   /// Out-of-plane strain of an elastic-degraded state (plane stress: -nu/(1-nu)(e_xx + e_yy); plane strain: 0).
   double eps_zz(const Vec3& eps) const;
 
  protected:
-  double E_, nu_;
   bool plane_strain_;
   Mat3 D0_;
 };

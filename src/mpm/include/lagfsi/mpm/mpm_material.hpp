@@ -12,12 +12,14 @@
 ///
 /// The elastic constants are also the tangent of the implicit scheme and give the wave speeds of the
 /// explicit step and of the absorbing boundaries.
+#include <lagfsi/material_law.hpp>
 #include <lagfsi/mpm/mpm_state.hpp>
 #include <lagfsi/params.hpp>
 
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lagfsi::mpm {
 
@@ -27,11 +29,10 @@ struct StrainIncrement {
   double xx = 0, yy = 0, xy = 0, spin = 0;
 };
 
-class MpmMaterial {
+/// A law of the MPM particles (material_law.hpp: the constants, the type and the declared state variables).
+class MpmMaterial : public MaterialLaw {
  public:
   MpmMaterial(double young, double poisson, double density);
-  virtual ~MpmMaterial() = default;
-  virtual std::string type() const = 0;
   /// Whether the law has a yield surface (else linear elastic).
   virtual bool plastic() const = 0;
 
@@ -58,17 +59,12 @@ class MpmMaterial {
   /// Adds the linear elastic increment C : d (no rotation, no return mapping) to s.
   void add_elastic_increment(Stress& s, double dxx, double dyy, double dxy) const;
 
-  double young() const { return E_; }
-  double poisson() const { return nu_; }
-  double density() const { return rho_; }
-  double lame_lambda() const { return lambda_; }
-  double shear_modulus() const { return mu_; }
   /// P-wave speed sqrt((lambda + 2 mu) / rho) and S-wave speed sqrt(mu / rho).
   double p_wave_speed() const { return std::sqrt((lambda_ + 2 * mu_) / rho_); }
   double s_wave_speed() const { return std::sqrt(mu_ / rho_); }
 
  protected:
-  double E_, nu_, rho_, lambda_, mu_;
+  double lambda_, mu_;  // the Lame parameters (MaterialLaw's), kept for the stress update
 };
 
 class LinearElastic final : public MpmMaterial {
@@ -87,6 +83,7 @@ class MohrCoulomb final : public MpmMaterial {
   MohrCoulomb(double young, double poisson, double density, double cohesion, double friction_angle,
               double dilatancy_angle, double tension_cutoff = -1.0);
   std::string type() const override { return "mohr_coulomb"; }
+  std::vector<std::string> state_variables() const override { return {"plastic_multiplier"}; }
   bool plastic() const override { return true; }
   double return_mapping(Stress& s) const override;
 

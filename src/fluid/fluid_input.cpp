@@ -260,14 +260,13 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
            "\"navier\" is for \"wall_model\": \"constraints\" (wall particles hold the fluid by the mesh)");
   c_.wall_snap_fraction = b.non_negative("wall_snap_fraction");
   if (c_.wall_snap_fraction >= 0.5) b.fail("wall_snap_fraction", "must be below 0.5");
-  // The walls' model (fluid_walls.hpp); a ceiling lets go of a particle it pulls with more than 1 % of its weight
-  // (not the noise of a contact line; WallContacts::release_pulled).
+  // The walls' model (fluid_walls.hpp); a ceiling lets go of a particle it pulls with more than 1 % of its weight,
+  // 0.01 rho |g| h_i^2 (not the noise of a contact line; WallContacts::release_pulled).
   std::unique_ptr<FluidWalls> walls;
   if (!c_.remesh)
     walls = std::make_unique<FixedMeshWalls>();
   else if (wall_constraints_)
-    walls = std::make_unique<WallContacts>(c_.h, c_.wall_snap_fraction, c_.gravity,
-                                           0.01 * c_.rho * c_.gravity.norm() * c_.h * c_.h);
+    walls = std::make_unique<WallContacts>(c_.h, c_.wall_snap_fraction, c_.gravity, 0.01 * c_.rho * c_.gravity.norm());
   else
     walls = std::make_unique<WallParticles>();
   if (navier) walls->set_navier_friction(c_.mu, slip_length);

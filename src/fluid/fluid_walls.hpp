@@ -2,24 +2,21 @@
 /// @file fluid_walls.hpp (private to src/fluid)
 /// The fluid's rigid walls (/bodies/i/walls): their polylines, motions and slip flags, and how they hold the
 /// fluid, one boundary implementation (fluid_boundary.hpp) per wall model:
-///  - WallParticles, PFEM mode, "wall_model": "particles" (the classic PFEM; Idelsohn, Oñate & Del Pin 2004): a line of
-///  fixed
-///    wall particles, spaced h, that the Delaunay mesh connects to the fluid; the fluid particles that crossed
-///    one are put back (keep_inside_walls);
+///  - WallParticles, PFEM mode, "wall_model": "particles" (the classic PFEM; Idelsohn, Oñate & Del Pin 2004): a
+///    line of fixed wall particles, spaced h, that the Delaunay mesh connects to the fluid; the fluid particles
+///    that crossed one are put back (keep_inside_walls);
 ///  - WallContacts, PFEM mode, "wall_model": "constraints": no wall particles; the fluid particles lying on a wall
-///  carry its
-///    condition as constraints (the normal component on a slip wall; on a no-slip one the tangential
+///    carry its condition as constraints (the normal component on a slip wall; on a no-slip one the tangential
 ///    component too, "wall_friction": "held", or a friction force instead, "navier", below), found again at
 ///    every step (find_contacts). On a horizontal or vertical segment the components are x and y; a particle
-///    on an inclined segment takes the segment's frame (n, t) instead (frames(): its unknowns are rotated,
-///    u = n u_n + t u_t, and u_n is the constrained one; Zienkiewicz & Taylor's skew boundary conditions),
-///    and a particle where an inclined segment meets a segment of another direction is held at the corner
-///    (both components). A particle whose step ends on or beyond a wall, or within snap_fraction h
-///    of it while approaching, is put on it (snap_to_walls), and a wall that pulls a particle lets it go
-///    (release_pulled). The wall-particle layer is a
-///    numerical friction in gentle flows (fluid sliding past a zero-velocity wall particle has a discrete
-///    divergence that the continuity equation resists: cases/studies/conservation); nodes on the wall with a
-///    normal constraint slide freely, as in a fixed mesh;
+///    on an inclined segment takes the segment's frame (n, t) instead (particle_frames.hpp: its unknowns are
+///    rotated, u = n u_n + t u_t, and u_n is the constrained one; Zienkiewicz & Taylor's skew boundary
+///    conditions), and a particle where an inclined segment meets a segment of another direction is held at the
+///    corner (both components). A particle whose step ends on or beyond a wall, or within snap_fraction h of it
+///    while approaching, is put on it (snap_to_walls), and a wall that pulls a particle lets it go
+///    (release_pulled). The wall-particle layer is a numerical friction in gentle flows (fluid sliding past a
+///    zero-velocity wall particle has a discrete divergence that the continuity equation resists:
+///    cases/studies/conservation); nodes on the wall with a normal constraint slide freely, as in a fixed mesh;
 ///  - FixedMeshWalls, fixed connectivity: the mesh's nodes on a wall are constrained once (constrain_fixed_mesh).
 ///
 /// No-slip walls as constraints, "wall_friction": "navier" (the monolithic scheme's default; "held" the fractional
@@ -238,10 +235,10 @@ class WallParticles final : public FluidWalls {
 /// condition as constraints (wall_contacts.cpp).
 class WallContacts final : public FluidWalls {
  public:
-  /// h: the spacing (the contacts' tolerance); snap_fraction: see snap_to_walls; a ceiling lets a particle go when
-  /// it pulls it with more than `release_threshold` against gravity `g` (release_pulled).
-  WallContacts(double h, double snap_fraction, const Vec2& g, double release_threshold)
-      : h_(h), snap_fraction_(snap_fraction), gravity_(g), release_threshold_(release_threshold) {}
+  /// h: the spacing (the contacts' tolerance); snap_fraction: see snap_to_walls; a ceiling lets particle i go when
+  /// it pulls it with more than release_per_area h_i^2 against gravity `g` (release_pulled).
+  WallContacts(double h, double snap_fraction, const Vec2& g, double release_per_area)
+      : h_(h), snap_fraction_(snap_fraction), gravity_(g), release_per_area_(release_per_area) {}
   const char* model() const override { return "constraints"; }
   /// The fluid particles (positions x at time t, of kinds `kind`) that lie on a wall segment (within 1e-6 h of
   /// it) become the step's constraints (and, on no-slip walls with "navier" friction, the step's frictions).
@@ -250,7 +247,7 @@ class WallContacts final : public FluidWalls {
   /// moves (held, it would pin the water's edge where it first touched).
   void free_contact_line(const std::vector<std::uint8_t>& free);
   /// A particle that a ceiling pulls instead of pushing (force[k], the force of constraint k on the fluid, below
-  /// -threshold along its fluid side, on a wall whose fluid side faces along gravity: water hanging from a
+  /// -release_per_area h_i^2 along its fluid side, on a wall whose fluid side faces along gravity: water hanging from a
   /// ceiling or an overhang) is let go: moved 1e-3 h off the wall, it is no longer found on it and falls
   /// (snap_to_walls puts it back if it comes back). Only ceilings: on floors and side walls the reaction's sign
   /// flickers at the contact line and under a moving wall (releasing there took 8 % of the dam break's energy
@@ -273,7 +270,7 @@ class WallContacts final : public FluidWalls {
  private:
   double h_, snap_fraction_;
   Vec2 gravity_;
-  double release_threshold_;
+  double release_per_area_;
 };
 
 /// Fixed connectivity: the mesh's nodes on a wall are constrained once, for the whole run (fixed_mesh_walls.cpp).

@@ -88,7 +88,7 @@ struct RemeshPipeline::Management {
   std::vector<Index> split_at;                    // boundary edge from a (to chain.next[a]) split by new particle k
   std::unique_ptr<PointGrid> taken;               // the occupied spots (walls as constraints: occupy_spots)
   std::vector<Vec2> taken_pts;                    // their positions
-  double r_taken = 0;                             // no new particle closer than this to an occupied spot
+  double r_taken = 0;                             // no new particle closer than this times its size to an occupied spot
   std::vector<std::uint8_t> used;                 // the particles the previous mesh used (new ones: 0)
   std::vector<std::pair<Index, Index>> edges;     // its boundary edges through merges and splits
   std::vector<std::pair<Index, Index>> interior;  // its other edges through merges (when all_edges is asked)
@@ -113,17 +113,17 @@ struct RemeshPipeline::Management {
   /// Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
   /// or landed) may sit on a boundary edge between two others: no new particle within r (max(close_fraction, 0.05) h)
   /// of an existing one. The particles that stay occupy their spots.
-  void occupy_spots(double r) {
+  void occupy_spots(double r, double h_max) {
     r_taken = r;
-    taken = std::make_unique<PointGrid>(r_taken, static_cast<std::size_t>(np));
+    taken = std::make_unique<PointGrid>(std::max(r_taken * h_max, 1e-300), static_cast<std::size_t>(np));
     for (Index i = 0; i < np; ++i)
       if (!drop[i]) taken->add(pts[i], i);
     taken_pts = pts;
   }
-  /// True when x is free (always without occupy_spots); a free spot is then occupied.
-  bool free_spot(const Vec2& x) {
+  /// True when x is free for a particle of size h (always without occupy_spots); a free spot is then occupied.
+  bool free_spot(const Vec2& x, double h) {
     if (!taken) return true;
-    if (taken->find(x, r_taken, taken_pts) >= 0) return false;
+    if (taken->find(x, r_taken * h, taken_pts) >= 0) return false;
     taken->add(x, static_cast<Index>(taken_pts.size()));
     taken_pts.push_back(x);
     return true;
@@ -144,7 +144,7 @@ bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<s
   if (size_.adaptive()) coarsen(m);
   // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
   // its elements are gone).
-  if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05) * c_.h);
+  if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05), cloud_.h_max());
   if (s_.split_factor > 0) split_long_edges(m);
   if (s_.insert_factor > 0) insert_in_large_elements(m);
   // 3. The previous mesh's topology through the changes, then the changes made to the cloud.
@@ -201,10 +201,11 @@ void RemeshPipeline::merge_pair(Management& m, Index i, Index j) {
       if (p >= 0 && q >= 0 && p != c && q != a && p != q) {
         const Vec2 d = pts[q] - pts[p];
         const double dn = d.norm();
-        if (dn > 1e-12 * c_.h) {
+        const double he = 0.5 * (cloud_.h(i) + cloud_.h(j));
+        if (dn > 1e-12 * he) {
           const double target = cross(pts[p], pts[a]) + cross(pts[a], pts[c]) + cross(pts[c], pts[q]);
           const double s = (target - cross(x, d)) / (-dn);
-          if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * c_.h) x += s * Vec2(-d.y(), d.x()) / dn;
+          if (std::abs(s) <= (pts[i] - pts[j]).norm() + 0.1 * he) x += s * Vec2(-d.y(), d.x()) / dn;
         }
       }
     }
@@ -238,23 +239,25 @@ void RemeshPipeline::merge_onto_walls(Management& m) {
   // obstacle in a gap of the floor, a gate's hinge) goes, as one pressed against a wall particle below.
   const Index np = m.np;
   const std::vector<Vec2>& pts = m.pts;
-  const double r = std::max(s_.close_fraction, 0.05) * c_.h;
+  // Within r h_i of fluid particle i (h_i its size); the grids' cells r h_max.
+  const double r = std::max(s_.close_fraction, 0.05), cell = std::max(r * cloud_.h_max(), 1e-300);
   // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles, and the
   // wall and ghost particles (none with walls as constraints but a structure's ghosts).
   const auto n_fluid =
       static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
-  PointGrid grid(std::max(r, 1e-300), n_fluid), prescribed(std::max(r, 1e-300), static_cast<std::size_t>(np) - n_fluid);
+  PointGrid grid(cell, n_fluid), prescribed(cell, static_cast<std::size_t>(np) - n_fluid);
   for (Index i = 0; i < np; ++i)
     if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
   for (Index i = 0; i < np; ++i) {
     if (cloud_.kind(i) != ParticleKind::Fluid) continue;
-    if (const Index g = prescribed.find(pts[i], r, pts); g >= 0) {
+    const double ri = r * cloud_.h(i);
+    if (const Index g = prescribed.find(pts[i], ri, pts); g >= 0) {
       leave_to_wall(m, i, g);
       continue;
     }
     // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
     // particle; it was left beside it, and the triangulation failed on the duplicate point).
-    const Index j = grid.find(pts[i], r, pts);
+    const Index j = grid.find(pts[i], ri, pts);
     if (j >= 0 && !m.drop[j] && (m.walled(i) > 0 || m.walled(j) > 0)) {
       merge_pair(m, j, i);
       if (m.drop[j]) grid.add(pts[i], i);  // i survived (the more constrained): the later find returns it
@@ -273,8 +276,8 @@ void RemeshPipeline::merge_pressed_against_walls(Management& m) {
   // half a spacing away) was joined to them by two triangles that stay valid as it crosses, and went into the
   // structure (the plate of cases/flexible_tank).
   const std::vector<Vec2>& pts = m.pts;
-  const double r_close = s_.close_fraction * c_.h;
   const auto pressed = [&](Index f, Index g) {
+    const double r_close = s_.close_fraction * cloud_.h(f);
     if ((pts[f] - pts[g]).norm() < r_close) return true;
     for (Index q : ghosts_.face_neighbours(g))
       if (segment_distance(pts[f], pts[g], pts[q]) < r_close) return true;
@@ -309,11 +312,10 @@ void RemeshPipeline::merge_close_pairs(Management& m) {
   // triangulation joins it by a sliver whose particles pass each other within the step (cases/dam_break_obstacle:
   // two film particles running into each other, a sliver turned over at every step). Merged too, as the alpha
   // detection merges close pairs on the new mesh.
-  const double r_meet = s_.close_fraction * c_.h;
-  PointGrid untouched(r_meet, static_cast<std::size_t>(m.np));
+  PointGrid untouched(std::max(s_.close_fraction * cloud_.h_max(), 1e-300), static_cast<std::size_t>(m.np));
   for (Index i = 0; i < m.np; ++i) {
     if (cloud_.kind(i) != ParticleKind::Fluid || m.touched[i]) continue;
-    const Index j = untouched.find(m.pts[i], r_meet, m.pts);
+    const Index j = untouched.find(m.pts[i], s_.close_fraction * cloud_.h(i), m.pts);
     if (j >= 0 && !m.touched[j]) {
       merge_pair(m, j, i);
       ++merged_meeting_;
@@ -369,7 +371,7 @@ void RemeshPipeline::split_long_edges(Management& m) {
     const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
     if ((m.pts[a] - m.pts[c]).norm() > s_.split_factor * he) {
       const Management::NewParticle q = m.between(cloud_, {a, c}, {0.5, 0.5});
-      if (!m.free_spot(q.x)) continue;
+      if (!m.free_spot(q.x, q.h)) continue;
       m.split_at[a] = m.np + static_cast<Index>(m.fresh.size());
       m.fresh.push_back(q);
       ++split_;
@@ -384,7 +386,7 @@ void RemeshPipeline::insert_in_large_elements(Management& m) {
     const auto& t = mesh_.tri[e];
     if (m.touched[t[0]] || m.touched[t[1]] || m.touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
     const Management::NewParticle q = m.between(cloud_, {t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3});
-    if (!m.free_spot(q.x)) continue;
+    if (!m.free_spot(q.x, q.h)) continue;
     m.fresh.push_back(q);
     ++inserted_;
   }

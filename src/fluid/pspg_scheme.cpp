@@ -249,8 +249,7 @@ void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCo
   if (f_.volume.type() == VolumeCorrection::Type::particle)
     for (Index i = 0; i < np; ++i)
       if (has_mass[i]) R[3 * i + 2] -= f_.volume.owed_rate(i);
-  // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass.
-  const double m0 = f_.c.rho * f_.c.h * f_.c.h;
+  // Particles in no element fly ballistically: m (a - g) = 0 with a nominal mass, rho h_i^2.
   const int* op = J_.outerIndexPtr();
   const int* ip = J_.innerIndexPtr();
   auto diag = [&](Index dof) -> double& {
@@ -260,6 +259,7 @@ void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCo
   for (Index i = 0; i < np; ++i) {
     if (has_mass[i] || kind[i] != ParticleKind::Fluid) continue;
     const Vec2 acc = ev.a.segment<2>(2 * i) - g;
+    const double m0 = f_.c.rho * f_.cloud.h(i) * f_.cloud.h(i);
     for (int c = 0; c < 2; ++c) {
       R[3 * i + c] = m0 * f_.boundaries.frames().along(acc, i, c);  // (in its frame on an inclined wall)
       diag(3 * i + c) += cf.c_m * m0;

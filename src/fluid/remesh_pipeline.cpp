@@ -169,7 +169,10 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
   // With the advected domain (previous != nullptr) a meniscus element is only ever there because the fluid
   // was: new ones are not added (meshing/remesh.cpp), and existing ones go by the separation test.
   const bool meniscus_filter = previous == nullptr || previous->empty();
-  const double h = c_.h;
+  // The element's size: its largest particle's.
+  const auto element_h = [&](const std::array<Index, 3>& t) {
+    return std::max({cloud_.h(t[0]), cloud_.h(t[1]), cloud_.h(t[2])});
+  };
   size_t kept = 0;
   bool removed = false;
   for (size_t e = 0; e < tri.size(); ++e) {
@@ -179,7 +182,8 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
       free_fluid += kind[i] == ParticleKind::Fluid && mesh_.free[i];
     }
     if ((meniscus_filter && walls == 2 && free_fluid == 1) ||
-        mesh_.element_area(cloud_.x(), static_cast<Index>(e)) < s_.flat_fraction * h * h ||
+        mesh_.element_area(cloud_.x(), static_cast<Index>(e)) <
+            s_.flat_fraction * element_h(tri[e]) * element_h(tri[e]) ||
         (ghosts_.particles() > 0 && ghosts_.crosses_structure(tri[e]))) {
       removed = true;
       continue;
@@ -226,7 +230,8 @@ bool RemeshPipeline::remove_close_particles() {
       const Index a = t[k], b = t[(k + 1) % 3];
       const bool fa = kind[a] == ParticleKind::Fluid, fb = kind[b] == ParticleKind::Fluid;
       if (fa == fb) continue;
-      if ((pts[a] - pts[b]).norm() < s_.close_fraction * c_.h) drop[fa ? a : b] = 1;
+      const Index f = fa ? a : b;
+      if ((pts[a] - pts[b]).norm() < s_.close_fraction * cloud_.h(f)) drop[f] = 1;
     }
   return drop_particles(drop);
 }

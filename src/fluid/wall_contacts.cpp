@@ -91,12 +91,12 @@ void WallContacts::free_contact_line(const std::vector<std::uint8_t>& free) {
 long WallContacts::release_pulled(ParticleCloud& cloud, const Vec& force) {
   if (static_cast<size_t>(force.size()) != constraints_.size()) return 0;
   const Vec2& gravity = gravity_;
-  const double threshold = release_threshold_;
   long released = 0;
   Vec& x = cloud.x();
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const BoundaryConstraint& q = constraints_[k];
     const Vec2 d = frames_.direction(q.i, q.c);
+    const double threshold = release_per_area_ * cloud.h(q.i) * cloud.h(q.i);
     if (q.side == 0 || !(q.side * d.dot(gravity) > 0) || !(q.side * force[static_cast<Index>(k)] < -threshold))
       continue;
     x.segment<2>(2 * q.i) += q.side * 1e-3 * cloud.h(q.i) * d;

@@ -16,12 +16,17 @@ using meshing::ParticleKind;
 /// The fluid's material and discretization constants and the case's settings the pieces read.
 struct FluidConstants {
   std::string name;  // the body's name (error messages, output files)
-  double rho = 1000, mu = 1e-3, h = 0.01;
+  double rho = 1000, mu = 1e-3;
+  // The case's "spacing": the size of the particles it creates (the initial ones unless a size field grades them,
+  // those of walls, structures and open boundaries, where an adaptive size field keeps its finest size) and the
+  // yardstick of tolerances (convergence, contacts). A particle's own size, wherever the geometry needs one (merge
+  // radii, flat elements, insertions, the step limit, a drop's mass), is ParticleCloud::h(i).
+  double h = 0.01;
   bool remesh = true;   // PFEM mode (remeshed every step) or fixed connectivity
   double bulk = 2.2e9;  // bulk modulus of the slight compressibility (0: incompressible)
   Vec2 gravity = Vec2::Zero();
   double wall_snap_fraction = 0.1;  // "wall_model": "constraints": a particle approaching a wall closer than
-                                    // this * h is put on it (FluidWalls::snap_to_walls)
+                                    // this * h is put on it (WallContacts::snap_to_walls)
 };
 
 /// The remeshing's settings (/bodies/i and /bodies/i/scheme; RemeshPipeline, remesh_pipeline.hpp).

@@ -8,6 +8,7 @@
 #include <lagfsi/state_archive.hpp>
 #include <lagfsi/time_integrator.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace lagfsi::fluid {
@@ -39,6 +40,8 @@ class ParticleCloud {
   /// Per-particle spacing (the alpha test's and the filters' local h).
   const std::vector<double>& h() const { return hvec_; }
   double h(Index i) const { return hvec_[i]; }
+  /// The largest particle size (0 without particles).
+  double h_max() const { return hvec_.empty() ? 0.0 : *std::max_element(hvec_.begin(), hvec_.end()); }
   /// A particle's size (an adaptive size field's target, size_field.hpp).
   void set_h(Index i, double h) { hvec_[static_cast<size_t>(i)] = h; }
 

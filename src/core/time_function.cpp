@@ -41,6 +41,21 @@ const KeyTable kWavemakerKeys(
      {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
      {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}});
 
+const KeyTable kFlapKeys(
+    "time function (type flap_wavemaker)",
+    "The angle (rad) of a flap wave maker hinged on the floor that makes regular waves of a given height and period "
+    "in water of a given depth, by linear wave-maker theory (Biesel & Suquet 1951): theta(t) = theta0 r(t) "
+    "sin(2 pi t / T) with the stroke at the still-water level S = 2 d tan(theta0) from H / S = 4 (sinh kd / kd) "
+    "(kd sinh kd - cosh kd + 1) / (sinh 2kd + 2kd), omega^2 = g k tanh kd, and a half-cosine ramp r over the first "
+    "periods. Use it as a wall's prescribed rotation about the hinge with \"value\": 1 (positive: towards +x at "
+    "the surface for a paddle at the flume's left end, with \"value\": -1).",
+    {{"type", "flap_wavemaker", "`flap_wavemaker`."},
+     {"height", nullptr, "The wave height H (m), trough to crest, positive."},
+     {"period", nullptr, "The wave period T (s), positive."},
+     {"depth", nullptr, "The still-water depth d (m) at the paddle (the hinge's depth), positive."},
+     {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
+     {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}});
+
 const KeyTable kTableKeys("time function (type table)",
                           "f(t) interpolated linearly in a table of (time, value) rows, constant beyond its ends.",
                           {{"type", "table", "`table`."},
@@ -86,13 +101,16 @@ class Sinusoid final : public TimeFunction {
   double a_, w_, phi_;
 };
 
-/// A piston wave maker's displacement for regular waves of height H and period T in water of depth d, by linear
-/// wave-maker theory (Biesel & Suquet 1951; Dean & Dalrymple 1991, section 6.2): the stroke S from
-///   H / S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd),   omega^2 = g k tanh kd,
-/// and x(t) = (S / 2) r(t) sin(omega t) with the ramp r = (1 - cos(pi t / t_r)) / 2 over the first t_r seconds.
-class PistonWavemaker final : public TimeFunction {
+/// A wave maker's motion for regular waves of height H and period T in water of depth d, by linear wave-maker
+/// theory (Biesel & Suquet 1951; Dean & Dalrymple 1991, section 6.2): the stroke S at the still-water level from
+///   piston:  H / S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd),
+///   flap hinged on the floor:  H / S = 4 (sinh kd / kd) (kd sinh kd - cosh kd + 1) / (sinh 2kd + 2kd),
+/// omega^2 = g k tanh kd; the piston's displacement x(t) = (S / 2) r(t) sin(omega t), the flap's angle
+/// theta(t) = atan(S / (2 d)) r(t) sin(omega t), with the ramp r = (1 - cos(pi t / t_r)) / 2 over the first t_r
+/// seconds.
+class Wavemaker final : public TimeFunction {
  public:
-  PistonWavemaker(double height, double period, double depth, double g, double ramp)
+  Wavemaker(bool flap, double height, double period, double depth, double g, double ramp)
       : w_(2.0 * std::numbers::pi / period), tr_(ramp) {
     // The dispersion relation by Newton's method from the deep-water guess (monotone in k: converges).
     double k = w_ * w_ / g;
@@ -103,12 +121,18 @@ class PistonWavemaker final : public TimeFunction {
       k -= dk;
       if (std::abs(dk) < 1e-14 * k) break;
     }
-    const double kd2 = 2 * k * depth;
-    stroke_ = height * (std::sinh(kd2) + kd2) / (2 * (std::cosh(kd2) - 1));
+    const double kd = k * depth, kd2 = 2 * kd;
+    if (!flap) {
+      const double stroke = height * (std::sinh(kd2) + kd2) / (2 * (std::cosh(kd2) - 1));
+      amplitude_ = 0.5 * stroke;
+      return;
+    }
+    const double ratio = 4 * (std::sinh(kd) / kd) * (kd * std::sinh(kd) - std::cosh(kd) + 1) / (std::sinh(kd2) + kd2);
+    amplitude_ = std::atan(height / ratio / (2 * depth));
   }
   double value(double t) const override {
     const double r = t <= 0 ? 0.0 : t >= tr_ ? 1.0 : 0.5 * (1 - std::cos(std::numbers::pi * t / tr_));
-    return 0.5 * stroke_ * r * std::sin(w_ * t);
+    return amplitude_ * r * std::sin(w_ * t);
   }
   double integral(double t) const override {
     // int_0^t r(s) sin(w s) ds: with a = pi / t_r < w, (1 - cos w t) / (2w) - (1/4) [(1 - cos (w + a) t) / (w + a)
@@ -120,11 +144,11 @@ class PistonWavemaker final : public TimeFunction {
              0.25 * ((1 - std::cos((w_ + a) * s)) / (w_ + a) + (1 - std::cos((w_ - a) * s)) / (w_ - a));
     };
     const double i = t <= tr_ ? ramp(t) : ramp(tr_) + (std::cos(w_ * tr_) - std::cos(w_ * t)) / w_;
-    return 0.5 * stroke_ * i;
+    return amplitude_ * i;
   }
 
  private:
-  double w_, tr_, stroke_ = 0;
+  double w_, tr_, amplitude_ = 0;  // the motion's amplitude: S / 2 (piston, m) or theta0 (flap, rad)
 };
 
 class Table final : public TimeFunction {
@@ -269,7 +293,8 @@ std::shared_ptr<TimeFunction> constant_function(double c) { return std::make_sha
 std::unique_ptr<TimeFunction> make_time_function(Params p, const std::filesystem::path& base_dir) {
   if (!p.json().is_object()) p.fail("expected an object with a \"type\"");
   if (!p.has("type")) p.fail("type", "required key is missing");
-  const std::string type = p.choice("type", {"constant", "ramp", "sinusoid", "table", "piston_wavemaker"});
+  const std::string type =
+      p.choice("type", {"constant", "ramp", "sinusoid", "table", "piston_wavemaker", "flap_wavemaker"});
   if (type == "constant") {
     p.validate(kConstantKeys);
     return std::make_unique<Constant>(p.number("value"));
@@ -284,13 +309,14 @@ std::unique_ptr<TimeFunction> make_time_function(Params p, const std::filesystem
     p.validate(kSinusoidKeys);
     return std::make_unique<Sinusoid>(p.number("amplitude"), p.positive("frequency"), p.number("phase"));
   }
-  if (type == "piston_wavemaker") {
-    p.validate(kWavemakerKeys);
+  if (type == "piston_wavemaker" || type == "flap_wavemaker") {
+    const bool flap = type == "flap_wavemaker";
+    p.validate(flap ? kFlapKeys : kWavemakerKeys);
     const double ramp = p.positive("ramp_periods");
     if (ramp < 1) p.fail("ramp_periods", "must be at least 1");
     const double period = p.positive("period");
-    return std::make_unique<PistonWavemaker>(p.positive("height"), period, p.positive("depth"), p.positive("gravity"),
-                                             ramp * period);
+    return std::make_unique<Wavemaker>(flap, p.positive("height"), period, p.positive("depth"), p.positive("gravity"),
+                                       ramp * period);
   }
   p.validate(kTableKeys);
   return read_table(p, base_dir);

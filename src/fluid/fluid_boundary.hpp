@@ -31,7 +31,8 @@ namespace lagfsi::fluid {
 /// particle_frames.hpp) of particle i, at `base` when the step started. `part` is the boundary's own (a wall's index
 /// among the walls); `side` (+1 / -1) the direction of a wall's fluid side along the component for the normal
 /// component of a particle on a wall with one fluid side, 0 otherwise; `tangential` marks the tangential component
-/// of a particle held on a no-slip wall; `boundary` whose it is (FluidBoundaries' index: 0 the walls).
+/// of a particle held on a no-slip wall; `boundary` whose it is (FluidBoundaries' index: 0 the walls); `anchor` the
+/// point of a turning wall the component follows (in the wall's initial position).
 struct BoundaryConstraint {
   Index i;
   int c;
@@ -40,6 +41,7 @@ struct BoundaryConstraint {
   int side = 0;
   bool tangential = false;
   int boundary = 0;
+  Vec2 anchor = Vec2::Zero();
 };
 
 /// A component of a particle on a boundary that slides against a linear friction -k (v_c - w_c(t)), k and the

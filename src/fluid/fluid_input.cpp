@@ -376,8 +376,8 @@ void FluidModel::build_particles(Params b) {
   fluid_walls.read(walls, h, ctx_.base_dir);
   if (wall_constraints_ && fluid_walls.inclined() && !scheme_->wall_frames())
     walls.fail(
-        "inclined segments with \"wall_model\": \"constraints\" need the monolithic scheme (the fractional "
-        "step constrains the x and y components)");
+        "inclined segments (or turning walls) with \"wall_model\": \"constraints\" need the monolithic scheme (the "
+        "fractional step constrains the x and y components)");
 
   std::vector<Vec2> pts;
   std::vector<ParticleKind> kind;

@@ -336,7 +336,7 @@ void FluidModel::write_output(double t) {
       if (wall.particles.empty())  // "wall_model": "constraints": the polyline (the pressures are the fluid's)
         for (const Vec2& q : wall.polyline) {
           line.push_back(static_cast<Index>(w.points.size()));
-          w.points.push_back(q + wall.offset(t));
+          w.points.push_back(wall.point_at(q, t));
           wp.values.push_back(0.0);
         }
       w.lines.push_back(line);

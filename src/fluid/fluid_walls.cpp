@@ -22,10 +22,21 @@ const KeyTable kWallKeys("/bodies/*/walls/* (fluid body)",
 
 const KeyTable kWallMotionKeys("/bodies/*/walls/*/motion (fluid body)",
                                "A wall's rigid translation: value times a function of time.",
-                               {{"type", nullptr, "prescribed_displacement (m) or prescribed_velocity (m/s)."},
+                               {{"type", nullptr,
+                                 "prescribed_displacement (m), prescribed_velocity (m/s), or prescribed_rotation "
+                                 "(see /bodies/*/walls/*/motion (prescribed_rotation))."},
                                 {"value", nullptr, "The displacement or velocity [x, y], scaled by the function."},
                                 {"function", nullptr,
                                  "Function of time (see time function (type constant) and others)."}});
+
+const KeyTable kWallRotationKeys(
+    "/bodies/*/walls/*/motion (prescribed_rotation)",
+    "A wall turned about a pivot (a flap wave maker): the angle theta(t) = value f(t) (rad, counter-clockwise); "
+    "the walls must be \"wall_model\": \"particles\".",
+    {{"type", "prescribed_rotation", "`prescribed_rotation`."},
+     {"pivot", nullptr, "The point [x, y] (m) the wall turns about."},
+     {"value", 1.0, "The angle (rad) per unit of the function (-1: clockwise for a positive function)."},
+     {"function", nullptr, "Function of time (see time function (type flap_wavemaker) and others)."}});
 
 }  // namespace
 
@@ -45,7 +56,20 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
     Params mo = w.at("motion");
     if (!mo.json().empty()) {
       if (!mo.has("type")) mo.fail("type", "required key is missing");
-      const std::string mt = mo.choice("type", {"prescribed_displacement", "prescribed_velocity"});
+      const std::string mt =
+          mo.choice("type", {"prescribed_displacement", "prescribed_velocity", "prescribed_rotation"});
+      if (mt == "prescribed_rotation") {
+        if (!turns()) mo.fail("type", "a turning wall needs remeshing (walls of particles or constraints)");
+        if (!wall.slip && navier_)
+          w.fail("slip", "a turning wall with \"wall_friction\": \"navier\" must be a slip wall");
+        mo.validate(kWallRotationKeys);
+        wall.rotation = true;
+        wall.pivot = mo.vec2("pivot");
+        wall.angle = mo.number("value");
+        wall.fn = make_time_function(mo.at("function"), base_dir);
+        walls_.push_back(std::move(wall));
+        continue;
+      }
       mo.validate(kWallMotionKeys);
       wall.value = mo.vec2("value");
       wall.fn = make_time_function(mo.at("function"), base_dir);
@@ -56,9 +80,11 @@ void FluidWalls::read(Params walls, double h, const std::filesystem::path& base_
 }
 
 bool FluidWalls::inclined() const {
-  for (const auto& w : walls_)
+  for (const auto& w : walls_) {
+    if (w.rotation) return true;
     for (size_t k = 0; k + 1 < w.polyline.size(); ++k)
       if (!axis_aligned(w.polyline[k + 1] - w.polyline[k])) return true;
+  }
   return false;
 }
 
@@ -76,10 +102,9 @@ void FluidWalls::bounding_box_at(double t, Vec2& lo, Vec2& hi) const {
   lo = Vec2::Constant(std::numeric_limits<double>::infinity());
   hi = -lo;
   for (const auto& w : walls_) {
-    const Vec2 off = w.offset(t);
     for (const auto& q : w.polyline) {
-      lo = lo.cwiseMin(q + off);
-      hi = hi.cwiseMax(q + off);
+      lo = lo.cwiseMin(w.point_at(q, t));
+      hi = hi.cwiseMax(w.point_at(q, t));
     }
   }
 }
@@ -169,6 +194,7 @@ void FluidWalls::add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, 
   drop_at_corner(constraints_);
   drop_at_corner(frictions_);
   std::vector<char> done(static_cast<size_t>(np), 0);
+  const size_t first = constraints_.size();  // the anchors of a turning wall's constraints, below
   for (const Skew& k : skew) {
     const auto i = static_cast<size_t>(k.i);
     if (done[i]) continue;
@@ -189,6 +215,11 @@ void FluidWalls::add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, 
     else if (!w.slip)
       constraints_.push_back({k.i, 1, frames_.direction(k.i, 1).dot(q - off), k.wall, 0, true});
   }
+  for (size_t c = first; c < constraints_.size(); ++c) {  // a turning wall's: the wall's point under the particle
+    BoundaryConstraint& k = constraints_[c];
+    const Wall& w = walls_[static_cast<size_t>(k.part)];
+    if (w.rotation) k.anchor = w.reference_of(x.segment<2>(2 * k.i), t);
+  }
   bool any = false;
   for (Index i = 0; i < np && !any; ++i) any = frames_.rotated(i);
   if (!any) frames.clear();
@@ -196,12 +227,20 @@ void FluidWalls::add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, 
 
 void FluidWalls::place_own(double t, const Vec& X0, Vec& x) const {
   for (const auto& w : walls_)
-    for (Index j : w.particles) x.segment<2>(2 * j) = X0.segment<2>(2 * j) + w.offset(t);
+    for (Index j : w.particles) x.segment<2>(2 * j) = w.point_at(X0.segment<2>(2 * j), t);
 }
 
 void FluidWalls::move_own(double t, Vec& v, Vec& a) const {
   for (const auto& w : walls_) {
     if (!w.fn) continue;
+    if (w.rotation) {  // each particle's own
+      for (size_t k = 0; k < w.particles.size(); ++k) {
+        const Index j = w.particles[k];
+        v.segment<2>(2 * j) = w.velocity_of(w.particle_X[k], t);
+        a.segment<2>(2 * j) = w.acceleration_of(w.particle_X[k], t);
+      }
+      continue;
+    }
     const Vec2 vw = w.velocity_at(t), aw = w.acceleration_at(t);
     for (Index j : w.particles) {
       v.segment<2>(2 * j) = vw;
@@ -225,9 +264,8 @@ void FluidWalls::count_held(std::vector<char>& held) const {
 
 bool FluidWalls::along(const Vec2& p) const {
   for (const Wall& w : walls_) {
-    const Vec2 off = w.offset(contact_t_);
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s)
-      if (w.distance(s, p, off) <= contact_tol_) return true;
+      if (w.distance_at(s, p, contact_t_) <= contact_tol_) return true;
   }
   return false;
 }

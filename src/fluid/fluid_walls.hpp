@@ -59,7 +59,8 @@ inline bool axis_aligned(const Vec2& d) {
 }
 
 /// A rigid wall: a polyline of particles (PFEM mode) or a line of constraints (fixed-connectivity mode),
-/// optionally moving: x(t) = X + value * f(t) (or value * int f for a prescribed velocity).
+/// optionally moving: translated, x(t) = X + value * f(t) (or value * int f for a prescribed velocity), or turned
+/// about a pivot c, x(t) = c + R(theta(t)) (X - c) with theta = angle * f(t) (a flap; "wall_model": "particles").
 struct Wall {
   std::string name;
   std::vector<Vec2> polyline;
@@ -67,13 +68,55 @@ struct Wall {
   Vec2 value = Vec2::Zero();
   std::shared_ptr<TimeFunction> fn;
   bool velocity = false;
+  bool rotation = false;  // turned about `pivot` by angle * f(t) (rad, counter-clockwise)
+  Vec2 pivot = Vec2::Zero();
+  double angle = 0;
   std::vector<Index> particles;  // PFEM mode: its particles in polyline order
+  std::vector<Vec2> particle_X;  // and their initial positions
   std::vector<int> fluid_side;   // per segment: +1 / -1 the initial fluid lies on the side of
                                  // perp(b - a) / of its opposite, 0 on both or neither (keep_inside_walls)
   Vec2 offset(double t) const {
-    if (!fn) return Vec2::Zero();
+    if (!fn || rotation) return Vec2::Zero();
     return value * (velocity ? fn->integral(t) : fn->value(t));
   }
+  /// A vector of the wall turned as the wall is at time t (unchanged unless it rotates).
+  Vec2 turn(const Vec2& v, double t) const {
+    if (!rotation || !fn) return v;
+    const double th = angle * fn->value(t), c = std::cos(th), s = std::sin(th);
+    return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+  }
+  /// The wall's point (in its initial position) that is at p at time t.
+  Vec2 reference_of(const Vec2& p, double t) const {
+    return rotation ? Vec2(pivot + turn_back(p - pivot, t)) : Vec2(p - offset(t));
+  }
+  Vec2 turn_back(const Vec2& v, double t) const {
+    if (!rotation || !fn) return v;
+    const double th = angle * fn->value(t), c = std::cos(th), s = std::sin(th);
+    return {c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
+  }
+  /// The distance from p to segment k at time t.
+  double distance_at(size_t k, const Vec2& p, double t) const {
+    const Vec2 a = point_at(polyline[k], t), e = turn(polyline[k + 1] - polyline[k], t);
+    const double u = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    return (p - (a + u * e)).norm();
+  }
+  /// Where the wall's point X (in its initial position) is at time t.
+  Vec2 point_at(const Vec2& X, double t) const {
+    return rotation ? Vec2(pivot + turn(X - pivot, t)) : Vec2(X + offset(t));
+  }
+  /// The velocity and acceleration of the wall's point X at time t (central differences in time).
+  Vec2 velocity_of(const Vec2& X, double t) const {
+    if (!rotation) return velocity_at(t);
+    const double d = 1e-6;
+    return (point_at(X, t + d) - point_at(X, t - d)) / (2 * d);
+  }
+  Vec2 acceleration_of(const Vec2& X, double t) const {
+    if (!rotation) return acceleration_at(t);
+    const double d = 1e-4;
+    return (point_at(X, t + d) - 2.0 * point_at(X, t) + point_at(X, t - d)) / (d * d);
+  }
+  /// The unit normal of segment k towards its fluid side (fluid_normal) at time t.
+  Vec2 normal_at(size_t k, double t) const { return turn(fluid_normal(k), t); }
   /// Prescribed velocity and acceleration (central differences of the offset in time; exact to round-off
   /// for smooth functions, the mean slope across a kink of a table).
   Vec2 velocity_at(double t) const {
@@ -93,11 +136,11 @@ struct Wall {
     const double u = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
     return (p - (a + u * e)).norm();
   }
-  /// Whether p lies strictly beyond the line of segment k, on the side away from its fluid (false for a
-  /// segment with fluid on both sides or none); `off` is the wall's offset at the time.
-  bool beyond_line(size_t k, const Vec2& p, const Vec2& off) const {
+  /// Whether p lies strictly beyond the line of segment k at time t, on the side away from its fluid (false for a
+  /// segment with fluid on both sides or none).
+  bool beyond_line(size_t k, const Vec2& p, double t) const {
     if (k >= fluid_side.size() || fluid_side[k] == 0) return false;
-    const Vec2 a = polyline[k] + off, e = polyline[k + 1] - polyline[k];
+    const Vec2 a = point_at(polyline[k], t), e = turn(polyline[k + 1] - polyline[k], t);
     return fluid_side[k] * (e.x() * (p.y() - a.y()) - e.y() * (p.x() - a.x())) < 0;
   }
   Vec2 acceleration_at(double t) const {
@@ -117,7 +160,9 @@ class FluidWalls : public FluidBoundary {
   void read(Params walls, double h, const std::filesystem::path& base_dir);
   /// "particles", "constraints" or "constraints (fixed connectivity)" (summary.json).
   virtual const char* model() const = 0;
-  /// Whether a wall has a segment that is neither horizontal nor vertical.
+  /// Whether its walls may turn ("prescribed_rotation"): only wall particles follow a turning wall.
+  virtual bool turns() const { return false; }
+  /// Whether a wall has a segment that is neither horizontal nor vertical, or turns.
   bool inclined() const;
   /// "wall_friction": "navier": the fluid particles on no-slip walls slide against the friction k (v_t - v_wall,t),
   /// k = mu / s (s the slip length in spacings); off: they are held.
@@ -153,14 +198,19 @@ class FluidWalls : public FluidBoundary {
   bool along(const Vec2& p) const override;
   void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
                  std::vector<BoundaryConstraint>& out) override;
+  /// A component on a turning wall follows the wall's point under the particle when it was found (its anchor).
   double position(const BoundaryConstraint& k, double t) const override {
-    return k.base + frames_.along(walls_[static_cast<size_t>(k.part)].offset(t), k.i, k.c);
+    const Wall& w = walls_[static_cast<size_t>(k.part)];
+    if (w.rotation) return frames_.along(w.point_at(k.anchor, t), k.i, k.c);
+    return k.base + frames_.along(w.offset(t), k.i, k.c);
   }
   double velocity(const BoundaryConstraint& k, double t) const override {
-    return frames_.along(walls_[static_cast<size_t>(k.part)].velocity_at(t), k.i, k.c);
+    const Wall& w = walls_[static_cast<size_t>(k.part)];
+    return frames_.along(w.rotation ? w.velocity_of(k.anchor, t) : w.velocity_at(t), k.i, k.c);
   }
   double acceleration(const BoundaryConstraint& k, double t) const override {
-    return frames_.along(walls_[static_cast<size_t>(k.part)].acceleration_at(t), k.i, k.c);
+    const Wall& w = walls_[static_cast<size_t>(k.part)];
+    return frames_.along(w.rotation ? w.acceleration_of(k.anchor, t) : w.acceleration_at(t), k.i, k.c);
   }
   void place_own(double t, const Vec& X0, Vec& x) const override;
   void move_own(double t, Vec& v, Vec& a) const override;
@@ -207,6 +257,7 @@ class FluidWalls : public FluidBoundary {
 class WallParticles final : public FluidWalls {
  public:
   const char* model() const override { return "particles"; }
+  bool turns() const override { return true; }
   /// The walls' particles, spaced at most h along each polyline (a corner shared with an earlier wall reuses its
   /// particle), appended to pts and kind and added to `grid`; `walls` names the errors.
   void place_particles(const Params& walls, double h, std::vector<Vec2>& pts, std::vector<ParticleKind>& kind,
@@ -240,6 +291,7 @@ class WallContacts final : public FluidWalls {
   WallContacts(double h, double snap_fraction, const Vec2& g, double release_per_area)
       : h_(h), snap_fraction_(snap_fraction), gravity_(g), release_per_area_(release_per_area) {}
   const char* model() const override { return "constraints"; }
+  bool turns() const override { return true; }
   /// The fluid particles (positions x at time t, of kinds `kind`) that lie on a wall segment (within 1e-6 h of
   /// it) become the step's constraints (and, on no-slip walls with "navier" friction, the step's frictions).
   void find_contacts(const Vec& x, const std::vector<ParticleKind>& kind, double t);
@@ -261,7 +313,12 @@ class WallContacts final : public FluidWalls {
   bool finds_contacts() const override { return true; }
   void find(const ParticleCloud& cloud, double t) override { find_contacts(cloud.x(), cloud.kind(), t); }
   void settle(const std::vector<std::uint8_t>& free) override { free_contact_line(free); }
+  /// The particles held on a turning wall end the step on the line of the step's frame through their anchor's
+  /// new position, which is the wall's own line only where they did not slide along it (they are off it by the
+  /// slide times the turn): they are put back on the wall's line at time t, as they are found again.
+  void follow_turning_walls(ParticleCloud& cloud, double t) const;
   double after_step(const StepEnd& s) override {
+    follow_turning_walls(s.cloud, s.t);
     release_pulled(s.cloud, s.force);
     snap_to_walls(s.cloud, s.x_start, s.t);
     return 0.0;

@@ -23,9 +23,9 @@ void WallContacts::find_contacts(const Vec& x, const std::vector<ParticleKind>& 
     const Wall& w = walls_[wi];
     const Vec2 off = w.offset(t);
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s) {
-      const Vec2 a = w.polyline[s] + off, b = w.polyline[s + 1] + off;
-      if (!axis_aligned(b - a)) {
-        const Vec2 e = b - a, nrm = w.fluid_normal(s);
+      const Vec2 a = w.point_at(w.polyline[s], t), b = w.point_at(w.polyline[s + 1], t);
+      if (w.rotation || !axis_aligned(b - a)) {  // (a turning wall: in its frame even when upright)
+        const Vec2 e = b - a, nrm = w.normal_at(s, t);
         const bool sided = s < w.fluid_side.size() && w.fluid_side[s] != 0;
         const double len = e.norm();
         for (Index i = 0; i < np; ++i) {
@@ -106,6 +106,17 @@ long WallContacts::release_pulled(ParticleCloud& cloud, const Vec& force) {
   return released;
 }
 
+void WallContacts::follow_turning_walls(ParticleCloud& cloud, double t) const {
+  Vec& x = cloud.x();
+  for (const BoundaryConstraint& k : constraints_) {
+    const Wall& w = walls_[static_cast<size_t>(k.part)];
+    if (!w.rotation || k.c != 0 || !frames_.rotated(k.i) || k.i >= cloud.n()) continue;
+    // The wall's line at t through the anchor's new position, with the normal the frame had turned as the wall.
+    const Vec2 n1 = w.turn(w.turn_back(frames_.direction(k.i, 0), contact_t_), t), a1 = w.point_at(k.anchor, t);
+    x.segment<2>(2 * k.i) -= n1.dot(x.segment<2>(2 * k.i) - a1) * n1;
+  }
+}
+
 void WallContacts::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, double t) {
   const double snap_fraction = snap_fraction_;
   // Walls without particles: a fluid particle is held off a wall only by the constraints of the particles on
@@ -120,11 +131,10 @@ void WallContacts::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, doubl
     if (kind[i] != ParticleKind::Fluid) continue;
     const double h = cloud.h(i);
     for (const auto& w : walls_) {
-      const Vec2 off = w.offset(t), vw = w.velocity_at(t);
       for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
-        const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
+        const Vec2 a = w.point_at(w.polyline[k], t), b = w.point_at(w.polyline[k + 1], t), e = b - a;
         const Vec2 p0 = x_start.segment<2>(2 * i), p1 = x.segment<2>(2 * i);
-        Vec2 nrm = w.fluid_normal(k);
+        Vec2 nrm = w.normal_at(k, t);
         // Within the segment's span, or (beyond it) within half a spacing past one of its ends: a particle
         // leaving through a corner is past both segments' ends (it lands on the end, the corner).
         const double u = (p1 - a).dot(e) / e.squaredNorm(), slack = 1e-6 * h / e.norm(), reach = 0.5 * h / e.norm();
@@ -138,10 +148,13 @@ void WallContacts::snap_to_walls(ParticleCloud& cloud, const Vec& x_start, doubl
         const bool beyond = d1 < 0 && d0 > -h, near = in_span && d1 > 0 && d1 < snap_fraction * h && d1 < d0;
         if (!beyond && !near) continue;
         x.segment<2>(2 * i) = in_span ? Vec2(p1 - d1 * nrm) : Vec2(u < 0 ? a : b);
+        // The wall's motion where the particle lands (a turning wall's point there).
+        const Vec2 landed = x.segment<2>(2 * i);
+        const Vec2 vw = w.rotation ? w.velocity_of(w.reference_of(landed, t), t) : w.velocity_at(t);
+        const Vec2 aw = w.rotation ? w.acceleration_of(w.reference_of(landed, t), t) : w.acceleration_at(t);
         // The normal velocity and acceleration become the wall's (no-slip walls held by constraints: the whole
         // velocity, as the constraints of the next step will hold them; with "navier" friction it slides).
         Vec2 v = vel.segment<2>(2 * i), acc = cloud.a().segment<2>(2 * i);
-        const Vec2 aw = w.acceleration_at(t);
         if (w.slip || navier_) {
           v -= (v - vw).dot(nrm) * nrm;
           acc -= (acc - aw).dot(nrm) * nrm;

@@ -23,6 +23,7 @@ void WallParticles::place_particles(const Params& walls, double h, std::vector<V
         const Vec2 p = a + (c - a) * (double(k) / n);
         // Shared corner with an earlier wall: reuse its particle.
         const Index found = grid.find(p, 1e-9 * h, pts);
+        w.particle_X.push_back(found < 0 ? p : pts[static_cast<size_t>(found)]);
         if (found < 0) {
           w.particles.push_back(static_cast<Index>(pts.size()));
           grid.add(p, static_cast<Index>(pts.size()));
@@ -64,10 +65,9 @@ void WallParticles::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mes
     Vec2 p1 = x.segment<2>(2 * i);
     const double tol = (held[i] ? 1.0 : 0.5) * cloud.h(i);
     for (const auto& w : walls_) {
-      const Vec2 off = w.offset(t);
       for (size_t k = 0; k + 1 < w.polyline.size(); ++k) {
-        const Vec2 a = w.polyline[k] + off, b = w.polyline[k + 1] + off, e = b - a;
-        Vec2 nrm = w.fluid_normal(k);
+        const Vec2 a = w.point_at(w.polyline[k], t), b = w.point_at(w.polyline[k + 1], t), e = b - a;
+        Vec2 nrm = w.normal_at(k, t);
         double u;  // where the particle goes back, along the segment
         if (w.fluid_side[k] != 0) {
           u = (p1 - a).dot(e) / e.squaredNorm();
@@ -76,8 +76,8 @@ void WallParticles::keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mes
           // below it would otherwise leave through the corner, in neither segment's span (dam_break_tank with
           // the level-set detection lost particles there). Put back at the corner.
           const double reach = tol / e.norm();
-          const bool past_end = (u < 0 && u >= -reach && k > 0 && w.beyond_line(k - 1, p1, off)) ||
-                                (u > 1 && u <= 1 + reach && k + 2 < w.polyline.size() && w.beyond_line(k + 1, p1, off));
+          const bool past_end = (u < 0 && u >= -reach && k > 0 && w.beyond_line(k - 1, p1, t)) ||
+                                (u > 1 && u <= 1 + reach && k + 2 < w.polyline.size() && w.beyond_line(k + 1, p1, t));
           if (!((u >= 0 && u <= 1) || past_end) || nrm.dot(p1 - a) >= -tol || nrm.dot(p0 - a) <= -tol) continue;
           u = std::clamp(u, 0.0, 1.0);
         } else {

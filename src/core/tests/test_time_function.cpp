@@ -1,5 +1,5 @@
-// Time functions (time_function.hpp): each one's integral is the integral of its value, and the piston wave
-// maker's stroke is linear wave-maker theory's for the height asked (Dean & Dalrymple 1991, section 6.2).
+// Time functions (time_function.hpp): each one's integral is the integral of its value, and the piston and flap
+// wave makers' strokes are linear wave-maker theory's for the height asked (Dean & Dalrymple 1991, section 6.2).
 #include <lagfsi/error.hpp>
 #include <lagfsi/time_function.hpp>
 
@@ -29,7 +29,8 @@ double simpson(const lagfsi::TimeFunction& f, double t, int n = 20000) {
 TEST(TimeFunction, EachIntegralIsTheIntegralOfItsValue) {
   for (const Json& j : {Json{{"type", "ramp"}, {"t0", 0.5}, {"t1", 1.5}},
                         Json{{"type", "sinusoid"}, {"amplitude", 2.0}, {"frequency", 1.3}, {"phase", 0.4}},
-                        Json{{"type", "piston_wavemaker"}, {"height", 0.05}, {"period", 1.2}, {"depth", 0.4}}}) {
+                        Json{{"type", "piston_wavemaker"}, {"height", 0.05}, {"period", 1.2}, {"depth", 0.4}},
+                        Json{{"type", "flap_wavemaker"}, {"height", 0.05}, {"period", 1.2}, {"depth", 0.4}}}) {
     const auto f = make(j);
     for (double t : {0.3, 1.0, 2.0, 2.9, 5.0})
       EXPECT_NEAR(f->integral(t), simpson(*f, t), 1e-7) << j.dump() << " t " << t;
@@ -57,6 +58,31 @@ TEST(TimeFunction, APistonWavemakersStrokeIsLinearTheorysForTheHeight) {
   const auto shallow = make({{"type", "piston_wavemaker"}, {"height", 0.01}, {"period", 20.0}, {"depth", 0.1}});
   const double k_shallow = 2 * std::numbers::pi / 20.0 / std::sqrt(g * 0.1);
   EXPECT_NEAR(shallow->value(2 * 20.0 + 5.0), 0.5 * 0.01 / (k_shallow * 0.1), 0.01 * 0.5 * 0.01 / (k_shallow * 0.1));
+}
+
+TEST(TimeFunction, AFlapWavemakersAngleIsLinearTheorysForTheHeight) {
+  // A flap hinged on the floor, depth 0.4 m, period 1.2 s: H / S = 4 (sinh kd / kd) (kd sinh kd - cosh kd + 1) /
+  // (sinh 2kd + 2kd) with S the stroke at the still-water level; the angle swings between -+atan(S / (2d)).
+  const double H = 0.04, T = 1.2, d = 0.4, g = 9.81, w = 2 * std::numbers::pi / T;
+  double lo = 1e-6, hi = 100;
+  for (int i = 0; i < 200; ++i) {
+    const double k = 0.5 * (lo + hi);
+    (g * k * std::tanh(k * d) > w * w ? hi : lo) = k;
+  }
+  const double kd = 0.5 * (lo + hi) * d;
+  const double ratio =
+      4 * std::sinh(kd) / kd * (kd * std::sinh(kd) - std::cosh(kd) + 1) / (std::sinh(2 * kd) + 2 * kd);
+  const double theta0 = std::atan(H / ratio / (2 * d));
+  const auto f = make({{"type", "flap_wavemaker"}, {"height", H}, {"period", T}, {"depth", d}});
+  EXPECT_NEAR(f->value(2 * T + T / 4), theta0, 1e-9 * theta0);
+  EXPECT_NEAR(f->value(3 * T + 3 * T / 4), -theta0, 1e-9 * theta0);
+  // A flap moves less water than a piston of the same stroke: it needs the larger stroke for the same height.
+  const auto piston = make({{"type", "piston_wavemaker"}, {"height", H}, {"period", T}, {"depth", d}});
+  EXPECT_GT(2 * d * std::tan(theta0), 2 * piston->value(2 * T + T / 4));
+  // In shallow water (kd -> 0) H / S -> kd / 2, half the piston's kd.
+  const auto shallow = make({{"type", "flap_wavemaker"}, {"height", 0.01}, {"period", 20.0}, {"depth", 0.1}});
+  const double kds = 2 * std::numbers::pi / 20.0 / std::sqrt(g * 0.1) * 0.1;
+  EXPECT_NEAR(std::tan(shallow->value(2 * 20.0 + 5.0)) * 2 * 0.1, 0.01 / (0.5 * kds), 0.02 * 0.01 / (0.5 * kds));
 }
 
 TEST(TimeFunction, AShortRampIsAnErrorNamingTheKey) {

@@ -14,6 +14,8 @@
 #include "fluid_mesh.hpp"
 #include "fluid_walls.hpp"
 
+#include <cmath>
+#include <string>
 #include <vector>
 
 namespace lagfsi::fluid {
@@ -101,6 +103,70 @@ TEST(FluidWalls, AnObstaclesHiddenFaceTakesItsNeighboursFluidSide) {
   EXPECT_NEAR(s.cloud.x()[2 * i + 1], 0.0, 1e-12);
   EXPECT_NEAR(s.cloud.v()[2 * i], 0.0, 1e-12);  // its velocity into the face is gone
   EXPECT_EQ(s.walls.crossings(), 1);
+}
+
+// A flap: a wall turning about its foot by theta(t) = -0.2 t rad (clockwise; a ramp from 0 to 1 over 1 s).
+const Json kFlap = Json::array({{{"name", "flap"},
+                                 {"points", {{0, 0}, {0, 0.1}}},
+                                 {"slip", true},
+                                 {"motion",
+                                  {{"type", "prescribed_rotation"},
+                                   {"pivot", {0, 0}},
+                                   {"value", -0.2},
+                                   {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 1}}}}}}});
+
+TEST(FluidWalls, AFlapsParticlesTurnAboutItsHingeWithItsAngularVelocity) {
+  WallParticles walls;
+  walls.read(Params(kFlap, "test.json", "/bodies/0/walls"), kH, ".");
+  std::vector<Vec2> pts;
+  std::vector<ParticleKind> kind;
+  PointGrid grid(0.5 * kH);
+  walls.place_particles(Params(kFlap, "test.json", "/bodies/0/walls"), kH, pts, kind, grid);
+  const Index n = static_cast<Index>(pts.size());
+  Vec X0(2 * n), x(2 * n), v(2 * n), a(2 * n);
+  for (Index j = 0; j < n; ++j) X0.segment<2>(2 * j) = pts[static_cast<size_t>(j)];
+  walls.place_own(0.5, X0, x);
+  walls.move_own(0.5, v, a);
+  const double th = -0.1, w = -0.2;  // the angle at t = 0.5 s and its rate
+  for (Index j = 0; j < n; ++j) {
+    const double r = X0[2 * j + 1];  // the particle's height on the upright flap
+    EXPECT_NEAR(x[2 * j], -r * std::sin(th), 1e-12);
+    EXPECT_NEAR(x[2 * j + 1], r * std::cos(th), 1e-12);
+    EXPECT_NEAR(v[2 * j], -w * r * std::cos(th), 1e-8);  // omega x r: (-w r_y, w r_x)
+    EXPECT_NEAR(v[2 * j + 1], -w * r * std::sin(th), 1e-8);
+  }
+}
+
+TEST(FluidWalls, AParticleOnATurningWallFollowsItAndStaysOnItsLine) {
+  WallContacts walls(kH, 0.1, Vec2(0, -9.81), 0.0);
+  walls.read(Params(kFlap, "test.json", "/bodies/0/walls"), kH, ".");
+  ParticleCloud cloud;
+  cloud.assign({{0.03, 0.05}, {0.0, 0.05}}, {ParticleKind::Fluid, ParticleKind::Fluid}, kH);
+  walls.set_fluid_sides(cloud.positions(), cloud.kind());
+  walls.find(cloud, 0.0);
+  ASSERT_EQ(walls.constraints().size(), 1u) << "the particle on the flap, in the flap's frame";
+  const BoundaryConstraint k = walls.constraints()[0];
+  EXPECT_EQ(k.i, 1);
+  EXPECT_EQ(walls.frames()->direction(1, 0), Vec2(1, 0)) << "the flap's normal towards its fluid";
+  // At t = 0.5 s the flap's point under the particle is at r (sin 0.1, cos 0.1): its normal coordinate is the
+  // prescribed one.
+  EXPECT_NEAR(walls.position(k, 0.5), 0.05 * std::sin(0.1), 1e-12);
+  EXPECT_NEAR(walls.velocity(k, 0.5), 0.2 * 0.05 * std::cos(0.1), 1e-8);
+  // A particle that slid along the frame's line ends off the turned flap; it is put back on the flap's line.
+  cloud.x().segment<2>(2) = Vec2(walls.position(k, 0.5), 0.07);
+  walls.follow_turning_walls(cloud, 0.5);
+  const Vec2 p = cloud.pos(1), n1(std::cos(0.1), -std::sin(0.1));  // the flap's normal at 0.5 s
+  EXPECT_NEAR(n1.dot(p), 0.0, 1e-12);
+}
+
+TEST(FluidWalls, AFixedMeshsWallsDoNotTurn) {
+  FixedMeshWalls walls;
+  try {
+    walls.read(Params(kFlap, "test.json", "/bodies/0/walls"), kH, ".");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/bodies/0/walls/0/motion/type"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 ///                                                           '#' lines are comments; constant beyond the ends
 ///  - {"type": "piston_wavemaker", "height": H, "period": T, "depth": d}   a piston paddle's displacement for
 ///                                                           regular waves by linear wave-maker theory
+///  - {"type": "flap_wavemaker", "height": H, "period": T, "depth": d}     a flap paddle's angle (rad), the same
 /// integral(t) = int_0^t f(s) ds (exact for each type; used for prescribed velocities).
 #include <lagfsi/params.hpp>
 

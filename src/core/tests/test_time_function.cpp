@@ -70,8 +70,7 @@ TEST(TimeFunction, AFlapWavemakersAngleIsLinearTheorysForTheHeight) {
     (g * k * std::tanh(k * d) > w * w ? hi : lo) = k;
   }
   const double kd = 0.5 * (lo + hi) * d;
-  const double ratio =
-      4 * std::sinh(kd) / kd * (kd * std::sinh(kd) - std::cosh(kd) + 1) / (std::sinh(2 * kd) + 2 * kd);
+  const double ratio = 4 * std::sinh(kd) / kd * (kd * std::sinh(kd) - std::cosh(kd) + 1) / (std::sinh(2 * kd) + 2 * kd);
   const double theta0 = std::atan(H / ratio / (2 * d));
   const auto f = make({{"type", "flap_wavemaker"}, {"height", H}, {"period", T}, {"depth", d}});
   EXPECT_NEAR(f->value(2 * T + T / 4), theta0, 1e-9 * theta0);

@@ -28,18 +28,23 @@ const KeyTable kSinusoidKeys("time function (type sinusoid)", "f(t) = amplitude 
                               {"frequency", nullptr, "Frequency (Hz), positive."},
                               {"phase", 0.0, "Phase (rad)."}});
 
+/// The keys of a wave maker's time function (piston_wavemaker, flap_wavemaker).
+std::vector<KeyDecl> wavemaker_keys(const char* type, const char* depth) {
+  return {{"type", type, std::string("`") + type + "`."},
+          {"height", nullptr, "The wave height H (m), trough to crest, positive."},
+          {"period", nullptr, "The wave period T (s), positive."},
+          {"depth", nullptr, depth},
+          {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
+          {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}};
+}
+
 const KeyTable kWavemakerKeys(
     "time function (type piston_wavemaker)",
     "The displacement (m) of a piston wave maker that makes regular waves of a given height and period in water of "
     "a given depth, by linear wave-maker theory (Biesel & Suquet 1951): x(t) = (S/2) r(t) sin(2 pi t / T) with the "
     "stroke S = H (sinh 2kd + 2kd) / (2 (cosh 2kd - 1)), omega^2 = g k tanh kd, and a half-cosine ramp r over the "
     "first periods. Use it as a wall's prescribed displacement with \"value\": [1, 0].",
-    {{"type", "piston_wavemaker", "`piston_wavemaker`."},
-     {"height", nullptr, "The wave height H (m), trough to crest, positive."},
-     {"period", nullptr, "The wave period T (s), positive."},
-     {"depth", nullptr, "The still-water depth d (m) at the paddle, positive."},
-     {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
-     {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}});
+    wavemaker_keys("piston_wavemaker", "The still-water depth d (m) at the paddle, positive."));
 
 const KeyTable kFlapKeys(
     "time function (type flap_wavemaker)",
@@ -47,14 +52,9 @@ const KeyTable kFlapKeys(
     "in water of a given depth, by linear wave-maker theory (Biesel & Suquet 1951): theta(t) = theta0 r(t) "
     "sin(2 pi t / T) with the stroke at the still-water level S = 2 d tan(theta0) from H / S = 4 (sinh kd / kd) "
     "(kd sinh kd - cosh kd + 1) / (sinh 2kd + 2kd), omega^2 = g k tanh kd, and a half-cosine ramp r over the first "
-    "periods. Use it as a wall's prescribed rotation about the hinge with \"value\": 1 (positive: towards +x at "
-    "the surface for a paddle at the flume's left end, with \"value\": -1).",
-    {{"type", "flap_wavemaker", "`flap_wavemaker`."},
-     {"height", nullptr, "The wave height H (m), trough to crest, positive."},
-     {"period", nullptr, "The wave period T (s), positive."},
-     {"depth", nullptr, "The still-water depth d (m) at the paddle (the hinge's depth), positive."},
-     {"gravity", 9.81, "The gravity g (m/s^2) of the dispersion relation."},
-     {"ramp_periods", 2.0, "Length of the smooth start in periods (at least 1)."}});
+    "periods. Use it as a wall's prescribed_rotation about the hinge; \"value\": -1 turns a paddle at the flume's "
+    "left end towards +x at the surface for a positive angle.",
+    wavemaker_keys("flap_wavemaker", "The still-water depth d (m) at the paddle (the hinge's depth), positive."));
 
 const KeyTable kTableKeys("time function (type table)",
                           "f(t) interpolated linearly in a table of (time, value) rows, constant beyond its ends.",

@@ -60,7 +60,7 @@ inline bool axis_aligned(const Vec2& d) {
 
 /// A rigid wall: a polyline of particles (PFEM mode) or a line of constraints (fixed-connectivity mode),
 /// optionally moving: translated, x(t) = X + value * f(t) (or value * int f for a prescribed velocity), or turned
-/// about a pivot c, x(t) = c + R(theta(t)) (X - c) with theta = angle * f(t) (a flap; "wall_model": "particles").
+/// about a pivot c, x(t) = c + R(theta(t)) (X - c) with theta = angle * f(t) (a flap; remeshed walls only).
 struct Wall {
   std::string name;
   std::vector<Vec2> polyline;

@@ -18,6 +18,17 @@ std::unique_ptr<lagfsi::TimeFunction> make(const Json& j) {
   return lagfsi::make_time_function(Params(j, "case.json", "/f"), ".");
 }
 
+/// The wave number k of omega^2 = g k tanh kd for the period T and the depth d, by bisection.
+double wavenumber(double T, double d, double g = 9.81) {
+  const double w = 2 * std::numbers::pi / T;
+  double lo = 1e-6, hi = 100;
+  for (int i = 0; i < 200; ++i) {
+    const double k = 0.5 * (lo + hi);
+    (g * k * std::tanh(k * d) > w * w ? hi : lo) = k;
+  }
+  return 0.5 * (lo + hi);
+}
+
 /// Simpson's rule of f over [0, t] with n (even) intervals.
 double simpson(const lagfsi::TimeFunction& f, double t, int n = 20000) {
   const double h = t / n;
@@ -40,13 +51,8 @@ TEST(TimeFunction, EachIntegralIsTheIntegralOfItsValue) {
 TEST(TimeFunction, APistonWavemakersStrokeIsLinearTheorysForTheHeight) {
   // Depth 0.4 m, period 1.2 s: k from omega^2 = g k tanh kd by bisection, then H / S = 2 (cosh 2kd - 1) /
   // (sinh 2kd + 2kd); after the ramp (two periods) the paddle swings between -S/2 and S/2.
-  const double H = 0.05, T = 1.2, d = 0.4, g = 9.81, w = 2 * std::numbers::pi / T;
-  double lo = 1e-6, hi = 100;
-  for (int i = 0; i < 200; ++i) {
-    const double k = 0.5 * (lo + hi);
-    (g * k * std::tanh(k * d) > w * w ? hi : lo) = k;
-  }
-  const double kd2 = (lo + hi) * d;  // 2 k d
+  const double H = 0.05, T = 1.2, d = 0.4, g = 9.81;
+  const double kd2 = 2 * wavenumber(T, d, g) * d;
   const double stroke = H * (std::sinh(kd2) + kd2) / (2 * (std::cosh(kd2) - 1));
   const auto f = make({{"type", "piston_wavemaker"}, {"height", H}, {"period", T}, {"depth", d}});
   EXPECT_NEAR(f->value(2 * T + T / 4), 0.5 * stroke, 1e-9 * stroke);
@@ -63,13 +69,8 @@ TEST(TimeFunction, APistonWavemakersStrokeIsLinearTheorysForTheHeight) {
 TEST(TimeFunction, AFlapWavemakersAngleIsLinearTheorysForTheHeight) {
   // A flap hinged on the floor, depth 0.4 m, period 1.2 s: H / S = 4 (sinh kd / kd) (kd sinh kd - cosh kd + 1) /
   // (sinh 2kd + 2kd) with S the stroke at the still-water level; the angle swings between -+atan(S / (2d)).
-  const double H = 0.04, T = 1.2, d = 0.4, g = 9.81, w = 2 * std::numbers::pi / T;
-  double lo = 1e-6, hi = 100;
-  for (int i = 0; i < 200; ++i) {
-    const double k = 0.5 * (lo + hi);
-    (g * k * std::tanh(k * d) > w * w ? hi : lo) = k;
-  }
-  const double kd = 0.5 * (lo + hi) * d;
+  const double H = 0.04, T = 1.2, d = 0.4, g = 9.81;
+  const double kd = wavenumber(T, d, g) * d;
   const double ratio = 4 * std::sinh(kd) / kd * (kd * std::sinh(kd) - std::cosh(kd) + 1) / (std::sinh(2 * kd) + 2 * kd);
   const double theta0 = std::atan(H / ratio / (2 * d));
   const auto f = make({{"type", "flap_wavemaker"}, {"height", H}, {"period", T}, {"depth", d}});

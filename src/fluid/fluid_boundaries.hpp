@@ -59,7 +59,7 @@ class FluidBoundaries {
     for (const auto& b : list_) b->move_own(t, v, a);
   }
   /// The particles' frames (the walls'; particle_frames.hpp).
-  const ParticleFrames& frames() const { return walls_->frames() ? *walls_->frames() : no_frames_; }
+  const ParticleFrames& frames() const { return walls_ && walls_->frames() ? *walls_->frames() : no_frames_; }
 
   // --- What the boundaries add to the system.
 

@@ -59,7 +59,8 @@ const KeyTable kAdaptiveStepKeys(
     "Each step is the smallest of the ceiling `max`, `growth` times the last step and every body's stable step for "
     "the Courant number (a fluid, at the step's start: C |x_a - x_b| / |v_a - v_b| over its mesh's edges, which a "
     "step may deform by at most C of themselves, C h / |v| over its particles outside the mesh, drops in flight, "
-    "and C sqrt(h / |a|) over all its particles); the first step is dt; a failed step is still retried at half its size. "
+    "and C sqrt(h / |a|) over all its particles); the first step is dt; a failed step is still retried at half its "
+    "size. "
     "log.csv records each step's limit (dt_limit) and what set it (dt_by: max, growth, end, or the body's reason); "
     "summary.json counts them.",
     {{"type", "adaptive", "`adaptive`."},

@@ -65,6 +65,23 @@ def case(h, dt, end_time, tag):
     return c
 
 
+def variant(test, reynolds, mean_speed, material, flag_text, h, dt, end_time, tag):
+    """FSI1's case with another mean inflow speed (m/s) and the flag's material keys changed (`material`): the
+    periodic tests FSI2 and FSI3; `flag_text` describes the flag's material."""
+    c = case(h, dt, end_time, tag)
+    water, flag = c["bodies"]
+    inflow = water["boundaries"][0]
+    assert inflow["type"] == "inflow" and flag["name"] == "flag"
+    inflow["velocity"] = [mean_speed, 0]
+    flag["material"].update(material)
+    c["name"] = "turek_hron_" + test.lower()
+    c["description"] = ("Turek & Hron (2006) %s: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with an elastic "
+                        "flag 0.35 x 0.02 m (%s, plane strain), parabolic inflow of mean %g m/s (Re = %d): the flag's "
+                        "periodic oscillation, drag, lift, the tip's displacement (%s)"
+                        % (test, flag_text, mean_speed, reynolds, tag))
+    return c
+
+
 if __name__ == "__main__":
     for name, h, dt in (("case.json", 0.01, 0.01), ("case_coarse.json", 0.02, 0.01), ("case_fine.json", 0.007, 0.007)):
         with open(os.path.join(here, name), "w") as f:

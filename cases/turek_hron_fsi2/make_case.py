@@ -23,18 +23,8 @@ RHO_S = 10000.0  # kg/m^3, the flag's density (ten times the fluid's)
 
 
 def case(h, dt, end_time, tag):
-    c = fsi1.case(h, dt, end_time, tag)
-    water, flag = c["bodies"]
-    inflow = water["boundaries"][0]
-    assert inflow["type"] == "inflow" and flag["name"] == "flag"
-    inflow["velocity"] = [U, 0]
-    flag["material"]["density"] = RHO_S
-    c["name"] = "turek_hron_fsi2"
-    c["description"] = ("Turek & Hron (2006) FSI2: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with an elastic "
-                        "flag 0.35 x 0.02 m (SVK, rho = 10000, mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow "
-                        "of mean 1 m/s (Re = 100): the flag's periodic oscillation, drag, lift, the tip's displacement "
-                        "(%s)" % tag)
-    return c
+    return fsi1.variant("FSI2", 100, U, {"density": RHO_S}, "SVK, rho = 10000, mu = 0.5 MPa, nu = 0.4", h, dt,
+                        end_time, tag)
 
 
 if __name__ == "__main__":

@@ -20,18 +20,10 @@ NU_S = 0.4
 
 
 def case(h, dt, end_time, tag):
-    c = fsi1.case(h, dt, end_time, tag)
-    water, flag = c["bodies"]
-    inflow = water["boundaries"][0]
-    assert inflow["type"] == "inflow" and flag["name"] == "flag"
-    assert flag["material"]["poisson"] == NU_S and flag["material"]["density"] == 1000.0
-    inflow["velocity"] = [U, 0]
-    flag["material"]["young"] = 2 * MU_S * (1 + NU_S)
-    c["name"] = "turek_hron_fsi3"
-    c["description"] = ("Turek & Hron (2006) FSI3: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with an elastic "
-                        "flag 0.35 x 0.02 m (SVK, rho = 1000, mu = 2 MPa, nu = 0.4, plane strain), parabolic inflow "
-                        "of mean 2 m/s (Re = 200): the flag's periodic oscillation, drag, lift, the tip's displacement "
-                        "(%s)" % tag)
+    c = fsi1.variant("FSI3", 200, U, {"young": 2 * MU_S * (1 + NU_S)}, "SVK, rho = 1000, mu = 2 MPa, nu = 0.4", h, dt,
+                     end_time, tag)
+    material = c["bodies"][1]["material"]
+    assert material["poisson"] == NU_S and material["density"] == 1000.0  # FSI1's, as FSI3 has them
     return c
 
 

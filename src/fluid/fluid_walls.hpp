@@ -79,20 +79,17 @@ struct Wall {
     if (!fn || rotation) return Vec2::Zero();
     return value * (velocity ? fn->integral(t) : fn->value(t));
   }
-  /// A vector of the wall turned as the wall is at time t (unchanged unless it rotates).
-  Vec2 turn(const Vec2& v, double t) const {
-    if (!rotation || !fn) return v;
-    const double th = angle * fn->value(t), c = std::cos(th), s = std::sin(th);
+  /// A vector of the wall turned as the wall is at time t, and back (unchanged unless it rotates).
+  Vec2 turn(const Vec2& v, double t) const { return rotation && fn ? rotated(v, angle * fn->value(t)) : v; }
+  Vec2 turn_back(const Vec2& v, double t) const { return rotation && fn ? rotated(v, -angle * fn->value(t)) : v; }
+  /// v turned by th (rad, counter-clockwise).
+  static Vec2 rotated(const Vec2& v, double th) {
+    const double c = std::cos(th), s = std::sin(th);
     return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
   }
   /// The wall's point (in its initial position) that is at p at time t.
   Vec2 reference_of(const Vec2& p, double t) const {
     return rotation ? Vec2(pivot + turn_back(p - pivot, t)) : Vec2(p - offset(t));
-  }
-  Vec2 turn_back(const Vec2& v, double t) const {
-    if (!rotation || !fn) return v;
-    const double th = angle * fn->value(t), c = std::cos(th), s = std::sin(th);
-    return {c * v.x() + s * v.y(), -s * v.x() + c * v.y()};
   }
   /// The distance from p to segment k at time t.
   double distance_at(size_t k, const Vec2& p, double t) const {

@@ -6,7 +6,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 namespace lagfsi::mpi_run {
 
@@ -39,6 +41,37 @@ bool any(bool flag) {
   int f = flag ? 1 : 0, r = 0;
   MPI_Allreduce(&f, &r, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   return r != 0;
+}
+
+std::pair<Index, Index> owned_blocks(Index blocks) {
+  if (my_size <= 1) return {0, blocks};
+  const Index base = blocks / my_size, extra = blocks % my_size, r = my_rank;
+  const Index first = r * base + std::min(r, extra);
+  return {first, first + base + (r < extra ? 1 : 0)};
+}
+
+void sum_in_rank_order(double* values, int n) {
+  if (my_size <= 1 || n <= 0) return;
+  std::vector<double> all(static_cast<size_t>(n) * static_cast<size_t>(my_size));
+  MPI_Allgather(values, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, MPI_COMM_WORLD);
+  for (int k = 0; k < n; ++k) {
+    double s = 0;
+    for (int r = 0; r < my_size; ++r)
+      s += all[static_cast<size_t>(r) * static_cast<size_t>(n) + static_cast<size_t>(k)];
+    values[k] = s;
+  }
+}
+
+void combine_disjoint(double* values, Index n) {
+  if (my_size <= 1 || n <= 0) return;
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+}
+
+Index min(Index value) {
+  if (my_size <= 1) return value;
+  int v = value, r = 0;
+  MPI_Allreduce(&v, &r, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return r;
 }
 
 void abort_all(int code) {

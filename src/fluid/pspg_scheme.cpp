@@ -16,6 +16,7 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver_input.hpp>
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 
@@ -73,6 +74,10 @@ class PspgScheme final : public FluidScheme {
   void begin_step() override {
     if (s_.free_surface == FreeSurfacePressure::robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
     pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
+    // Over several processes with a distributed solver each computes the elements with a particle in its rows
+    // (mpi_run.hpp); the particles' rows are whole blocks of 3.
+    split_ = s_.solver.distributed && mpi_run::size() > 1;
+    own_ = split_ ? mpi_run::owned_blocks(f_.cloud.n()) : std::pair<Index, Index>{0, f_.cloud.n()};
     J_ = pattern_.pattern();
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);
     // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep
@@ -110,10 +115,16 @@ class PspgScheme final : public FluidScheme {
   PspgSettings s_;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
+  /// Particle i's rows are this process's (all of them unless the assembly is split over processes).
+  bool own(Index i) const { return i >= own_.first && i < own_.second; }
+  /// The message of an element that turned over within the step.
+  std::string inverted_message(Index e, const Vec& x) const;
   ElementPattern pattern_;
   SparseMatrix J_;
-  ThreadScatter scatter_;  // the element loop's per-thread sums
-  int iter_in_step_ = 0;   // iterations of the step (all coupling passes)
+  bool split_ = false;                 // the element assembly is divided among the processes
+  std::pair<Index, Index> own_{0, 0};  // the particles whose rows this process fills
+  ThreadScatter scatter_;              // the element loop's per-thread sums
+  int iter_in_step_ = 0;               // iterations of the step (all coupling passes)
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
 };
 
@@ -171,8 +182,6 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
                                    double& gravity2_out, double& viscous2_out, std::vector<char>& has_mass) {
   const FluidMesh& mesh = f_.mesh;
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
-  const FluidStep& step = f_.step;
-  std::string failure;
 
   const Index ne = mesh.num_elements();
   // One parallel loop over all elements (no colour barriers: on a loaded 2-core machine each OpenMP barrier of
@@ -191,6 +200,10 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
 #pragma omp for schedule(static) nowait
     for (Index e = 0; e < ne; ++e) {
       const auto& t = mesh.tri[e];
+      // Split over processes: an element none of whose particles has its rows here is another process's (each
+      // row's sum keeps the serial order of its elements); the force scales count each element once, at the
+      // process of its first particle.
+      if (split_ && !own(t[0]) && !own(t[1]) && !own(t[2])) continue;
       const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
       Eigen::Matrix<double, 9, 1> r;
       Eigen::Matrix<double, 9, 9> K;
@@ -200,18 +213,14 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
         // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
         if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
 #pragma omp critical(lagfsi_fluid_failure)
-        if (e < failed) {
-          failed = e;
-          failure = "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " +
-                    std::to_string(t[1]) + ", " + std::to_string(t[2]) +
-                    ") inverted during the step at t = " + std::to_string(step.t_new) + " (area " +
-                    std::to_string(mesh.element_area(ev.x, e)) + ")";
-        }
+        failed = std::min(failed, e);
         continue;
       }
-      inertia2 += i2;
-      gravity2 += g2;
-      viscous2 += v2;
+      if (own(t[0])) {
+        inertia2 += i2;
+        gravity2 += g2;
+        viscous2 += v2;
+      }
       // Particles on inclined walls: their momentum rows and position columns in the wall's frame (n, t).
       if (const ParticleFrames& frames = f_.boundaries.frames(); !frames.empty())
         for (int a = 0; a < 3; ++a)
@@ -229,13 +238,36 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
     scales.mine() = {inertia2, gravity2, viscous2};
   }
   scatter_.merge();
-  inertia2_out = scales.total(0);
-  gravity2_out = scales.total(1);
-  viscous2_out = scales.total(2);
-  for (Index e = 0; e < ne; ++e)
-    if (assembled[e])
-      for (Index i : mesh.tri[e]) has_mass[i] = 1;
-  if (!failure.empty()) throw SolverError("body '" + f_.c.name + "': " + failure);
+  double sums[3] = {scales.total(0), scales.total(1), scales.total(2)};
+  if (split_) {
+    // Each process's rows of R made whole on every process (the matrix's rows stay each process's: the
+    // distributed solver reads its own), the scales summed, the failure seen by any.
+    for (Index i = 0; i < f_.cloud.n(); ++i)
+      if (!own(i)) R.segment<3>(3 * i).setZero();
+    mpi_run::combine_disjoint(R.data(), static_cast<Index>(R.size()));
+    mpi_run::sum_in_rank_order(sums, 3);
+    failed = mpi_run::min(failed);
+  }
+  inertia2_out = sums[0];
+  gravity2_out = sums[1];
+  viscous2_out = sums[2];
+  for (Index e = 0; e < ne; ++e) {
+    const auto& t = mesh.tri[e];
+    // An element another process assembled: its particles have mass when its area is positive (pspg_element's
+    // test) and it is not a structure's turned-over pair.
+    const bool elsewhere =
+        split_ && !assembled[e] && !own(t[0]) && !own(t[1]) && !own(t[2]) && mesh.element_area(ev.x, e) > 0.0;
+    if (assembled[e] || elsewhere)
+      for (Index i : t) has_mass[i] = 1;
+  }
+  if (failed < ne) throw SolverError("body '" + f_.c.name + "': " + inverted_message(failed, ev.x));
+}
+
+std::string PspgScheme::inverted_message(Index e, const Vec& x) const {
+  const auto& t = f_.mesh.tri[e];
+  return "element " + std::to_string(e) + " (particles " + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
+         std::to_string(t[2]) + ") inverted during the step at t = " + std::to_string(f_.step.t_new) + " (area " +
+         std::to_string(f_.mesh.element_area(x, e)) + ")";
 }
 
 void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,

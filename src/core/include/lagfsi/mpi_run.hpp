@@ -8,13 +8,17 @@
 /// filling and solving the rows PETSc gives it (LinearSolverSettings::distributed), and the solution is summed
 /// over the processes (each entry comes from one process, the others add zeros: every process receives the same
 /// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints; the others
-/// run quiet. This distributes the linear solves only: the domain decomposition of the particles and the
-/// remeshing (each process meshing its own part with a ghost layer) is not done.
+/// run quiet. The fluid's monolithic scheme also divides its element assembly: each process computes the elements
+/// with a particle in its rows, and the residual's rows are combined over the processes (pspg_scheme.cpp). The
+/// domain decomposition of the particles and the remeshing (each process meshing its own part with a ghost layer)
+/// is not done.
 ///
 /// MPI starts (through PETSc, which owns it) only when an MPI launcher started the program (its environment
 /// variables say so); a program run without one never starts MPI.
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/types.hpp>
+
+#include <utility>
 
 namespace lagfsi::mpi_run {
 
@@ -30,6 +34,18 @@ inline bool writer() { return rank() == 0; }
 /// True on every process when `flag` is true on at least one (a decision all of them must take together: to stop,
 /// to give up).
 bool any(bool flag);
+/// The blocks [first, last) of `blocks` that this process owns in a system spread over the processes: PETSc's
+/// default split (PetscSplitOwnership: blocks / size each, one more for the first blocks % size processes), the
+/// rows a distributed PETSc matrix of that block size gives it (petsc_solver.cpp). All of them with one process.
+std::pair<Index, Index> owned_blocks(Index blocks);
+/// The element-wise sum of `values` (n of them) over the processes, in place, added in rank order on every
+/// process (the same bits everywhere, whatever the MPI library's reduction order).
+void sum_in_rank_order(double* values, int n);
+/// Values each of which only one process holds (the others hold zeros) made whole on every process, in place
+/// (x + 0 is exact: the same bits everywhere).
+void combine_disjoint(double* values, Index n);
+/// The smallest `value` over the processes.
+Index min(Index value);
 /// Stops every process at once with `code` (after a failure only one process saw: process 0's output); returns
 /// with one process.
 void abort_all(int code);

@@ -30,6 +30,8 @@
 #include <atomic>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace lagfsi {
 
@@ -168,6 +170,9 @@ class PetscSolver final : public LinearSolver {
   void do_solve(const Vec& b, Vec& x) override;
 
  private:
+  /// The rows [lo, hi) this process owns in a system of n rows: whole blocks of block_size rows (all rows on one
+  /// process), as PETSc's default split gives them.
+  std::pair<PetscInt, PetscInt> ownership(PetscInt n) const;
   /// A new matrix, vectors and KSP for a new pattern (the rows of R, compressed row storage).
   void create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R);
   /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
@@ -194,10 +199,7 @@ class PetscSolver final : public LinearSolver {
   Vec coordinates_;                      // set_coordinates: the rigid-body near-null space's nodes
 };
 
-void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
-  destroy();
-  const auto n = static_cast<PetscInt>(R.rows());
-  // The rows this process owns (all of them on one process), whole blocks of block_size rows.
+std::pair<PetscInt, PetscInt> PetscSolver::ownership(PetscInt n) const {
   const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
   PetscInt nblocks = n / bs, local_blocks = PETSC_DECIDE, first_block = 0;
   check(PetscSplitOwnership(comm_, &local_blocks, &nblocks), "PetscSplitOwnership");
@@ -205,7 +207,15 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   if (rank == 0) first_block = 0;  // MPI_Exscan leaves the first process's result undefined
-  const PetscInt lo = first_block * bs, hi = lo + local_blocks * bs;
+  return {first_block * bs, (first_block + local_blocks) * bs};
+}
+
+void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
+  destroy();
+  const auto n = static_cast<PetscInt>(R.rows());
+  // The rows this process owns (all of them on one process), whole blocks of block_size rows.
+  const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
+  const auto [lo, hi] = ownership(n);
   check(MatCreate(comm_, &mat_), "MatCreate");
   check(MatSetSizes(mat_, hi - lo, hi - lo, n, n), "MatSetSizes");
   check(MatSetType(mat_, MATAIJ), "MatSetType");
@@ -259,8 +269,31 @@ void PetscSolver::fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscI
 
 void PetscSolver::do_setup(const SparseMatrix& A) {
   if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
-  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R = A;
-  R.makeCompressed();
+  // The rows this process fills, in compressed row storage: a distributed system's own rows only (the others
+  // stay empty; the matrix's other rows may be another process's to assemble), every row otherwise.
+  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R;
+  if (s_.distributed) {
+    const auto n = static_cast<PetscInt>(A.rows());
+    const auto [lo, hi] = ownership(n);
+    std::vector<PetscInt> count(static_cast<size_t>(n) + 1, 0);
+    for (int col = 0; col < A.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (it.row() >= lo && it.row() < hi) ++count[static_cast<size_t>(it.row()) + 1];
+    for (size_t r = 1; r < count.size(); ++r) count[r] += count[r - 1];
+    R.resize(n, n);
+    R.resizeNonZeros(count.back());
+    std::copy(count.begin(), count.end(), R.outerIndexPtr());
+    for (int col = 0; col < A.outerSize(); ++col)  // columns in increasing order: each row's stay sorted
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (it.row() >= lo && it.row() < hi) {
+          const PetscInt at = count[static_cast<size_t>(it.row())]++;
+          R.innerIndexPtr()[at] = col;
+          R.valuePtr()[at] = it.value();
+        }
+  } else {
+    R = A;
+    R.makeCompressed();
+  }
   int same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
              inner_.size() == static_cast<size_t>(R.nonZeros()) &&
              std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&

@@ -18,7 +18,6 @@
 #include <lagfsi/linear_solver_input.hpp>
 #include <lagfsi/mpi_run.hpp>
 #include <lagfsi/parallel_sum.hpp>
-#include <lagfsi/system_assembly.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +116,24 @@ class PspgScheme final : public FluidScheme {
   std::unique_ptr<LinearSolver> solver_;
   /// Particle i's rows are this process's (all of them unless the assembly is split over processes).
   bool own(Index i) const { return i >= own_.first && i < own_.second; }
+  /// fn(row, col, value) on each stored entry of J_ in this process's rows (all of them unless the assembly is
+  /// split: the other rows are other processes' to fill, and the distributed solver reads its own only).
+  template <class Fn>
+  void for_own_entries(const Fn& fn) {
+    const Index lo = 3 * own_.first, hi = 3 * own_.second;
+    const int* outer = J_.outerIndexPtr();
+    const int* inner = J_.innerIndexPtr();
+    double* values = J_.valuePtr();
+    for (Index col = 0; col < J_.outerSize(); ++col) {
+      const int* first = inner + outer[col];
+      const int* last = inner + outer[col + 1];
+      if (split_) {  // each column's rows are sorted
+        first = std::lower_bound(first, last, lo);
+        last = std::lower_bound(first, last, hi);
+      }
+      for (const int* it = first; it != last; ++it) fn(*it, col, values[it - inner]);
+    }
+  }
   /// The message of an element that turned over within the step.
   std::string inverted_message(Index e, const Vec& x) const;
   ElementPattern pattern_;
@@ -147,8 +164,7 @@ IterationReport PspgScheme::iterate() {
   f_.boundaries.set_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   Vec R = Vec::Zero(3 * np);
-  double* jv = J_.valuePtr();
-  std::fill(jv, jv + J_.nonZeros(), 0.0);
+  for_own_entries([](Index, Index, double& value) { value = 0.0; });
   std::vector<char> has_mass(np, 0);
   double inertia2 = 0, gravity2 = 0, viscous2 = 0;
   assemble_elements(ev, cf, R, inertia2, gravity2, viscous2, has_mass);
@@ -316,11 +332,12 @@ double PspgScheme::apply_dirichlet(Vec& R, double sp) {
   // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
   // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
-  dirichlet_identity(
-      J_, [&](Index i) { return fixed[i] != 0; },
-      [&](Index, Index col, double& value) {
-        if (col % 3 == 2) value *= sp;
-      });
+  for_own_entries([&](Index row, Index col, double& value) {
+    if (fixed[row] || fixed[col])
+      value = row == col ? 1.0 : 0.0;
+    else if (col % 3 == 2)
+      value *= sp;
+  });
   // Forces on the ghost particles: the reactions of their prescribed momentum rows, sign flipped (the
   // residual there is the force the structure applies to the fluid).
   Vec& ghost_force = f_.ghosts.forces();

@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+"""Benchmark (not a test): a fluid step over MPI processes against the same step on one process.
+
+Runs `lagfsi run cases/dam_break_tank/case.json` with the spacing h = 0.0073 sqrt(861 / N) for each target particle
+count N and dt scaled with h (as tests/bench/bench_scaling.py), the monolithic scheme with the PETSc solver
+(FGMRES + Schur field split), one thread per process, a few steps from rest: serially (no launcher), under
+`mpirun -np 1` and under `mpirun -np P` for each P given. The processes hold every particle (replicated data,
+src/core/include/lagfsi/mpi_run.hpp); the linear solves and the element assembly are divided among them, the
+remeshing and the particle management are not. Per run, from process 0's log.csv over the steps after the first
+`--warmup`: microseconds per particle-step in all and by phase (remesh, assembly with the combination of the
+residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
+the same size (wall time per step, measured in this one invocation).
+
+usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
+           [--steps 6] [--warmup 2] [--doc docs/running.md]
+--doc: rewrite the table between the markers <!-- bench_mpi begin --> and <!-- bench_mpi end --> of that file.
+Run it on an otherwise idle machine: P processes need P free cores.
+OUTDIR (default BUILD/bench_mpi/) receives bench_mpi.csv and the runs' output folders.
+"""
+import argparse
+import csv
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CASE = os.path.join(REPO, "cases", "dam_break_tank", "case.json")
+H0, N0, DT = 0.0073, 861, 1e-3
+PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
+COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
+           "setup", "solve", "rest", "peak_mb", "speedup"]
+
+
+def run(exe, outdir, launch, processes, n, steps, warmup):
+    h = H0 * (N0 / n) ** 0.5
+    dt = DT * h / H0
+    tag = f"{launch}_np{processes}_n{int(n)}"
+    out = os.path.join(outdir, tag)
+    shutil.rmtree(out, ignore_errors=True)
+    mpi = [] if launch == "serial" else [shutil.which("mpirun") or "mpirun", "--allow-run-as-root", "--oversubscribe",
+                                         "-np", str(processes)]
+    args = (["/usr/bin/time", "-f", "%M"] + mpi +
+            [exe, "run", CASE, "-o", out, "--quiet", "--threads", "1",
+             "--set", f"analysis.dt={dt:.6g}", "--set", f"analysis.end_time={steps * dt + dt / 2:.6g}",
+             "--set", f"bodies.0.spacing={h:.6g}", "--set", "bodies.0.scheme.linear_solver=petsc",
+             "--set", "output.vtk=false", "--set", "output.every=100000"])
+    p = subprocess.run(args, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    if p.returncode != 0:
+        print(f"bench_mpi: {tag} failed: {p.stderr.strip()[-300:]}", file=sys.stderr)
+        return None
+    peak_kb = float(p.stderr.strip().splitlines()[-1])
+    s = json.load(open(os.path.join(out, "summary.json")))
+    rows = list(csv.DictReader(open(os.path.join(out, "log.csv"))))
+    steady = rows[warmup:] if len(rows) > warmup else rows
+    scale = 1e6 / sum(float(r_["nodes"]) for r_ in steady)
+    r = {"launch": launch, "processes": processes, "target": int(n), "particles": s["bodies"][0]["particles"]["final"],
+         "steps": len(steady), "peak_mb": peak_kb / 1024.0,
+         "us_per_particle_step": sum(float(r_["t_step"]) for r_ in steady) * scale}
+    for name, col in PHASES:
+        r[name] = sum(float(r_[col]) for r_ in steady) * scale
+    r["rest"] = r["us_per_particle_step"] - sum(r[name] for name, _ in PHASES)
+    return r
+
+
+def markdown(rows, commit, machine):
+    lines = [f"Measured at {commit} on {machine} (`tests/bench/bench_mpi.py`): the dam break's first steps, the "
+             "monolithic scheme with the PETSc solver, one thread per process; µs per particle-step over the steps "
+             "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
+             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation).", "",
+             "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
+             "| peak MB | speed-up |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
+                     f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
+                     f"{r['solve']:.2f} | {r['rest']:.2f} | {r['peak_mb']:.0f} | {r['speedup']:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
+def publish(rows, doc):
+    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}")
+    print(table)
+    if doc:
+        text = open(doc).read()
+        begin, end = "<!-- bench_mpi begin -->", "<!-- bench_mpi end -->"
+        if begin not in text or end not in text:
+            sys.exit(f"bench_mpi: {doc} has no {begin} ... {end} markers")
+        head, rest = text.split(begin, 1)
+        open(doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("outdir", nargs="?")
+    ap.add_argument("--build", default=os.path.join(REPO, "build"))
+    ap.add_argument("--sizes", nargs="+", type=float, default=[1e5, 1e6])
+    ap.add_argument("--processes", nargs="+", type=int, default=[2])
+    ap.add_argument("--steps", type=int, default=6)
+    ap.add_argument("--warmup", type=int, default=2)
+    ap.add_argument("--doc")
+    a = ap.parse_args()
+    exe = os.path.join(a.build, "lagfsi")
+    outdir = a.outdir or os.path.join(a.build, "bench_mpi")
+    os.makedirs(outdir, exist_ok=True)
+    rows = []
+    for n in a.sizes:
+        size_rows = [run(exe, outdir, "serial", 1, n, a.steps, a.warmup),
+                     run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup)]
+        size_rows += [run(exe, outdir, "mpirun", p, n, a.steps, a.warmup) for p in a.processes]
+        size_rows = [r for r in size_rows if r]
+        base = next((r for r in size_rows if r["launch"] == "mpirun" and r["processes"] == 1), None)
+        for r in size_rows:
+            # Per step: the particle counts of the runs agree (the same mesh at every step).
+            r["speedup"] = base["us_per_particle_step"] / r["us_per_particle_step"] if base else float("nan")
+            print(f"bench_mpi: {r['launch']} np {r['processes']} n {r['particles']}: "
+                  f"{r['us_per_particle_step']:.2f} us/particle-step, speed-up {r['speedup']:.2f}", file=sys.stderr)
+        rows += size_rows
+    with open(os.path.join(outdir, "bench_mpi.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    publish(rows, a.doc)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,6 +1,7 @@
 """An MPI run of a fluid case (mpirun -n P lagfsi run; src/core/include/lagfsi/mpi_run.hpp): replicated data,
 distributed solves. Run by CTest as
-  /usr/bin/python3 test_mpi_run.py LAGFSI MPIEXEC CASE.json WORKDIR
+  /usr/bin/python3 test_mpi_run.py LAGFSI MPIEXEC CASE.json WORKDIR [lagfsi run arguments ...]
+(the extra arguments, e.g. --set key=value, are given to every run).
 Checks, on the first 0.1 s of the case with the PETSc solver:
   - one process under mpirun gives the serial run's probes bit for bit;
   - two and three processes give the serial mesh at every step (log.csv: the same step sizes, nodes and elements)
@@ -15,8 +16,10 @@ import subprocess
 import sys
 
 exe, mpiexec, case, work = sys.argv[1:5]
+extra_args = sys.argv[5:]
 MPI = [mpiexec, "--allow-run-as-root", "--oversubscribe", "-np"]
-COMMON = ["-q", "--threads", "1", "--set", "analysis.end_time=0.1", "--set", "bodies.0.scheme.linear_solver=petsc"]
+COMMON = ["-q", "--threads", "1", "--set", "analysis.end_time=0.1",
+          "--set", "bodies.0.scheme.linear_solver=petsc"] + extra_args
 failures = []
 
 

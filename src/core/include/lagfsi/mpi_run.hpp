@@ -8,8 +8,9 @@
 /// filling and solving the rows PETSc gives it (LinearSolverSettings::distributed), and the solution is summed
 /// over the processes (each entry comes from one process, the others add zeros: every process receives the same
 /// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints; the others
-/// run quiet. The fluid's monolithic scheme also divides its element assembly: each process computes the elements
-/// with a particle in its rows, and the residual's rows are combined over the processes (pspg_scheme.cpp). The
+/// run quiet. The fluid's schemes also divide their element assembly: each process computes the elements with a
+/// particle in its rows, and the per-particle sums (the residual, the fractional step's forces) are combined over
+/// the processes (pspg_scheme.cpp, fractional_step.cpp). The
 /// domain decomposition of the particles and the remeshing (each process meshing its own part with a ghost layer)
 /// is not done.
 ///

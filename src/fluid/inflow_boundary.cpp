@@ -1,11 +1,14 @@
 // An inflow: a segment through which water enters the fluid at a prescribed velocity. With the segment from a to b
 // (length L, unit tangent t, unit normal n towards the fluid: the side the velocity points to) and the coordinate
 // s = (x - a).t / L in [0, 1], the inflow velocity is
-//   u(s, t) = U phi(s) f(t),   phi = 1 ("uniform") or 6 s (1 - s) ("parabolic": zero at the ends, mean 1, peak 3/2),
-// with U the case's mean velocity and f its time function (1 without one). Every fluid particle in the inlet layer
-// (depth d = (x - a).n in [-h/2, h), s in [0, 1]) follows u over the step in both components (a Dirichlet condition
-// on its motion, as a moving lid's), and its pressure stays an unknown with its continuity equation: the layer is a
-// boundary of the mesh, not a free surface.
+//   u(s, t) = U phi(s) f(t),   phi = 1 ("uniform") or 6 s (1 - s) ("parabolic": zero at the ends, mean 1, peak 3/2)
+//                             or g(s) / int_0^1 g ds ("table": g interpolated linearly in the case's points (s, f),
+//                             constant beyond the first and last; normalized to mean 1 by its exact integral),
+// with U the case's mean velocity and f its time function (1 without one): every profile has mean int_0^1 phi ds = 1,
+// so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. Every fluid particle
+// in the inlet layer (depth d = (x - a).n in [-h/2, h), s in [0, 1]) follows u over the step in both components (a
+// Dirichlet condition on its motion, as a moving lid's), and its pressure stays an unknown with its continuity
+// equation: the layer is a boundary of the mesh, not a free surface.
 //
 // Injection (after each step): the segment is divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the
 // spacing of a structured region that starts at the segment). Each lane adds up the distance its inflow velocity
@@ -14,13 +17,16 @@
 // particle's pressure: particles enter in layers at exactly the rate the profile carries them, as in the inflows of
 // Kratos' PFEM and of PFEM-2 (Idelsohn et al. 2013). A lane whose inflow velocity is zero (a parabolic profile's
 // ends, which walls hold) gets none. The area that entered is the profile's flux, u_n L int f dt (summary.json also
-// counts the particles, each lane's width times h). The strip
+// counts the particles, each lane's width times h: the trapezoidal rule of phi on the lanes, which is 1 - 1/N^2 of
+// the flux for the parabola and 1 for a table whose points are among the lanes'). The strip
 // of depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that the
 // elements joining a new layer to the flow are kept.
 #include "fluid_boundary.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 namespace lagfsi::fluid {
 
@@ -36,23 +42,108 @@ const KeyTable kInflowKeys(
      {"velocity", nullptr,
       "The mean inflow velocity [u, v] (m/s) over the segment, scaled by the profile and the function; it must "
       "point off the segment, into the fluid."},
-     {"profile", "uniform",
-      "`uniform` (the velocity everywhere) or `parabolic` (6 s (1 - s) times it along the segment: zero at its "
-      "ends, 1.5 times the mean at its middle: a channel's Poiseuille profile)."},
+     {"profile", Json{{"type", "uniform"}},
+      "The velocity's shape phi(s) along the segment (s from 0 at its first point to 1 at its second), mean 1: "
+      "`uniform` (the velocity everywhere), `parabolic` (6 s (1 - s): zero at its ends, 1.5 times the mean at its "
+      "middle: a channel's Poiseuille profile) or a table (see /bodies/*/boundaries/*/profile (fluid body, inflow, "
+      "type "
+      "table)); a string is short for {\"type\": ...}."},
      {"function", Json::object(),
       "A time function f(t) scaling the velocity (see time function (type ...)), e.g. a smooth start; default {}: "
       "1."}});
 
+const KeyTable kBuiltInProfileKeys("/bodies/*/boundaries/*/profile (fluid body, inflow, type uniform or parabolic)",
+                                   "A built-in profile: uniform (phi = 1) or parabolic (phi = 6 s (1 - s)).",
+                                   {{"type", "uniform", "`uniform` or `parabolic`."}});
+
+const KeyTable kTableProfileKeys(
+    "/bodies/*/boundaries/*/profile (fluid body, inflow, type table)",
+    "A profile f(s) given at points s along the segment, interpolated linearly between them and constant beyond "
+    "the first and last; the inflow divides it by its integral over [0, 1], so that its mean is 1 and the "
+    "inflow's velocity stays the mean velocity (only the shape counts: f may be in any unit, e.g. a measured "
+    "velocity profile in m/s).",
+    {{"type", "table", "`table`."},
+     {"s", nullptr,
+      "The points' positions along the segment, from 0 (its first point) to 1 (its second), increasing; at least "
+      "two."},
+     {"f", nullptr, "The profile's values at the points (as many as s), not negative, not all zero."}});
+
+/// The normalized profile phi(s) of an inflow (mean 1 over [0, 1]), read from its "profile": an object with a
+/// "type", or its type's name alone (expand_shorthand, before the inflow's keys are validated, makes it the object,
+/// so that `lagfsi check` prints one form).
+class InflowProfile {
+ public:
+  static void expand_shorthand(Json& inflow) {
+    if (inflow.is_object() && inflow.contains("profile") && inflow.at("profile").is_string())
+      inflow["profile"] = Json{{"type", inflow.at("profile")}};
+  }
+
+  InflowProfile() = default;
+  /// `inflow`: the inflow's object, validated.
+  explicit InflowProfile(const Params& inflow) {
+    Params p = inflow.at("profile");
+    if (!p.has("type")) p.fail("type", "required key is missing (uniform, parabolic or table)");
+    const std::string type = p.choice("type", {"uniform", "parabolic", "table"});
+    if (type != "table") {
+      p.validate(kBuiltInProfileKeys);
+      parabolic_ = type == "parabolic";
+      return;
+    }
+    p.validate(kTableProfileKeys);
+    read_table(p);
+  }
+
+  double operator()(double s) const {
+    if (s_.empty()) return parabolic_ ? 6.0 * s * (1.0 - s) : 1.0;
+    if (s <= s_.front()) return f_.front();
+    if (s >= s_.back()) return f_.back();
+    const size_t k = static_cast<size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin());
+    const double w = (s - s_[k - 1]) / (s_[k] - s_[k - 1]);
+    return (1 - w) * f_[k - 1] + w * f_[k];
+  }
+
+ private:
+  /// The table's points, checked, and its values divided by the exact integral of the linear interpolant over
+  /// [0, 1] (the trapezoidal rule between the points, rectangles beyond them).
+  void read_table(const Params& p) {
+    s_ = p.numbers("s");
+    f_ = p.numbers("f");
+    if (s_.size() < 2) p.fail("s", "needs at least two points");
+    if (f_.size() != s_.size())
+      p.fail("f", "has " + std::to_string(f_.size()) + " values for " + std::to_string(s_.size()) + " points in s");
+    for (size_t k = 0; k < s_.size(); ++k) {
+      std::string at = std::to_string(k);  // (not "/" + ...: a false -Wrestrict of GCC 12, bug 105329)
+      at.insert(0, 1, '/');
+      if (s_[k] < 0 || s_[k] > 1) p.fail("s" + at, "must lie in [0, 1] (found " + number_text(s_[k]) + ")");
+      if (k > 0 && !(s_[k] > s_[k - 1])) p.fail("s" + at, "must be greater than the point before it");
+      if (f_[k] < 0) p.fail("f" + at, "must not be negative (found " + number_text(f_[k]) + ")");
+    }
+    double mean = f_.front() * s_.front() + f_.back() * (1 - s_.back());
+    for (size_t k = 1; k < s_.size(); ++k) mean += 0.5 * (f_[k] + f_[k - 1]) * (s_[k] - s_[k - 1]);
+    if (!(mean > 0)) p.fail("f", "must not be zero everywhere (the flux would be zero)");
+    for (double& f : f_) f /= mean;
+  }
+  static std::string number_text(double x) {
+    std::ostringstream o;
+    o << x;
+    return o.str();
+  }
+
+  bool parabolic_ = false;
+  std::vector<double> s_, f_;  // a table: its points and its normalized values (empty: built in)
+};
+
 class Inflow final : public FluidBoundary {
  public:
   Inflow(Params p, const BoundaryContext& ctx) : h_(ctx.h) {
+    InflowProfile::expand_shorthand(p.json());
     p.validate(kInflowKeys, {{"name", ctx.name}});
     seg_ = BoundarySegment(p, 0.5 * h_, "shorter than half a particle spacing");
     u_ = p.vec2("velocity");
     const double un = u_.dot(seg_.normal);
     if (!(std::abs(un) > 1e-3 * u_.norm())) p.fail("velocity", "must point off the segment (into the fluid)");
     if (un < 0) seg_.normal = -seg_.normal;
-    parabolic_ = p.choice("profile", {"uniform", "parabolic"}) == "parabolic";
+    profile_ = InflowProfile(p);
     fn_ = BoundaryFunction(p, ctx.base_dir);
     lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(seg_.length / h_)));
   }
@@ -154,7 +245,7 @@ class Inflow final : public FluidBoundary {
     }
     return p;
   }
-  double profile(double s) const { return parabolic_ ? 6.0 * s * (1.0 - s) : 1.0; }
+  double profile(double s) const { return profile_(s); }
   double value(double t) const { return fn_.value(t); }
   double integral(double t) const { return fn_.integral(t); }
   double rate(double t) const { return fn_.rate(t); }
@@ -162,7 +253,7 @@ class Inflow final : public FluidBoundary {
   double h_;
   BoundarySegment seg_;  // the normal towards the fluid
   Vec2 u_;
-  bool parabolic_ = false;
+  InflowProfile profile_;
   BoundaryFunction fn_;
   Index lanes_ = 1;
   double t0_ = 0;

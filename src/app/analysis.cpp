@@ -152,8 +152,11 @@ void start_or_resume(Simulation& sim, Case& c, const RunOptions& opt, std::uniqu
   sim.start();
 }
 
-/// Runs the loop; an error becomes the run's status, message and exit code.
-int run_loop(Simulation& sim, const std::function<void()>& body, SummaryWriter::Status& status) {
+/// Runs the loop; an error becomes the run's status, message and exit code. The message of an input error in the
+/// case file (one the run finds, e.g. an inflow into water with no way out) leaves out the file, which the error's
+/// line names already.
+int run_loop(Simulation& sim, const std::function<void()>& body, SummaryWriter::Status& status,
+             const std::string& case_file) {
   try {
     body();
     return kOk;
@@ -166,7 +169,8 @@ int run_loop(Simulation& sim, const std::function<void()>& body, SummaryWriter::
     sim.end(RunEnd::failed);
     return kSolverError;
   } catch (const InputError& e) {
-    status.message = e.what();
+    status.message =
+        e.file() == case_file ? (e.json_path().empty() ? "/" : e.json_path()) + ": " + e.reason() : e.what();
     sim.end(RunEnd::failed);
     return kInputError;
   } catch (const std::bad_alloc&) {
@@ -273,7 +277,7 @@ int run_case(const RunOptions& opt) {
         });
         sim.end(sim.finished() ? RunEnd::completed : RunEnd::stopped);
       },
-      status);
+      status, opt.case_file.string());
   if (code != kOk) std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << status.message << "\n";
   // Process 0's output failed (the only failure the processes do not all see): the others are stopped with it.
   if (code == kOutputError) mpi_run::abort_all(code);

@@ -175,6 +175,16 @@ void FluidBoundaries::clear_free_surface(std::vector<std::uint8_t>& free) const 
     if (list_[index(k)]->holds_pressure() && static_cast<size_t>(k.i) < free.size()) free[static_cast<size_t>(k.i)] = 0;
 }
 
+std::vector<int> FluidBoundaries::inlets(const ParticleCloud& cloud) const {
+  std::vector<int> out(static_cast<size_t>(cloud.n()), -1);
+  for (size_t b = 1; b < list_.size(); ++b)
+    if (list_[b]->open())
+      for (Index i = 0; i < cloud.n(); ++i)
+        if (out[static_cast<size_t>(i)] < 0 && list_[b]->in_inlet(cloud.pos(i)))
+          out[static_cast<size_t>(i)] = static_cast<int>(b) - 1;
+  return out;
+}
+
 void FluidBoundaries::fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,
                                           std::vector<char>& fixed) const {
   for (const auto& b : list_)

@@ -89,6 +89,11 @@ class FluidBoundaries {
   /// The particles held by a boundary that keeps their pressure unknown are not free surface (`free`, per
   /// particle); the step's constraints (update) must be current.
   void clear_free_surface(std::vector<std::uint8_t>& free) const;
+  /// Per particle: the index among the case's boundaries of the inflow in whose inlet layer it lies
+  /// (FluidBoundary::in_inlet: held by it, or by a wall at its ends), or -1.
+  std::vector<int> inlets(const ParticleCloud& cloud) const;
+  /// The name of the case's boundary j (/bodies/i/boundaries/j).
+  const std::string& name(int j) const { return names_[static_cast<size_t>(j)]; }
   /// An outflow's particles on the mesh's boundary (`free`) take p = 0: their pressure components of `fixed` (3 per
   /// particle) are set.
   void fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,

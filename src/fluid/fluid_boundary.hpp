@@ -196,6 +196,12 @@ class FluidBoundary {
     (void)x;
     return false;
   }
+  /// An inflow: whether x lies in its inlet layer (where it holds the fluid particles, and where the walls at its
+  /// ends hold them). None by default.
+  virtual bool in_inlet(const Vec2& x) const {
+    (void)x;
+    return false;
+  }
   /// Water enters or leaves through it (an inflow, an outflow).
   virtual bool open() const { return false; }
   /// The particles it holds keep their pressure unknown and their continuity equation: they are not free surface

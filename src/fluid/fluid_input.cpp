@@ -384,7 +384,8 @@ void FluidModel::build_particles(Params b) {
   PointGrid wall_grid(0.5 * h), fluid_grid(0.5 * h);  // the particles so far, for the proximity tests
   if (auto* particles = dynamic_cast<WallParticles*>(&fluid_walls))
     particles->place_particles(walls, h, pts, kind, wall_grid);
-  boundaries_.read(b.at("boundaries"), {h, ctx_.base_dir, ""});
+  boundaries_input_ = b.at("boundaries");
+  boundaries_.read(boundaries_input_, {h, ctx_.base_dir, ""});
   if (boundaries_.open()) {
     if (!c_.remesh) b.fail("boundaries", "an inflow or outflow needs \"remesh\": true");
     if (volume_.type() == VolumeCorrection::Type::particle)

@@ -7,6 +7,7 @@
 #include "fluid_model_impl.hpp"
 
 #include "fluid_probes.hpp"
+#include "pressure_level.hpp"
 
 #include <lagfsi/geometry2d.hpp>
 
@@ -49,6 +50,16 @@ void FluidModel::set_dirichlet(double t_start) {
     for (Index i = 0; i < np; ++i)
       if (kind[i] != ParticleKind::Fluid && !wet[i]) fixed[3 * i + 2] = 1;
   }
+  // Incompressible water enclosed by walls: its level pinned, or an inflow into it refused.
+  if (c_.bulk > 0) return;
+  const PressureLevelParts level =
+      anchor_pressure_level(mesh_, cloud_, mesh_.free, boundaries_.inlets(cloud_), c_.gravity, c_.bulk, fixed);
+  if (level.inflow >= 0)
+    boundaries_input_.fail(std::to_string(level.inflow),
+                           "body '" + c_.name + "': the inflow '" + boundaries_.name(level.inflow) +
+                               "' feeds water enclosed by walls (no free surface, no outflow) that is incompressible "
+                               "(\"bulk_modulus\": 0): the water it brings has nowhere to go; add an outflow, leave "
+                               "the water a free surface, or give the scheme a bulk_modulus");
 }
 
 void FluidModel::hold(double t) {

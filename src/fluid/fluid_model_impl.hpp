@@ -120,7 +120,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// The particles, the walls and the initial state from the case (fluid_input.cpp).
   void build_particles(Params b);
   /// Dirichlet flags of the step (step_.fixed): wall positions, slip constraints, free-surface and
-  /// unconnected pressures.
+  /// unconnected pressures, and the pressure level of incompressible water that no boundary sets
+  /// (pressure_level.hpp; an inflow into such water is an InputError at its boundary).
   void set_dirichlet(double t_start);
   /// The boundaries find the particles they hold at time t; where they hold those they find on them (walls as
   /// constraints), the free surface is marked again (a held particle is not free surface) and they settle on it.
@@ -135,6 +136,7 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   ParticleCloud cloud_;
   FluidMesh mesh_;
   FluidBoundaries boundaries_;  // the walls and the case's other boundaries (fluid_boundaries.hpp)
+  Params boundaries_input_;     // /bodies/i/boundaries (the errors found at a step name its entries)
   Ghosts ghosts_;
   VolumeCorrection volume_{c_, cloud_, mesh_};
   RemeshPipeline remesh_{c_, cloud_, mesh_, ghosts_};

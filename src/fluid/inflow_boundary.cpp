@@ -150,6 +150,11 @@ class Inflow final : public FluidBoundary {
 
   bool open() const override { return true; }
   bool holds_pressure() const override { return true; }
+  bool in_inlet(const Vec2& x) const override {
+    const Vec2 q = x - seg_.a;
+    const double s = q.dot(seg_.tangent) / seg_.length, d = q.dot(seg_.normal);
+    return s >= -1e-9 && s <= 1 + 1e-9 && d >= -0.5 * h_ && d < h_ * (1 - 1e-9);
+  }
 
   void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
                  std::vector<BoundaryConstraint>& out) override {
@@ -158,9 +163,8 @@ class Inflow final : public FluidBoundary {
     long held = 0;
     for (Index i = 0; i < cloud.n(); ++i) {
       if (!cloud.is_fluid(i) || taken[static_cast<size_t>(i)]) continue;
-      const Vec2 q = cloud.pos(i) - seg_.a;
-      const double s = q.dot(seg_.tangent) / seg_.length, d = q.dot(seg_.normal);
-      if (s < -1e-9 || s > 1 + 1e-9 || d < -0.5 * h_ || d >= h_ * (1 - 1e-9)) continue;
+      if (!in_inlet(cloud.pos(i))) continue;
+      const double s = (cloud.pos(i) - seg_.a).dot(seg_.tangent) / seg_.length;
       held_velocity_[static_cast<size_t>(i)] = u_ * profile(s);
       out.push_back({i, 0, cloud.pos(i).x()});
       out.push_back({i, 1, cloud.pos(i).y()});

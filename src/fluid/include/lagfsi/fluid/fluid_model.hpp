@@ -19,6 +19,7 @@
 ///  - conservative remeshing: the advected domain, particle management  particle_management.cpp
 ///  - area bookkeeping and the volume corrections ("surface", "source") volume_correction.hpp, .cpp
 ///  - energies: kinetic, potential, gravity work, dissipation, boundary work   fluid_energy.hpp, .cpp
+///  - the pressure level of incompressible water no boundary sets        pressure_level.hpp, .cpp
 ///  - the schemes, chosen once per body (fluid_scheme.hpp): monolithic PSPG (pspg_scheme.cpp), fractional
 ///    step (fractional_step.cpp); the element kernel                     fluid_element.cpp (fluid_element.hpp)
 ///  - reading the body from the case                                     fluid_input.cpp, point_grid.hpp

@@ -1,0 +1,125 @@
+// Water enclosed by walls, with no free surface and no outflow (src/fluid/pressure_level.hpp): with the
+// incompressible continuity ("bulk_modulus": 0) its pressure is defined up to a constant.
+//  - Still water in a closed box 0.1 x 0.1 m (h = 0.01 m) gets its level pinned at its highest particle: its
+//    pressure is hydrostatic, rho g H = 981 Pa at the floor and zero at the top. Before, the monolithic scheme's
+//    direct solver returned an arbitrary level (2.2e5 Pa at the top after 0.2 s) and the fractional step's Cholesky
+//    factorization of the pure-Neumann Poisson matrix failed at the first step.
+//  - An inflow into such water (a pipe closed at its far end) is refused at the first step, in one line naming the
+//    inflow and the cures: the water it brings has nowhere to go. Before, the monolithic scheme ran on, the two
+//    particles the walls hold at the inlet's ends taking p = 0 (the free-surface marking of the edge along the
+//    inlet) and the pressure rising without bound.
+//  - A channel with an outflow keeps the outflow's level (nothing pinned): the same pressures with bulk_modulus 0 as
+//    with the default.
+#include "case_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace {
+
+using namespace lagfsi::testing;
+
+constexpr double kRhoGH = 1000.0 * 9.81 * 0.1;
+
+/// The closed box, with the body's extra keys `body` (after "walls").
+std::string box(const std::string& body, double end_time) {
+  return R"({
+    "name": "box",
+    "analysis": {"type": "dynamic", "dt": 0.01, "end_time": )" +
+         std::to_string(end_time) + R"(},
+    "gravity": [0.0, -9.81],
+    "bodies": [{
+      "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.01,
+      "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.1, 0.1]}],
+      "walls": [{"name": "box", "points": [[0, 0], [0.1, 0], [0.1, 0.1], [0, 0.1], [0, 0]]}])" +
+         body + R"(
+    }],
+    "probes": [
+      {"name": "p_floor", "type": "pressure", "body": "water", "from": [0.0, 0.0], "to": [0.1, 0.0]},
+      {"name": "p_lid", "type": "pressure", "body": "water", "from": [0.0, 0.1], "to": [0.1, 0.1]},
+      {"name": "max_speed", "type": "max_speed", "body": "water"}],
+    "output": {"every": 100000, "vtk": false}
+  })";
+}
+
+/// The mean of column c over t >= t0.
+double mean_from(const Csv& p, const std::string& c, double t0) {
+  double sum = 0;
+  int n = 0;
+  for (size_t k = 0; k < p["time"].size(); ++k)
+    if (p["time"][k] >= t0 - 1e-9) {
+      sum += p[c][k];
+      ++n;
+    }
+  return n > 0 ? sum / n : 0.0;
+}
+
+TEST(ConfinedFlow, StillWaterInAClosedBoxIsHydrostaticAndZeroAtItsTop) {
+  // The monolithic scheme's defaults (walls as constraints: the particles on the lid are the water's top).
+  const RunResult r = run_case_text(fresh_dir("confined_box"), box(R"(, "scheme": {"bulk_modulus": 0})", 0.2));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  // Measured: 980.8 and 0.0004 Pa at 0.2 s, the first steps' oscillation (1062 / 933 Pa) decaying.
+  EXPECT_NEAR(p["p_floor"].back(), kRhoGH, 0.005 * kRhoGH);
+  EXPECT_NEAR(p["p_lid"].back(), 0.0, 0.001 * kRhoGH);
+  for (double v : p["max_speed"]) EXPECT_LT(v, 0.005);
+}
+
+TEST(ConfinedFlow, StillWaterInAClosedBoxRunsWithTheFractionalStep) {
+  // The fractional step's defaults (wall particles): the highest fluid particles are a spacing below the lid's
+  // particles, which take -rho g h.
+  const RunResult r = run_case_text(fresh_dir("confined_box_fractional_step"),
+                                    box(R"(, "scheme": {"type": "fractional_step", "bulk_modulus": 0})", 0.2));
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  // Measured over 0.1-0.2 s: 860 and -94 Pa (rho g (H - h) = 883 and -rho g h = -98), the wall particles' noise.
+  EXPECT_NEAR(mean_from(p, "p_floor", 0.1) - mean_from(p, "p_lid", 0.1), kRhoGH, 0.05 * kRhoGH);
+  EXPECT_NEAR(mean_from(p, "p_lid", 0.1), -0.1 * kRhoGH, 0.03 * kRhoGH);
+}
+
+TEST(ConfinedFlow, AnInflowIntoWaterWithNoWayOutIsAnErrorNamingTheInflow) {
+  for (const std::string scheme : {"monolithic_pspg", "fractional_step"}) {
+    const std::string text = R"({
+      "name": "pipe",
+      "analysis": {"type": "dynamic", "dt": 0.01, "end_time": 0.1},
+      "gravity": [0.0, 0.0],
+      "bodies": [{
+        "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1.0, "spacing": 0.01,
+        "regions": [{"type": "rectangle", "origin": [0, 0], "size": [0.3, 0.1]}],
+        "walls": [{"name": "pipe", "points": [[0, 0], [0.3, 0], [0.3, 0.1], [0, 0.1]]}],
+        "wall_friction": "held",
+        "boundaries": [{"type": "inflow", "name": "inlet", "segment": [[0, 0], [0, 0.1]], "velocity": [0.05, 0],
+                        "profile": "parabolic"}],
+        "scheme": {"type": ")" +
+                             scheme + R"(", "bulk_modulus": 0}
+      }],
+      "output": {"every": 100000, "vtk": false}
+    })";
+    const RunResult r = run_case_text(fresh_dir("confined_pipe_" + scheme), text);
+    EXPECT_EQ(r.exit_code, 2) << scheme;
+    EXPECT_NE(r.stderr_text.find(": /bodies/0/boundaries/0: body 'water': the inflow 'inlet' feeds water enclosed "
+                                 "by walls"),
+              std::string::npos)
+        << r.stderr_text;
+    EXPECT_NE(r.stderr_text.find("add an outflow, leave the water a free surface, or give the scheme a bulk_modulus"),
+              std::string::npos)
+        << r.stderr_text;
+    EXPECT_EQ(r.stderr_text.find("case.json: case.json"), std::string::npos) << r.stderr_text;  // the file once
+  }
+}
+
+TEST(ConfinedFlow, AnIncompressibleChannelTakesItsLevelFromTheOutflow) {
+  const std::vector<std::string> sets = {"analysis.end_time=0.5"};
+  const RunResult k = run_case_file("cases/channel_poiseuille/case.json", "confined_channel", sets);
+  const RunResult i = run_case_file("cases/channel_poiseuille/case.json", "confined_channel_incompressible",
+                                    {"analysis.end_time=0.5", "bodies.0.scheme.bulk_modulus=0"});
+  ASSERT_EQ(k.exit_code, 0) << k.stderr_text;
+  ASSERT_EQ(i.exit_code, 0) << i.stderr_text;
+  const Csv pk = read_csv(k.out_dir / "probes.csv"), pi = read_csv(i.out_dir / "probes.csv");
+  // The outlet's p = 0 sets both levels: the pressures near it agree to the compressibility's effect.
+  EXPECT_NEAR(pi["p_out"].back(), pk["p_out"].back(), 0.05);
+  EXPECT_NEAR(pi["p_in"].back(), pk["p_in"].back(), 0.05);
+}
+
+}  // namespace

@@ -20,6 +20,9 @@ writer of those values and of the README tables that show them.
   claims.py list
       Lists the cases with an expected.json, their tier size and run count.
 
+A run with "tier": false is left out of the `cases` tier (check --tier skips it, its plots and their quantities):
+a run too long for the tier, checked at full size by `claims.py check CASE`.
+
 Quantity sources ("from"):
   {"probe": RUN, "column": C, "op": "last"|"first"|"min"|"max"|"absmax"|"at"|"mean"|"time_of_min"|"time_of_max",
    "t": T (op "at"), "t0": A, "t1": B (window for min/max/mean...)}
@@ -78,6 +81,9 @@ def run_case(case, e, exe, out, tier, extra_sets, log):
     """Runs every run of the case and every plot; returns {run: out_dir}, {plot: metrics}, {run: wall seconds}."""
     dirs, walls = {}, {}
     for name, r in e["runs"].items():
+        if tier and r.get("tier", True) is False:
+            log("  run %-10s skipped (not in the tier)" % name)
+            continue
         d = os.path.join(out, name)
         os.makedirs(os.path.dirname(d), exist_ok=True)
         if os.path.exists(d):
@@ -102,6 +108,8 @@ def run_case(case, e, exe, out, tier, extra_sets, log):
         mfile = os.path.join(out, "metrics_%s.json" % pl["name"])
         if os.path.exists(mfile):
             os.remove(mfile)
+        if any(a in e["runs"] and a not in dirs for a in pl.get("args", [])):
+            continue  # a plot of a run left out of the tier
         args = [dirs[a] if a in dirs else a for a in pl.get("args", [])]
         env = dict(os.environ, LAGFSI_METRICS=mfile, MPLBACKEND="Agg", PYTHONDONTWRITEBYTECODE="1")
         p = subprocess.run(["/usr/bin/python3", os.path.join(CASES, case, pl.get("script", "plot.py"))] + args,
@@ -186,6 +194,17 @@ def drift_ok(q, v, recorded):
     return abs(v - recorded) <= max(d["rel"] * abs(recorded), d["abs"])
 
 
+def skipped(q, e, dirs, metrics):
+    """Whether q comes from a run (or a plot of one) that run_case left out (a run not in the tier)."""
+    src = q["from"]
+    run = src.get("probe", src.get("summary"))
+    if run is not None:
+        return run in e["runs"] and run not in dirs
+    plot = next((pl for pl in e.get("plots", []) if pl["name"] == src.get("plot")), None)
+    return plot is not None and src["plot"] not in metrics and any(
+        a in e["runs"] and a not in dirs for a in plot.get("args", []))
+
+
 def cmd_check(args):
     failed = 0
     for case in args.cases:
@@ -195,6 +214,9 @@ def cmd_check(args):
         dirs, metrics, _ = run_case(case, e, args.exe, os.path.join(args.out, case), tier, args.set, print)
         reduced = tier and e.get("tier", {}).get("size", "full") != "full"
         for q in e["quantities"]:
+            if skipped(q, e, dirs, metrics):
+                print("  skip %-28s (its run is not in the tier)" % q["name"])
+                continue
             try:
                 v = extract(q, dirs, metrics)
             except (ClaimsError, KeyError, IndexError, ValueError) as ex:
@@ -293,10 +315,15 @@ def case_table(case, e):
             s += ", %.1f s" % r["cpu_time"]
         runs.append("%s: %s" % (name, s))
     tier = e.get("tier", {})
+    out_of_tier = [name for name, r in e["runs"].items() if r.get("tier", True) is False]
     lines = rows + ["", "Runs (one thread; CPU time when recorded): " + "; ".join(runs) + "."]
     if tier.get("size", "full") != "full":
         lines.append("The `cases` test tier runs a reduced size (%s) and checks the values it recorded there; the "
                      "claims above are checked at full size by `scripts/claims.py check %s`." % (tier.get("note", ""), case))
+    elif out_of_tier:
+        lines.append("The `cases` test tier (`ctest -L cases`) runs this at full size and checks every line but those "
+                     "of the run%s %s, which it leaves out (too long for it): `scripts/claims.py check %s` checks them."
+                     % ("s" if len(out_of_tier) > 1 else "", ", ".join(out_of_tier), case))
     else:
         lines.append("The `cases` test tier (`ctest -L cases`) runs this at full size and checks every line.")
     return "\n".join(lines)

@@ -2,8 +2,8 @@
 outline cut into segments of about h, the fluid region's hole following the same points), with the flag an
 elastic solid coupled to the fluid instead of a rigid wall; one file per resolution: case.json (h = 0.01 m),
 case_coarse.json (h = 0.02 m), case_fine.json (h = 0.007 m), each with dt = min(h, 0.01) s and 12 s of flow (the flag
-settles after about 3.5 s).
-Usage: /usr/bin/python3 cases/turek_hron_fsi1/make_case.py (rewrites the three)."""
+settles after about 3.5 s); and case_shell.json, case.json with the flag as shell elements (shell_case).
+Usage: /usr/bin/python3 cases/turek_hron_fsi1/make_case.py (rewrites the four)."""
 import importlib.util
 import json
 import os
@@ -65,6 +65,35 @@ def case(h, dt, end_time, tag):
     return c
 
 
+def shell_case(h, dt, end_time, tag, elements=10):
+    """FSI1 with the flag as positional shell elements (cases/*_shell): its mid-line y = 0.2 m from the root section,
+    whose corners are the flag's on the cylinder (x = 0.2497 m), to the tip (0.6, 0.2), thickness 0.02 m, `elements`
+    cubic elements, clamped at the root (position and section held, as the T10 flag's arc inside the cylinder). The
+    shell's faces (eta = +-1/2) are the triangles' flag's faces, so that the fluid and the interface (the same
+    polyline: lower face, end, upper face) are the main case's."""
+    c = case(h, dt, end_time, tag)
+    water, solid = c["bodies"]
+    root = c["couplings"][0]["interface"]["points"][0][0]
+    assert abs(root - c["couplings"][0]["interface"]["points"][-1][0]) < 1e-12
+    shell = {
+        "name": "flag",
+        "type": "shell",
+        "material": solid["material"],
+        "thickness": FLAG_T,
+        "geometry": {"type": "line", "from": [root, YC], "to": TIP},
+        "mesh": {"elements": elements, "order": 3},
+        "boundary_conditions": [{"type": "fixed", "select": {"type": "point", "at": [root, YC]}}],
+    }
+    c["bodies"] = [water, shell]
+    c["name"] = "turek_hron_fsi1_shell"
+    c["description"] = ("Turek & Hron (2006) FSI1 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
+                        "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
+                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, rho = 1000, "
+                        "mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 0.2 m/s (Re = 20): drag, "
+                        "lift, the tip's displacement (%s)" % (elements, tag))
+    return c
+
+
 def variant(test, reynolds, mean_speed, material, flag_text, h, dt, end_time, tag):
     """FSI1's case with another mean inflow speed (m/s) and the flag's material keys changed (`material`): the
     periodic tests FSI2 and FSI3; `flag_text` describes the flag's material."""
@@ -86,3 +115,5 @@ if __name__ == "__main__":
     for name, h, dt in (("case.json", 0.01, 0.01), ("case_coarse.json", 0.02, 0.01), ("case_fine.json", 0.007, 0.007)):
         with open(os.path.join(here, name), "w") as f:
             f.write(cfd1.compact(json.dumps(case(h, dt, 12.0, "h = %g m, dt = %g s" % (h, dt)), indent=2)) + "\n")
+    with open(os.path.join(here, "case_shell.json"), "w") as f:
+        f.write(cfd1.compact(json.dumps(shell_case(0.01, 0.01, 12.0, "h = 0.01 m, dt = 0.01 s"), indent=2)) + "\n")

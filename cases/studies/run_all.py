@@ -14,7 +14,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 # Cheapest first (full-mode wall time on the 2-core machine, see README.md).
-STUDIES = ["adaptivity", "conservation", "efg", "added_mass", "alpha_sensitivity", "convergence", "stability_map", "accuracy_walltime",
+STUDIES = ["wall_pressure", "adaptivity", "conservation", "efg", "added_mass", "alpha_sensitivity", "convergence", "stability_map", "accuracy_walltime",
            "dem_blast"]
 
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])

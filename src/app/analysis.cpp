@@ -107,6 +107,7 @@ struct RunOutputs {
                       RunPosition{case_hash(c.root.json()), 0, 0, -1, 0, 0, threads}, all_models(c), probe_list(c),
                       &probes, &log, &series, start}),
         series(c.vtk, c.output_every),
+        pieces(c.vtk, c.output_every, true),
         report(progress, c.name, start),
         summary({c.ctx.out_dir / "summary.json", opt.case_file, c.name, c.warnings, threads, &checkpointer,
                  restarted_step, start},
@@ -125,6 +126,7 @@ struct RunOutputs {
   RunLog log;
   Checkpointer checkpointer;
   VtkSeries series;
+  VtkSeries pieces;  // the other MPI processes' series: the models that write a piece each
   ProgressReport report;
   SummaryWriter summary;
 };
@@ -266,7 +268,10 @@ int run_case(const RunOptions& opt) {
   SummaryWriter::Status status;
   Simulation sim(c.ctx.analysis, pointers(c.models), pointers(c.couplings), c.steppers);
   RunOutputs outputs(c, opt, progress, status, threads, t_start, restart ? pos.step : -1);
-  if (writer) outputs.attach(sim);
+  if (writer)
+    outputs.attach(sim);
+  else
+    sim.add(outputs.pieces);
   int code = run_loop(
       sim,
       [&] {

@@ -56,7 +56,8 @@ void RunLog::stepped(const Simulation& s, const StepRecord& r) {
 void VtkSeries::write(const Simulation& s) {
   if (!enabled_ || s.time() == last_t_) return;
   last_t_ = s.time();
-  for (PhysicsModel* m : s.bodies()) m->write_output(s.time());
+  for (PhysicsModel* m : s.bodies())
+    if (!pieces_only_ || m->writes_pieces()) m->write_output(s.time());
 }
 
 void VtkSeries::ended(const Simulation& s, RunEnd how) {

@@ -50,7 +50,10 @@ class RunLog final : public StepObserver {
 /// where a run stopped early, and the last converged state of a run that failed (not after an output error).
 class VtkSeries final : public StepObserver {
  public:
-  VtkSeries(bool enabled, int every) : enabled_(enabled), every_(every) {}
+  /// `pieces_only`: the series of an MPI process other than 0, which writes only the models that write their own
+  /// piece (PhysicsModel::writes_pieces).
+  VtkSeries(bool enabled, int every, bool pieces_only = false)
+      : enabled_(enabled), every_(every), pieces_only_(pieces_only) {}
   void started(const Simulation& s) override { write(s); }
   void resumed(const Simulation&, const RunPosition& pos) override { last_t_ = pos.last_output_t; }
   void output(const Simulation& s, const StepRecord& r) override {
@@ -66,6 +69,7 @@ class VtkSeries final : public StepObserver {
  private:
   bool enabled_;
   int every_;
+  bool pieces_only_;
   double last_t_ = -1.0;
 };
 

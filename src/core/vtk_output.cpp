@@ -16,6 +16,8 @@
 #include <lagfsi/output_file.hpp>
 #include <lagfsi/vtk_output.hpp>
 
+#include <lagfsi/mpi_run.hpp>
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -305,6 +307,33 @@ void PvdSeries::write(double t, const VtuData& data) {
   rewrite_pvd(pvd_path(), entries_);
 }
 
+void PvdSeries::write_piece(double t, const VtuData& piece, int process, int processes) {
+  const std::string stem = step_file_name(name_, steps_written(), "");
+  const auto piece_file = [&](int k) { return stem + "_p" + std::to_string(k) + ".vtu"; };
+  write_vtu(dir_ / name_ / piece_file(process), piece);
+  entries_.emplace_back(t, name_ + "/" + stem + ".pvtu");
+  if (process != 0) return;
+  // The parallel file: the arrays as write_vtu writes them (doubles; a 2-component field padded to 3).
+  const auto arrays = [](const std::vector<Field>& fields) {
+    std::string text;
+    for (const Field& f : fields)
+      text += "      <PDataArray type=\"Float64\" Name=\"" + xml_escape(f.name) + "\" NumberOfComponents=\"" +
+              std::to_string(f.n_components == 2 ? 3 : f.n_components) + "\"/>\n";
+    return text;
+  };
+  std::string text =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <PUnstructuredGrid GhostLevel=\"0\">\n    <PPointData>\n" +
+      arrays(piece.point_fields) + "    </PPointData>\n    <PCellData>\n" + arrays(piece.cell_fields) +
+      "    </PCellData>\n    <PPoints>\n      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+      "    </PPoints>\n";
+  for (int k = 0; k < processes; ++k) text += "    <Piece Source=\"" + xml_escape(piece_file(k)) + "\"/>\n";
+  text += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  write_file_atomic(dir_ / name_ / (stem + ".pvtu"), text);
+  rewrite_pvd(pvd_path(), entries_);
+}
+
 void PvdSeries::write(double t, const VtpData& data) {
   const std::string file = step_file_name(name_, steps_written(), ".vtp");
   write_vtp(dir_ / name_ / file, data);
@@ -315,7 +344,7 @@ void PvdSeries::write(double t, const VtpData& data) {
 void PvdSeries::serialize(StateArchive& ar) {
   ar.section("pvd " + name_);
   ar.io(entries_);
-  if (ar.loading()) rewrite_pvd(pvd_path(), entries_);
+  if (ar.loading() && mpi_run::writer()) rewrite_pvd(pvd_path(), entries_);  // an MPI run: process 0's file
 }
 
 void serialize_series(StateArchive& ar, std::unique_ptr<PvdSeries>& series, const fs::path& dir,

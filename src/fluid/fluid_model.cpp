@@ -6,6 +6,8 @@
 // (fluid_model_impl.hpp).
 #include "fluid_model_impl.hpp"
 
+#include <lagfsi/mpi_run.hpp>
+
 #include "fluid_probes.hpp"
 #include "pressure_level.hpp"
 
@@ -295,6 +297,56 @@ Json FluidModel::summary() const {
   return s;
 }
 
+bool FluidModel::writes_pieces() const { return mpi_run::size() > 1; }
+
+namespace {
+
+/// The piece of `whole` (a mesh of triangles on `mesh`'s points, its point fields per point) that this MPI process
+/// writes: the elements whose first particle has its rows here (mpi_run::owned_blocks) and the particles they use,
+/// and the process's own particles in no element (drops); the points renumbered, the fields following them.
+VtuData piece_of(const TriMesh& mesh, const VtuData& whole, TriMesh& piece_mesh) {
+  const auto np = static_cast<Index>(mesh.nodes.size());
+  const auto [lo, hi] = mpi_run::owned_blocks(np);
+  std::vector<Index> local(static_cast<size_t>(np), -1);
+  std::vector<char> used(static_cast<size_t>(np), 0);
+  std::vector<Index> points;
+  const auto take = [&](Index i) {
+    if (local[i] < 0) {
+      local[i] = static_cast<Index>(points.size());
+      points.push_back(i);
+    }
+  };
+  piece_mesh.order = 1;
+  for (size_t k = 0; k + 2 < mesh.conn.size(); k += 3) {
+    for (int a = 0; a < 3; ++a) used[mesh.conn[k + a]] = 1;
+    if (mesh.conn[k] < lo || mesh.conn[k] >= hi) continue;
+    for (int a = 0; a < 3; ++a) {
+      take(mesh.conn[k + a]);
+      piece_mesh.conn.push_back(local[mesh.conn[k + a]]);
+    }
+  }
+  for (Index i = lo; i < hi; ++i)
+    if (!used[i]) take(i);
+  for (Index i : points) piece_mesh.nodes.push_back(mesh.nodes[i]);
+  VtuData piece;
+  piece.mesh = &piece_mesh;
+  for (const Field& f : whole.point_fields) {
+    Field g{f.name, f.n_components, {}};
+    for (Index i : points)
+      for (int c = 0; c < f.n_components; ++c)
+        g.values.push_back(f.values[static_cast<size_t>(i * f.n_components + c)]);
+    piece.point_fields.push_back(std::move(g));
+  }
+  return piece;
+}
+
+}  // namespace
+
+void FluidModel::write_piece(double t, const TriMesh& mesh, const VtuData& whole) {
+  TriMesh piece_mesh;
+  series_->write_piece(t, piece_of(mesh, whole, piece_mesh), mpi_run::rank(), mpi_run::size());
+}
+
 void FluidModel::write_output(double t) {
   const auto t0 = SteadyClock::now();
   if (!series_) series_ = std::make_unique<PvdSeries>(ctx_.out_dir, c_.name);
@@ -332,7 +384,11 @@ void FluidModel::write_output(double t) {
     for (Index i = 0; i < np; ++i) ow.values.push_back(cloud_.owed()[i] / (cloud_.h(i) * cloud_.h(i)));
     d.point_fields.push_back(ow);
   }
-  series_->write(t, d);
+  if (writes_pieces())
+    write_piece(t, mesh, d);
+  else
+    series_->write(t, d);
+  if (!mpi_run::writer()) return;  // the walls' series: process 0's
   if (c_.remesh && !boundaries_.walls().empty()) {
     if (!wall_series_) wall_series_ = std::make_unique<PvdSeries>(ctx_.out_dir, c_.name + "_walls");
     VtpData w;

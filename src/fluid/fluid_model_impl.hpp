@@ -56,6 +56,10 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   IterationReport solve_iteration() override;
   void finalize_step() override;
   void write_output(double t) override;
+  /// Over several MPI processes each writes its piece of the fluid's series (fluid_model.cpp).
+  bool writes_pieces() const override;
+  /// This process's piece of the output of `whole` (the whole fluid on `mesh`).
+  void write_piece(double t, const TriMesh& mesh, const VtuData& whole);
   std::unique_ptr<Probe> make_probe(Params p) override;
   bool can_checkpoint() const override { return true; }
   void serialize(StateArchive& ar) override;  // fluid_checkpoint.cpp

@@ -6,7 +6,9 @@ Checks, on the first 0.1 s of the case with the PETSc solver:
   - one process under mpirun gives the serial run's probes bit for bit;
   - two and three processes give the serial mesh at every step (log.csv: the same step sizes, nodes and elements)
     and probes within the Krylov tolerance of the serial run's (relative to each column's largest value);
-  - process 0 alone writes (summary.json says how many processes ran);
+  - process 0 alone writes the CSV files and summary.json (which says how many processes ran); the fluid's series
+    is parallel VTK: every step a .pvtu whose pieces (one per process) hold together the serial run's elements and
+    particles;
   - bad input stops every process with one message and exit code 2.
 Exits non-zero with the failed checks listed."""
 import csv
@@ -14,6 +16,9 @@ import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases", "tools"))
+from lagfsi_post import vtkxml  # noqa: E402
 
 exe, mpiexec, case, work = sys.argv[1:5]
 extra_args = sys.argv[5:]
@@ -60,6 +65,22 @@ for n in (2, 3):
         diff = max(abs(float(a[col]) - float(b[col])) for a, b in zip(ref_probes, probes)) / scale
         if diff > 1e-6:
             failures.append("%d processes: probe %s differs by %.2e of its largest value" % (n, col, diff))
+    # Parallel VTK: the fluid's .pvd lists one .pvtu a step, with one piece a process; merged, the serial step.
+    serial_steps, steps = vtkxml.read_pvd(os.path.join(serial, "water.pvd")), vtkxml.read_pvd(os.path.join(out, "water.pvd"))
+    if len(steps) != len(serial_steps) or not all(f.endswith(".pvtu") for _, f in steps):
+        failures.append("%d processes: water.pvd lists %d steps (%s), the serial run %d .vtu"
+                        % (n, len(steps), steps[:1], len(serial_steps)))
+    for (t, f), (_, g) in zip(steps, serial_steps):
+        with open(f) as pv:
+            pieces = pv.read().count("<Piece ")
+        merged, whole = vtkxml.read_vtk(f), vtkxml.read_vtk(g)
+        if (pieces != n or len(merged.triangles()) != len(whole.triangles()) or
+                set(merged.point_data["particle_id"].astype(int)) != set(whole.point_data["particle_id"].astype(int))):
+            failures.append("%d processes: %s has %d pieces, %d elements and %d particles; the serial step %d and %d"
+                            % (n, os.path.basename(f), pieces, len(merged.triangles()),
+                               len(set(merged.point_data["particle_id"])), len(whole.triangles()),
+                               len(set(whole.point_data["particle_id"]))))
+            break
     import json
     with open(os.path.join(out, "summary.json")) as f:
         if json.load(f).get("mpi_processes") != n:

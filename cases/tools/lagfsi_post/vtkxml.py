@@ -132,7 +132,10 @@ def _read_base64(text, header, order, compressed):
 
 
 def read_vtk(path):
-    """Reads a .vtu or .vtp file into a Dataset (first piece). Raises VtkReadError on an unreadable file."""
+    """Reads a .vtu or .vtp file into a Dataset (first piece), or a .pvtu (an MPI run's step: its pieces merged into
+    one Dataset, the points of each piece after the previous pieces'). Raises VtkReadError on an unreadable file."""
+    if path.endswith(".pvtu"):
+        return _read_pvtu(path)
     try:
         with open(path, "rb") as f:
             buf = f.read()
@@ -224,6 +227,29 @@ def _parse(path, buf):
                 conn, offs = c["connectivity"].astype(np.int64), c["offsets"].astype(np.int64)
                 starts = np.concatenate(([0], offs[:-1]))
                 setattr(d, attr, [conn[a:b] for a, b in zip(starts, offs)])
+    return d
+
+
+def _read_pvtu(path):
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError) as e:
+        raise VtkReadError("%s: not a readable .pvtu file (%s)" % (path, e))
+    base = os.path.dirname(os.path.abspath(path))
+    pieces = [read_vtk(os.path.join(base, el.get("Source"))) for el in root.iter("Piece") if el.get("Source")]
+    if not pieces:
+        raise VtkReadError("%s: no Piece" % path)
+    d = Dataset(path, "UnstructuredGrid")
+    d.points = np.concatenate([q.points for q in pieces])
+    shift, end = np.cumsum([0] + [q.n_points for q in pieces[:-1]]), np.cumsum([0] + [len(q.connectivity) for q in
+                                                                                    pieces[:-1]])
+    d.connectivity = np.concatenate([q.connectivity + k for q, k in zip(pieces, shift)]).astype(np.int64)
+    d.offsets = np.concatenate([q.offsets + k for q, k in zip(pieces, end)]).astype(np.int64)
+    d.types = np.concatenate([q.types for q in pieces]).astype(np.uint8)
+    for name in pieces[0].point_data:
+        d.point_data[name] = np.concatenate([q.point_data[name] for q in pieces])
+    for name in pieces[0].cell_data:
+        d.cell_data[name] = np.concatenate([q.cell_data[name] for q in pieces])
     return d
 
 

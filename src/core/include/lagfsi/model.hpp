@@ -87,6 +87,10 @@ class PhysicsModel {
   virtual IterationReport solve_iteration() = 0;
   virtual void finalize_step() = 0;
   virtual void write_output(double t) = 0;
+  /// True for a model that writes its own part of the output on every process of an MPI run (parallel VTK: one
+  /// piece per process, process 0 the .pvtu that lists them): its write_output is called on every process, the
+  /// others' on process 0 only.
+  virtual bool writes_pieces() const { return false; }
   /// Creates a probe of this model from its case-file parameters (the "type" selects it).
   virtual std::unique_ptr<Probe> make_probe(Params p) = 0;
 

@@ -58,6 +58,10 @@ class PvdSeries {
   PvdSeries(std::filesystem::path dir, std::string name);
   /// Writes the .vtu for time t and rewrites the .pvd atomically.
   void write(double t, const VtuData& data);
+  /// One process's piece of a step written over `processes` MPI processes: `<name>_NNNNN_pK.vtu` (K = `process`);
+  /// process 0 also writes `<name>_NNNNN.pvtu`, which lists every process's piece with the fields of `piece` (all
+  /// processes give the same fields), and rewrites the .pvd, whose entry is the .pvtu.
+  void write_piece(double t, const VtuData& piece, int process, int processes);
   /// Same, writing `<name>_NNNNN.vtp`.
   void write(double t, const VtpData& data);
   int steps_written() const { return static_cast<int>(entries_.size()); }

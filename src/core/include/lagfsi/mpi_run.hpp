@@ -7,12 +7,12 @@
 /// results bit for bit). The fluid's linear systems are PETSc matrices over all the processes, each process
 /// filling and solving the rows PETSc gives it (LinearSolverSettings::distributed), and the solution is summed
 /// over the processes (each entry comes from one process, the others add zeros: every process receives the same
-/// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints; the others
-/// run quiet. The fluid's schemes also divide their element assembly: each process computes the elements with a
-/// particle in its rows, and the per-particle sums (the residual, the fractional step's forces) are combined over
-/// the processes (pspg_scheme.cpp, fractional_step.cpp). The
-/// domain decomposition of the particles and the remeshing (each process meshing its own part with a ghost layer)
-/// is not done.
+/// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints (the others
+/// run quiet), but for the models that write a piece each (PhysicsModel::writes_pieces: the fluid's parallel VTK). The
+/// fluid's schemes also divide their element assembly: each process computes the elements with a particle in its rows,
+/// and the per-particle sums (the residual, the fractional step's forces) are combined over the processes
+/// (pspg_scheme.cpp, fractional_step.cpp). The domain decomposition of the particles and the remeshing (each process
+/// meshing its own part with a ghost layer) is not done.
 ///
 /// MPI starts (through PETSc, which owns it) only when an MPI launcher started the program (its environment
 /// variables say so); a program run without one never starts MPI.

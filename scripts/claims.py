@@ -248,6 +248,9 @@ def cmd_update(args):
             dirs, metrics, walls = run_case(case, e, args.exe, os.path.join(args.out, case + ("_tier" if tier else "")),
                                             tier, [], print)
             for q in e["quantities"]:
+                if tier and skipped(q, e, dirs, metrics):
+                    q.pop("tier_value", None)  # its run is not in the tier
+                    continue
                 v = extract(q, dirs, metrics)
                 q["tier_value" if tier else "value"] = v
                 print("  %-28s %s" % (q["name"], fmt(q, v)))

@@ -185,6 +185,11 @@ std::vector<int> FluidBoundaries::inlets(const ParticleCloud& cloud) const {
   return out;
 }
 
+bool FluidBoundaries::at_open_face(const Vec2& x) const {
+  return std::any_of(list_.begin(), list_.end(),
+                     [&](const auto& b) { return b->open() && (b->in_inlet(x) || b->zero_pressure(x)); });
+}
+
 void FluidBoundaries::fix_outlet_pressure(const ParticleCloud& cloud, const std::vector<std::uint8_t>& free,
                                           std::vector<char>& fixed) const {
   for (const auto& b : list_)

@@ -92,6 +92,8 @@ class FluidBoundaries {
   /// Per particle: the index among the case's boundaries of the inflow in whose inlet layer it lies
   /// (FluidBoundary::in_inlet: held by it, or by a wall at its ends), or -1.
   std::vector<int> inlets(const ParticleCloud& cloud) const;
+  /// Whether x lies in an inflow's inlet layer or within a spacing of an outflow (the open boundaries' faces).
+  bool at_open_face(const Vec2& x) const;
   /// The name of the case's boundary j (/bodies/i/boundaries/j).
   const std::string& name(int j) const { return names_[static_cast<size_t>(j)]; }
   /// An outflow's particles on the mesh's boundary (`free`) take p = 0: their pressure components of `fixed` (3 per

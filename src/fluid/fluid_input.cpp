@@ -396,6 +396,7 @@ void FluidModel::build_particles(Params b) {
     remesh_.set_open_boundaries([this](const Vec2& x) { return boundaries_.taker(x); },
                                 [this](int k, long n, double area) { boundaries_.left(k, n, area); },
                                 boundaries_.fluid_regions());
+    remesh_.set_open_faces([this](const Vec2& x) { return boundaries_.at_open_face(x); });
   }
   const Index n_wall = static_cast<Index>(pts.size());
 

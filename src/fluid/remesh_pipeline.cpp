@@ -121,7 +121,16 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
   remesh_ke_total_ += remesh_dKE_;
   remesh_pe_total_ += energy.potential() - pe0;
-  if (volume.type() == VolumeCorrection::Type::surface) volume.restore_area();
+  if (volume.type() == VolumeCorrection::Type::surface) {
+    // The faces of inflows and outflows are boundaries of the mesh but not free surface: moved outwards, an
+    // inlet's face would be carried out of the channel and an outlet's would push water out.
+    std::vector<char> still;
+    if (at_open_face_) {
+      still.assign(static_cast<size_t>(cloud_.n()), 0);
+      for (Index i = 0; i < cloud_.n(); ++i) still[static_cast<size_t>(i)] = at_open_face_(cloud_.pos(i)) ? 1 : 0;
+    }
+    volume.restore_area(still);
+  }
 }
 
 void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {

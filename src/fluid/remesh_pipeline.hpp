@@ -61,6 +61,8 @@ class RemeshPipeline {
     left_ = std::move(left);
     open_regions_ = std::move(regions);
   }
+  /// Whether a point lies on the face of an inflow or outflow (the particles the surface correction leaves alone).
+  void set_open_faces(std::function<bool(const Vec2&)> at_open_face) { at_open_face_ = std::move(at_open_face); }
 
   /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
   /// detections.
@@ -174,7 +176,8 @@ class RemeshPipeline {
   std::function<int(const Vec2&)> taker_;              // open boundaries (set_open_boundaries)
   std::function<void(int, long, double)> left_;
   std::vector<std::array<Vec2, 3>> open_regions_;
-  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
+  std::function<bool(const Vec2&)> at_open_face_;  // set_open_faces
+  std::vector<Index> renumber_;                    // the last drop_particles: old index -> new index, -1 if dropped
   std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's
                                  // survivor or of the wall particle that stands for it (-1: none)
   // Remeshing's effect per step (log.csv) and over the run (summary.json).

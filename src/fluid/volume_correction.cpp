@@ -8,7 +8,7 @@
 
 namespace lagfsi::fluid {
 
-void VolumeCorrection::restore_area() {
+void VolumeCorrection::restore_area(const std::vector<char>& still) {
   // Remeshing changes the fluid's area: the alpha shape closes or opens elements along the free surface
   // (a splash joining the pool, a film tearing), and inserted or removed particles shift it. The error is
   // geometric and sits on the free surface, so it is removed there, before the step is solved: the
@@ -30,7 +30,8 @@ void VolumeCorrection::restore_area() {
   std::vector<char> movable = mesh_.beside_interior_fluid(kind);
   const std::vector<char> at_wall = mesh_.in_element_with(np, [&](Index i) { return kind[i] != ParticleKind::Fluid; });
   for (Index i = 0; i < np; ++i)
-    movable[i] = movable[i] && kind[i] == ParticleKind::Fluid && mesh_.free[i] && !at_wall[i];
+    movable[i] = movable[i] && kind[i] == ParticleKind::Fluid && mesh_.free[i] && !at_wall[i] &&
+                 !(static_cast<size_t>(i) < still.size() && still[static_cast<size_t>(i)]);
   const auto area2 = [](const Vec2& a, const Vec2& b, const Vec2& c) {  // twice the signed area
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };

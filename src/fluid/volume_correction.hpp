@@ -40,8 +40,9 @@ class VolumeCorrection {
   }
 
   /// Volume correction "surface": moves the free-surface particles along the gradient of the mesh area so
-  /// that the area after remeshing equals the reference area again.
-  void restore_area();
+  /// that the area after remeshing equals the reference area again. Particles marked in `still` (per particle, may
+  /// be empty) stay: the faces of inflows and outflows, which are boundaries of the water, not free surface.
+  void restore_area(const std::vector<char>& still = {});
   /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step; with
   /// "particle", the particles' shares of the area at the step's start.
   void set_remeshed(double area);

@@ -14,13 +14,49 @@
 
 #include <lagfsi/fluid/fluid_element.hpp>
 #include <lagfsi/model.hpp>
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/time_integrator.hpp>
 
+#include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lagfsi::fluid {
+
+/// The particles whose rows this MPI process fills when the element assembly is divided among the processes (a
+/// distributed solver over several processes, mpi_run.hpp: PETSc's default split, whole particles); all of them
+/// otherwise. A process assembles the elements with a particle of its own, and the per-particle sums every process
+/// needs whole are combined: each particle's entries from the process that owns it (the same bits everywhere).
+class ProcessRows {
+ public:
+  /// For a mesh of np particles, solved by a distributed solver or not.
+  void set(bool distributed, Index np) {
+    split_ = distributed && mpi_run::size() > 1;
+    own_ = split_ ? mpi_run::owned_blocks(np) : std::pair<Index, Index>{0, np};
+  }
+  bool split() const { return split_; }
+  Index first() const { return own_.first; }
+  Index last() const { return own_.second; }
+  /// Particle i's rows are this process's.
+  bool own(Index i) const { return i >= own_.first && i < own_.second; }
+  /// The element of particles t is this process's to assemble: one of them has its rows here (every element
+  /// unless split).
+  bool mine(const std::array<Index, 3>& t) const { return !split_ || own(t[0]) || own(t[1]) || own(t[2]); }
+  /// A per-particle array (`per` values a particle) summed by each process over its elements, made whole on every
+  /// process: each particle's entries kept where its rows are, zeroed elsewhere, then combined.
+  void combine(Vec& a, int per) const {
+    if (!split_) return;
+    for (Index i = 0; i < a.size() / per; ++i)
+      if (!own(i)) a.segment(per * i, per).setZero();
+    mpi_run::combine_disjoint(a.data(), static_cast<Index>(a.size()));
+  }
+
+ private:
+  bool split_ = false;
+  std::pair<Index, Index> own_{0, 0};
+};
 
 /// The step's data shared by the model and its scheme.
 struct FluidStep {

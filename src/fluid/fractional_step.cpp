@@ -27,7 +27,6 @@
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver_input.hpp>
-#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/parallel_sum.hpp>
 #include <lagfsi/system_assembly.hpp>
 #include <lagfsi/time_integrator.hpp>
@@ -87,8 +86,7 @@ class FractionalStep final : public FluidScheme {
     poisson_pattern_ = ElementPattern(f_.mesh.conn, 3, np, 1);
     // Over several processes with a distributed solver, each assembles the elements with a particle in its rows
     // (mpi_run.hpp) and the particles' forces are combined over the processes.
-    split_ = s_.solver.distributed && mpi_run::size() > 1;
-    own_ = split_ ? mpi_run::owned_blocks(np) : std::pair<Index, Index>{0, np};
+    rows_.set(s_.solver.distributed, np);
     poisson_ = poisson_pattern_.pattern();
     if (viscous_implicit()) viscous_ = poisson_;
     // A new mesh: new matrices. Re-solves of the step (a coupling pass) keep the factorizations, which
@@ -143,23 +141,7 @@ class FractionalStep final : public FluidScheme {
 
   FractionalStepSettings s_;
   std::unique_ptr<LinearSolver> solver_, viscous_solver_;
-  /// Element e is this process's to assemble (every element unless split): one of its particles has its rows here.
-  bool mine(Index e) const {
-    if (!split_) return true;
-    for (Index i : f_.mesh.tri[e])
-      if (i >= own_.first && i < own_.second) return true;
-    return false;
-  }
-  /// A per-particle array (`per` values a particle) that each process summed over its elements made whole on every
-  /// process: each particle's entries kept where its rows are, zeroed elsewhere, then combined.
-  void combine(Vec& a, int per) const {
-    if (!split_) return;
-    for (Index i = 0; i < a.size() / per; ++i)
-      if (i < own_.first || i >= own_.second) a.segment(per * i, per).setZero();
-    mpi_run::combine_disjoint(a.data(), static_cast<Index>(a.size()));
-  }
-  bool split_ = false;                 // the element assembly is divided among the processes
-  std::pair<Index, Index> own_{0, 0};  // the particles whose rows this process fills
+  ProcessRows rows_;  // the particles whose rows this process fills (the element assembly divided among processes)
   ElementPattern poisson_pattern_;
   SparseMatrix poisson_, viscous_, viscous_stiffness_;
   Vec v_new_;
@@ -301,7 +283,7 @@ void FractionalStep::predict_velocities(Work& wk) {
   wk.implicit = viscous_implicit();
   wk.force = Vec::Zero(2 * np);
   element_loop(ne, scatter_, {values_of(wk.force)}, [&](Index e, std::span<double* const> out) {
-    if (!mine(e)) return;
+    if (!rows_.mine(tri[e])) return;
     const auto& t = tri[e];
     const double pbar = (pres[t[0]] + pres[t[1]] + pres[t[2]]) / 3.0;
     Mat2 L = Mat2::Zero();
@@ -314,7 +296,7 @@ void FractionalStep::predict_velocities(Work& wk) {
       out[0][2 * t[a] + 1] += f.y();
     }
   });
-  combine(wk.force, 2);
+  rows_.combine(wk.force, 2);
   for (Index i = 0; i < np; ++i) wk.force.segment<2>(2 * i) += wk.mass[i] * g;
   f_.times.assembly += seconds_since(t0);
 
@@ -341,7 +323,7 @@ void FractionalStep::predict_velocities(Work& wk) {
         double* kv = viscous_.valuePtr();
         std::fill(kv, kv + viscous_.nonZeros(), 0.0);
         element_loop(ne, scatter_, {values_of(viscous_)}, [&](Index e, std::span<double* const> out) {
-          if (!mine(e) || f_.boundaries.inviscid(tri[e])) return;
+          if (!rows_.mine(tri[e]) || f_.boundaries.inviscid(tri[e])) return;
           const int* sc = poisson_pattern_.scatter(e);
           for (int b = 0; b < 3; ++b)
             for (int a = 0; a < 3; ++a)
@@ -389,7 +371,7 @@ void FractionalStep::pressure_increment(Work& wk) {
   if (assemble) pressure_sums.insert(pressure_sums.end(), {values_of(comp), values_of(poisson_)});
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
   element_loop(ne, scatter_, std::move(pressure_sums), [&](Index e, std::span<double* const> out) {
-    if (!mine(e)) return;
+    if (!rows_.mine(tri[e])) return;
     const auto& t = tri[e];
     // The continuity as the element's exact area rate over the step at u*: with x + dt u the area changes by
     // dt A (div u + dt det(grad u)) exactly (P1, grad u constant), so div u* alone leaves a second-order change in
@@ -416,7 +398,7 @@ void FractionalStep::pressure_increment(Work& wk) {
         out[2][sc[b * 3 + a]] += dt / f_.c.rho * wk.area[e] * wk.grad[e][a].dot(wk.grad[e][b]);
     }
   });
-  combine(rhs, 1);
+  rows_.combine(rhs, 1);
   // Unknown pressures: connected particles off the free surface (step.fixed from FluidModel::set_dirichlet); the others
   // keep p = 0 (set in predict), so their increment is zero and their columns drop out.
   if (assemble)
@@ -451,7 +433,7 @@ void FractionalStep::correct(Work& wk) {
   v_new_ = wk.ustar;
   wk.du = Vec::Zero(2 * np);
   element_loop(ne, scatter_, {values_of(wk.du)}, [&](Index e, std::span<double* const> out) {
-    if (!mine(e)) return;
+    if (!rows_.mine(tri[e])) return;
     const auto& t = tri[e];
     const double dpbar = (wk.dp[t[0]] + wk.dp[t[1]] + wk.dp[t[2]]) / 3.0;
     for (int a = 0; a < 3; ++a) {
@@ -459,7 +441,7 @@ void FractionalStep::correct(Work& wk) {
       out[0][2 * t[a] + 1] += wk.area[e] * dpbar * wk.grad[e][a].y();
     }
   });
-  combine(wk.du, 2);
+  rows_.combine(wk.du, 2);
   for (Index k = 0; k < 2 * np; ++k)
     if (!wk.vfixed[k]) v_new_[k] += dt * wk.du[k] / wk.mass[k / 2];
   pres += wk.dp;

@@ -75,8 +75,7 @@ class PspgScheme final : public FluidScheme {
     pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
     // Over several processes with a distributed solver each computes the elements with a particle in its rows
     // (mpi_run.hpp); the particles' rows are whole blocks of 3.
-    split_ = s_.solver.distributed && mpi_run::size() > 1;
-    own_ = split_ ? mpi_run::owned_blocks(f_.cloud.n()) : std::pair<Index, Index>{0, f_.cloud.n()};
+    rows_.set(s_.solver.distributed, f_.cloud.n());
     J_ = pattern_.pattern();
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);
     // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep
@@ -114,20 +113,18 @@ class PspgScheme final : public FluidScheme {
   PspgSettings s_;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
-  /// Particle i's rows are this process's (all of them unless the assembly is split over processes).
-  bool own(Index i) const { return i >= own_.first && i < own_.second; }
   /// fn(row, col, value) on each stored entry of J_ in this process's rows (all of them unless the assembly is
   /// split: the other rows are other processes' to fill, and the distributed solver reads its own only).
   template <class Fn>
   void for_own_entries(const Fn& fn) {
-    const Index lo = 3 * own_.first, hi = 3 * own_.second;
+    const Index lo = 3 * rows_.first(), hi = 3 * rows_.last();
     const int* outer = J_.outerIndexPtr();
     const int* inner = J_.innerIndexPtr();
     double* values = J_.valuePtr();
     for (Index col = 0; col < J_.outerSize(); ++col) {
       const int* first = inner + outer[col];
       const int* last = inner + outer[col + 1];
-      if (split_) {  // each column's rows are sorted
+      if (rows_.split()) {  // each column's rows are sorted
         first = std::lower_bound(first, last, lo);
         last = std::lower_bound(first, last, hi);
       }
@@ -138,10 +135,9 @@ class PspgScheme final : public FluidScheme {
   std::string inverted_message(Index e, const Vec& x) const;
   ElementPattern pattern_;
   SparseMatrix J_;
-  bool split_ = false;                 // the element assembly is divided among the processes
-  std::pair<Index, Index> own_{0, 0};  // the particles whose rows this process fills
-  ThreadScatter scatter_;              // the element loop's per-thread sums
-  int iter_in_step_ = 0;               // iterations of the step (all coupling passes)
+  ProcessRows rows_;       // the particles whose rows this process fills (the element assembly divided among processes)
+  ThreadScatter scatter_;  // the element loop's per-thread sums
+  int iter_in_step_ = 0;   // iterations of the step (all coupling passes)
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
 };
 
@@ -219,7 +215,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
       // Split over processes: an element none of whose particles has its rows here is another process's (each
       // row's sum keeps the serial order of its elements); the force scales count each element once, at the
       // process of its first particle.
-      if (split_ && !own(t[0]) && !own(t[1]) && !own(t[2])) continue;
+      if (!rows_.mine(t)) continue;
       const PspgElementInput in = element_input(e, ev.x, ev.v, ev.a, cf.c_m, cf.c_c);
       Eigen::Matrix<double, 9, 1> r;
       Eigen::Matrix<double, 9, 9> K;
@@ -232,7 +228,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
         failed = std::min(failed, e);
         continue;
       }
-      if (own(t[0])) {
+      if (rows_.own(t[0])) {
         inertia2 += i2;
         gravity2 += g2;
         viscous2 += v2;
@@ -255,12 +251,10 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
   }
   scatter_.merge();
   double sums[3] = {scales.total(0), scales.total(1), scales.total(2)};
-  if (split_) {
+  if (rows_.split()) {
     // Each process's rows of R made whole on every process (the matrix's rows stay each process's: the
     // distributed solver reads its own), the scales summed, the failure seen by any.
-    for (Index i = 0; i < f_.cloud.n(); ++i)
-      if (!own(i)) R.segment<3>(3 * i).setZero();
-    mpi_run::combine_disjoint(R.data(), static_cast<Index>(R.size()));
+    rows_.combine(R, 3);
     mpi_run::sum_in_rank_order(sums, 3);
     failed = mpi_run::min(failed);
   }
@@ -271,8 +265,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
     const auto& t = mesh.tri[e];
     // An element another process assembled: its particles have mass when its area is positive (pspg_element's
     // test) and it is not a structure's turned-over pair.
-    const bool elsewhere =
-        split_ && !assembled[e] && !own(t[0]) && !own(t[1]) && !own(t[2]) && mesh.element_area(ev.x, e) > 0.0;
+    const bool elsewhere = !rows_.mine(t) && mesh.element_area(ev.x, e) > 0.0;
     if (assembled[e] || elsewhere)
       for (Index i : t) has_mass[i] = 1;
   }

@@ -331,8 +331,14 @@ void RemeshPipeline::follow_size_field(const BoundaryChains& chain, const std::v
   for (Index i = 0; i < np; ++i)
     source[i] = !cloud_.is_fluid(i) || chain.next[i] >= 0 || chain.prev[i] >= 0 ||
                 (!on_wall.empty() && on_wall[static_cast<size_t>(i)] != 0);
+  const std::vector<Vec2> pts = cloud_.positions();
+  if (size_.strain_rate() > 0) {  // the flow indicator: where the flow strains fast, as at a surface
+    std::vector<Vec2> v(static_cast<size_t>(np));
+    for (Index i = 0; i < np; ++i) v[static_cast<size_t>(i)] = cloud_.vel(i);
+    size_.mark_straining(pts, v, mesh_.tri, source);
+  }
   std::vector<double> h;
-  size_.targets(cloud_.positions(), mesh_.tri, source, t, h);
+  size_.targets(pts, mesh_.tri, source, t, h);
   for (Index i = 0; i < np; ++i)
     if (cloud_.is_fluid(i)) cloud_.set_h(i, h[static_cast<size_t>(i)]);
 }

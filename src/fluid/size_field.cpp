@@ -3,6 +3,8 @@
 
 #include <lagfsi/geometry2d.hpp>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -31,6 +33,10 @@ const KeyTable kSizeAdaptiveKeys(
      {"gradation", 0.25,
       "How fast the size grows with the distance from the surface and the walls (size per unit length: about the "
       "growth from one particle layer to the next), in (0, 1]."},
+     {"strain_rate", 0.0,
+      "A flow indicator: particles where the flow's strain rate sqrt(2 D:D) (1/s) is at or above this value are "
+      "sized h, like the free surface (a shear layer, the flow into an opening); 0: none. A velocity over a length "
+      "of the flow is its scale (e.g. sqrt(g H) / H)."},
      {"regions", Json::array(),
       "Refinement boxes (see /bodies/*/size_field/regions/* (fluid body)), each with its own size, graded outside "
       "it."}});
@@ -53,6 +59,7 @@ void SizeField::expand_shorthand(Json& body) {
 
 void SizeField::read(Params body, double h) {
   h_min_ = h_max_ = h;
+  strain_rate_ = 0;
   adaptive_ = false;
   boxes_.clear();
   if (!body.has("size_field")) return;
@@ -67,6 +74,8 @@ void SizeField::read(Params body, double h) {
   h_max_ = s.positive("max_size");
   if (h_max_ < h) s.fail("max_size", "must be at least the spacing (" + std::to_string(h) + ")");
   gradation_ = s.positive("gradation");
+  strain_rate_ = s.number("strain_rate");
+  if (!(strain_rate_ >= 0)) s.fail("strain_rate", "must be at least 0 (0: no flow indicator)");
   if (gradation_ > 1.0) s.fail("gradation", "must lie in (0, 1] (the size grows at most by one size per size)");
   Params regions = s.at("regions");
   for (size_t k = 0; k < regions.size(); ++k) {
@@ -110,6 +119,35 @@ std::function<double(const Vec2&)> SizeField::initial_size(std::vector<std::vect
 std::function<double(const Vec2&)> SizeField::mesher_size(std::function<double(const Vec2&)> size) const {
   constexpr double kMesherScale = 1.35;
   return [this, size = std::move(size)](const Vec2& x) { return std::max(h_min_, kMesherScale * size(x)); };
+}
+
+Index SizeField::mark_straining(const std::vector<Vec2>& pts, const std::vector<Vec2>& v,
+                                const std::vector<std::array<Index, 3>>& tri, std::vector<char>& source) const {
+  if (!adaptive_ || !(strain_rate_ > 0)) return 0;
+  const size_t n = pts.size();
+  std::vector<double> sum(n, 0.0), area(n, 0.0);
+  for (const auto& e : tri) {
+    // The P1 velocity gradient L = [v1 - v0, v2 - v0] [x1 - x0, x2 - x0]^-1 of the element.
+    Mat2 dx, dv;
+    dx << pts[e[1]] - pts[e[0]], pts[e[2]] - pts[e[0]];
+    dv << v[e[1]] - v[e[0]], v[e[2]] - v[e[0]];
+    const double a = 0.5 * std::abs(dx.determinant());
+    if (!(a > 0)) continue;
+    const Mat2 grad = dv * dx.inverse();
+    const Mat2 d = 0.5 * (grad + grad.transpose());
+    const double gamma = std::sqrt(2.0 * d.squaredNorm());
+    for (Index i : e) {
+      sum[i] += a * gamma;
+      area[i] += a;
+    }
+  }
+  Index marked = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (area[i] > 0 && sum[i] >= strain_rate_ * area[i] && !source[i]) {
+      source[i] = 1;
+      ++marked;
+    }
+  return marked;
 }
 
 void SizeField::targets(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri,

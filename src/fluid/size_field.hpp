@@ -8,7 +8,11 @@
 /// particles: with g = 0.25 the next layer's particles are 25 % larger); refinement boxes impose their own
 /// size s inside them (within their time window) and grade from it outside, s + g d_box. The features are the
 /// free surface, the walls and the structures' wet faces (their wall and ghost particles) and the open
-/// boundaries: every particle on the boundary of the fluid's mesh or joined to a wall or ghost particle. The
+/// boundaries: every particle on the boundary of the fluid's mesh or joined to a wall or ghost particle; and,
+/// when a threshold is set, the particles where the flow strains fast: the strain rate of the P1 velocity,
+/// gamma = sqrt(2 D:D) with D = (grad v + grad v^T) / 2 (the shear rate of a simple shear; zero in a rigid motion),
+/// averaged over a particle's elements by area, at or above the threshold (a flow indicator in the spirit of the
+/// velocity-gradient error indicators of adaptive finite elements, Zienkiewicz & Zhu, IJNME 24:337, 1987). The
 /// same rule sizes the initial particles (the regions meshed graded, d the distance to the region's outline)
 /// and, at every remesh, the particles' target sizes on the mesh: a multi-source Dijkstra over the mesh's
 /// edges that carries each particle's nearest source and measures the straight distance to it, so that the
@@ -44,6 +48,13 @@ class SizeField {
   double h_max() const { return h_max_; }
   double gradation() const { return gradation_; }
   const std::vector<Box>& boxes() const { return boxes_; }
+  /// The strain rate (1/s) at or above which a particle is a feature (0: no flow indicator).
+  double strain_rate() const { return strain_rate_; }
+
+  /// Marks as sources the particles whose strain rate (area-weighted over their elements `tri` of the points `pts`
+  /// with velocities `v`) is at or above strain_rate(); returns how many it marked. Nothing without a threshold.
+  Index mark_straining(const std::vector<Vec2>& pts, const std::vector<Vec2>& v,
+                       const std::vector<std::array<Index, 3>>& tri, std::vector<char>& source) const;
 
   /// The size at x, at distance d from the nearest feature, at time t (the refinement boxes active then).
   double at(const Vec2& x, double d, double t) const;
@@ -64,7 +75,7 @@ class SizeField {
   /// The smallest size the boxes active at t give at x (graded outside them), h_max when none.
   double box_size(const Vec2& x, double t) const;
   bool adaptive_ = false;
-  double h_min_ = 0, h_max_ = 0, gradation_ = 0.25;
+  double h_min_ = 0, h_max_ = 0, gradation_ = 0.25, strain_rate_ = 0;
   std::vector<Box> boxes_;
 };
 

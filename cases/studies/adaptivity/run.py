@@ -1,10 +1,12 @@
 """Study: what an adaptive particle size and an adaptive time step buy: accuracy against cost, uniform against adaptive.
 
 Four flows, each run at a ladder of particle sizes h = f h0 (h0 the case's own, f = 2, sqrt 2, 1, 1/sqrt 2, 1/2) in
-four ways:
+five ways:
   - uniform: the case as it is (its particles, Δt = f Δt0);
   - size: an adaptive size field ("particles": "unstructured", "size_field": "adaptive": h at the surface, the walls
     and the structures, growing by a quarter of the distance up to 4 h), Δt = f Δt0;
+  - flow: the adaptive size field with its flow indicator: particles straining faster than 2.5 sqrt(g H) / H (H the
+    water's depth at the start) sized h too;
   - step: uniform particles, the adaptive step (Courant 0.5, at most 4 f Δt0);
   - both: the adaptive size and the adaptive step.
 Each run's error is measured against the finest uniform run of its flow (the reference):
@@ -18,6 +20,8 @@ Each run's error is measured against the finest uniform run of its flow (the ref
 The calm wave: the remeshed standing wave of sloshing_free/case_advected.json (10 periods, h = 0.03 m), uniform (h and
 1.5 h) and graded (gradation 0.25 and 0.1, max_size 4 h; gradation 0.25 with max_size 2 h): the wave's energy (kinetic +
 potential above the flat surface of the same area) kept at the end, against the particle count.
+The gate's step sequence: the elastic gate at h0/sqrt 2 under fixed steps from 1/2 to 2 times its own and under the
+adaptive step with three settings, each against the finest uniform run.
 Cost: the CPU time of the run (one thread) and its particle-steps (the particles summed over the steps, log.csv).
 At equal error: for each adaptive run, the cost the uniform runs would need for its error (log-log interpolation
 along the uniform runs' front), over its own cost.
@@ -39,13 +43,13 @@ ADAPTIVE_SIZE = {"bodies.0.particles": "unstructured", "bodies.0.size_field": "a
 # flow: case, h0, dt0, end time, ladder of f for the uniform runs (the last is the reference) and for the others,
 # extra settings of every run, the probes the error is measured on.
 FLOWS = {
-    "dam_break_tank": dict(case="dam_break_tank/case.json", h0=0.0073, dt0=1e-3, end=1.0,
+    "dam_break_tank": dict(case="dam_break_tank/case.json", h0=0.0073, dt0=1e-3, end=1.0, depth=0.292,
                            uniform=[2, R2, 1, 1 / R2, 0.5], adaptive=[2, R2, 1, 1 / R2], extra={}),
-    "sloshing_forced": dict(case="sloshing_forced/case.json", h0=0.02, dt0=2.5e-3, end=3.0,
+    "sloshing_forced": dict(case="sloshing_forced/case.json", h0=0.02, dt0=2.5e-3, end=3.0, depth=0.5,
                             uniform=[2, R2, 1, 1 / R2, 0.5], adaptive=[2, R2, 1, 1 / R2], extra={}),
-    "flexible_tank": dict(case="flexible_tank/case.json", h0=0.1 / 30, dt0=1e-3, end=1.0,
+    "flexible_tank": dict(case="flexible_tank/case.json", h0=0.1 / 30, dt0=1e-3, end=1.0, depth=0.08,
                           uniform=[2, R2, 1, 1 / R2, 0.5], adaptive=[2, R2, 1, 1 / R2], extra={}),
-    "elastic_gate_antoci": dict(case="elastic_gate_antoci/case.json", h0=0.0025, dt0=5e-4, end=0.4,
+    "elastic_gate_antoci": dict(case="elastic_gate_antoci/case.json", h0=0.0025, dt0=5e-4, end=0.4, depth=0.14,
                                 uniform=[2, R2, 1, 1 / R2, 0.5], adaptive=[2, R2, 1, 1 / R2],
                                 extra={"bodies.0.domain_detection": "advected"}),
 }
@@ -53,15 +57,19 @@ if S.quick:  # one uniform and one adaptive run per flow, short: the smoke test 
     for flow, end in (("dam_break_tank", 0.1), ("sloshing_forced", 0.3), ("flexible_tank", 0.05),
                       ("elastic_gate_antoci", 0.03)):
         FLOWS[flow].update(end=end, uniform=[2], adaptive=[2])
-VARIANTS = ["uniform", "size", "step", "both"]
+VARIANTS = ["uniform", "size", "flow", "step", "both"]
+STRAIN_FACTOR = 2.5  # the flow indicator's threshold over sqrt(g H) / H
 
 
 def settings(flow, variant, f):
     c = FLOWS[flow]
     s = dict(c["extra"])
     s.update({"analysis.end_time": c["end"], "analysis.dt": f * c["dt0"], "bodies.0.spacing": f * c["h0"]})
-    if variant in ("size", "both"):
+    if variant in ("size", "flow", "both"):
         s.update(ADAPTIVE_SIZE)
+    if variant == "flow":
+        H = c["depth"]
+        s["bodies.0.size_field"] = {"type": "adaptive", "strain_rate": STRAIN_FACTOR * math.sqrt(9.81 * H) / H}
     if variant in ("step", "both"):
         s["analysis.time_step"] = {"type": "adaptive", "courant": 0.5, "max": 4 * f * c["dt0"]}
     return s
@@ -137,6 +145,33 @@ for flow, c in FLOWS.items():
             row["uniform_over_" + cost] = u / row[cost] if u else float("nan")
     rows.extend(flow_rows)
 
+# The gate's step sequence: its tip under fixed steps of several sizes and under the adaptive step's settings.
+gate = FLOWS["elastic_gate_antoci"]
+fg = 1 / R2
+dtg = fg * gate["dt0"]
+SEQUENCES = [("fixed, Δt/2", {"analysis.dt": dtg / 2}), ("fixed, Δt", {}), ("fixed, 1.41 Δt", {"analysis.dt": R2 * dtg}),
+             ("fixed, 2 Δt", {"analysis.dt": 2 * dtg}),
+             ("adaptive, C 0.5, at most 4 Δt", {"analysis.time_step": {"type": "adaptive", "courant": 0.5, "max": 4 * dtg}}),
+             ("adaptive, C 0.5, at most Δt", {"analysis.time_step": {"type": "adaptive", "courant": 0.5, "max": dtg}}),
+             ("adaptive, C 0.3, at most 4 Δt", {"analysis.time_step": {"type": "adaptive", "courant": 0.3, "max": 4 * dtg}}),
+             ("adaptive, C 0.5, at most 4 Δt, growth 1.02",
+              {"analysis.time_step": {"type": "adaptive", "courant": 0.5, "max": 4 * dtg, "growth": 1.02}})]
+if S.quick:
+    SEQUENCES = SEQUENCES[1:2]
+gate_ref_run = S.run(gate["case"], "elastic_gate_antoci_uniform_f%.3f" % gate["uniform"][-1],
+                     settings("elastic_gate_antoci", "uniform", gate["uniform"][-1]), timeout=3600)
+sequences = []
+for name, sets in SEQUENCES:
+    r = S.run(gate["case"], "gate_sequence_" + name.replace(" ", "_").replace(",", "").replace("/", "_"),
+              dict(settings("elastic_gate_antoci", "uniform", fg), **sets), timeout=3600)
+    row = {"sequence": name, "exit_code": r.rc, "cpu_s": r.cpu if r.cpu is not None else r.wall}
+    if r.has_probes() and gate_ref_run.has_probes():
+        log = r.log()
+        row.update(steps=len(log["dt"]), dt_min=min(log["dt"]), dt_max=max(log["dt"]),
+                   error=errors("elastic_gate_antoci", r.probes(), gate_ref_run.probes())["error"])
+    sequences.append(row)
+S.table("gate_step_sequence.csv", sequences, ["sequence", "exit_code", "steps", "dt_min", "dt_max", "cpu_s", "error"])
+
 # The calm wave: what a coarse moving bulk costs a standing wave's energy.
 T1 = 1.18182  # its linear period
 CALM = [("uniform h", {}), ("uniform 1.5 h", {"bodies.0.spacing": 0.045}),
@@ -208,6 +243,11 @@ def md_table():
     for r in calm:
         out.append("| %s | %s | %s | %s | %s |" % (r["variant"], f(r.get("particles"), "%.0f"), f(r["cpu_s"], "%.1f"),
                                                  f(r.get("energy_kept"), "%.3f"), f(r.get("area_drift"), "%.1e")))
+    out += ["", "The gate's step sequence (`elastic_gate_antoci` at h0/√2, Δt = %.3g s; error as above):" % dtg, "",
+            "| steps | count | smallest Δt | largest Δt | CPU s | error |", "|---|---|---|---|---|---|"]
+    for r in sequences:
+        out.append("| %s | %s | %s | %s | %s | %s |" % (r["sequence"], f(r.get("steps"), "%.0f"), f(r.get("dt_min"), "%.2g"),
+                                                   f(r.get("dt_max"), "%.2g"), f(r["cpu_s"], "%.1f"), f(r.get("error"), "%.3g")))
     return "\n".join(out)
 
 

@@ -118,6 +118,39 @@ TEST(SizeField, ABoxRefinesInsideItsTimeWindowAndParticlesOutOfTheMeshAreFine) {
   EXPECT_EQ(before.back(), 0.02);
 }
 
+TEST(SizeField, TheFlowIndicatorMarksAShearLayerAndNotARigidMotion) {
+  // u = (U tanh((y - 1/2) / delta), 0): a shear layer of rate U / delta at y = 1/2 (gamma = |du/dy|), decaying
+  // away from it; with the threshold at half the peak rate, the particles where the exact rate is well above it
+  // are marked and those where it is well below are not; a rigid rotation (gamma = 0, though its gradient is larger
+  // than the layer's) marks nothing.
+  const double U = 1.0, delta = 0.05, peak = U / delta;
+  const SizeField f = read_field(Json{{"type", "adaptive"}, {"strain_rate", 0.5 * peak}});
+  EXPECT_DOUBLE_EQ(f.strain_rate(), 0.5 * peak);
+  const Lattice l = lattice(40);
+  std::vector<Vec2> shear(l.pts.size()), rotation(l.pts.size());
+  for (size_t i = 0; i < l.pts.size(); ++i) {
+    shear[i] = Vec2(U * std::tanh((l.pts[i].y() - 0.5) / delta), 0.0);
+    rotation[i] = 30.0 * Vec2(-(l.pts[i].y() - 0.5), l.pts[i].x() - 0.5);
+  }
+  std::vector<char> source(l.pts.size(), 0);
+  const Index marked = f.mark_straining(l.pts, shear, l.tri, source);
+  EXPECT_GT(marked, 0);
+  for (size_t i = 0; i < l.pts.size(); ++i) {
+    const double rate = peak / std::pow(std::cosh((l.pts[i].y() - 0.5) / delta), 2);  // exact |du/dy|
+    if (rate > 0.7 * peak) {
+      EXPECT_TRUE(source[i]) << "y = " << l.pts[i].y();
+    }
+    if (rate < 0.3 * peak) {
+      EXPECT_FALSE(source[i]) << "y = " << l.pts[i].y();
+    }
+  }
+  std::vector<char> none(l.pts.size(), 0);
+  EXPECT_EQ(f.mark_straining(l.pts, rotation, l.tri, none), 0);
+  // Without a threshold (the default) nothing is marked.
+  std::vector<char> off(l.pts.size(), 0);
+  EXPECT_EQ(read_field("adaptive").mark_straining(l.pts, shear, l.tri, off), 0);
+}
+
 TEST(SizeField, BadInputNamesItsKey) {
   const auto error_of = [](const Json& j) {
     try {
@@ -136,6 +169,8 @@ TEST(SizeField, BadInputNamesItsKey) {
             std::string::npos);
   const Json inverted = {{"type", "box"}, {"min", {1, 1}}, {"max", {0, 0}}, {"size", 0.05}};
   EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"regions", {inverted}}}).find("/bodies/0/size_field/regions/0/max"),
+            std::string::npos);
+  EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"strain_rate", -1}}).find("/bodies/0/size_field/strain_rate"),
             std::string::npos);
   const Json small = {{"type", "box"}, {"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.001}};
   EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"regions", {small}}}).find("/bodies/0/size_field/regions/0/size"),

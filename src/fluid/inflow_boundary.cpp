@@ -16,11 +16,13 @@
 // depth d_k (where it would be had it entered at that instant) with the inflow's velocity and the nearest
 // particle's pressure: particles enter in layers at exactly the rate the profile carries them, as in the inflows of
 // Kratos' PFEM and of PFEM-2 (Idelsohn et al. 2013). A lane whose inflow velocity is zero (a parabolic profile's
-// ends, which walls hold) gets none. The area that entered is the profile's flux, u_n L int f dt (summary.json also
-// counts the particles, each lane's width times h: the trapezoidal rule of phi on the lanes, which is 1 - 1/N^2 of
-// the flux for the parabola and 1 for a table whose points are among the lanes'). The strip
-// of depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that the
-// elements joining a new layer to the flow are kept.
+// ends, which walls hold) gets none, nor does an end lane where a wall's or a structure's particle sits within half
+// a spacing of the segment's end (walls of particles: the wall particle at the corner already bounds the mesh
+// there, and a particle injected on it would coincide with it). The area that entered is the profile's flux, u_n L int
+// f dt (summary.json also counts the particles, each lane's width times h: the trapezoidal rule of phi on the lanes,
+// which is 1 - 1/N^2 of the flux for the parabola and 1 for a table whose points are among the lanes'). The strip of
+// depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that the elements
+// joining a new layer to the flow are kept.
 #include "fluid_boundary.hpp"
 
 #include <algorithm>
@@ -197,6 +199,7 @@ class Inflow final : public FluidBoundary {
       const double s = static_cast<double>(k) / static_cast<double>(lanes_);
       const double un = u_.dot(seg_.normal) * profile(s);
       if (!(un > 0)) continue;
+      if ((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, seg_.a + seg_.tangent * (s * seg_.length))) continue;
       phase_[k] += un * swept;
       if (phase_[k] < h_ * (1 - 1e-9)) continue;
       phase_[k] = std::max(0.0, phase_[k] - h_);
@@ -237,6 +240,12 @@ class Inflow final : public FluidBoundary {
   }
 
  private:
+  /// Whether a wall's or a structure's particle lies within half a spacing of x.
+  bool boundary_particle_near(const ParticleCloud& cloud, const Vec2& x) const {
+    for (Index i = 0; i < cloud.n(); ++i)
+      if (!cloud.is_fluid(i) && (cloud.pos(i) - x).squaredNorm() < 0.25 * h_ * h_) return true;
+    return false;
+  }
   /// The pressure of the fluid particle nearest to x within two spacings (0 without one).
   double nearest_pressure(const ParticleCloud& cloud, const Vec2& x) const {
     double best = 4 * h_ * h_, p = 0.0;

@@ -7,6 +7,8 @@
 //  - A table is interpolated linearly and normalized to mean 1: a triangle 0 -> 2 -> 0 holds the particles at
 //    s = 1/4 and 1/2 at U and 2 U.
 //  - A bad table is refused in one line naming the JSON path of the bad value.
+//  - A uniform inflow between walls of particles injects nothing on the wall particles at its ends (the end lanes
+//    are left to them), and injects at its ends when no wall particle is there.
 #include <gtest/gtest.h>
 
 #include "fluid_boundary.hpp"
@@ -38,10 +40,11 @@ std::unique_ptr<FluidBoundary> make(const Json& inflow) {
   return make_inflow_boundary(Params(inflow, "case.json", "/bodies/0/boundaries/0"), {kH, ".", "boundary0"});
 }
 
-/// The inflow driven for `steps` steps of kDt from t = 0 into an empty cloud: the cloud it filled.
-ParticleCloud drive(FluidBoundary& inflow, int steps) {
+/// The inflow driven for `steps` steps of kDt from t = 0 into a cloud of the given wall particles: the cloud it
+/// filled.
+ParticleCloud drive(FluidBoundary& inflow, int steps, const std::vector<Vec2>& walls = {}) {
   ParticleCloud cloud;
-  cloud.assign({}, {}, kH);
+  cloud.assign(walls, std::vector<ParticleKind>(walls.size(), ParticleKind::Wall), kH);
   const FluidMesh mesh;
   for (int n = 0; n < steps; ++n) {
     std::vector<BoundaryConstraint> held;
@@ -88,6 +91,25 @@ TEST(InflowBoundary, ATableOfTheParabolaInjectsTheParabolicProfilesParticlesAndF
   EXPECT_GT(a.n(), 40);
   // (each lane's phase differs by the 1/200^2 of the distance it travelled, at most 2e-6 m here)
   for (Index i = 0; i < a.n(); ++i) EXPECT_NEAR((a.pos(i) - b.pos(i)).norm(), 0.0, 1e-5) << i;
+}
+
+TEST(InflowBoundary, AUniformInflowLeavesItsEndsToTheWallParticlesThere) {
+  const std::vector<Vec2> walls = {Vec2(0.0, 0.0), Vec2(0.0, kHeight), Vec2(0.05, 0.0), Vec2(0.05, kHeight)};
+  auto between_walls = make(inflow_with("uniform"));
+  const ParticleCloud a = drive(*between_walls, 100, walls);
+  ASSERT_GT(a.n(), 40);
+  for (Index i = 0; i < a.n(); ++i) {
+    if (!a.is_fluid(i)) continue;
+    for (const Vec2& w : walls) EXPECT_GT((a.pos(i) - w).norm(), 0.5 * kH) << "particle " << i;
+  }
+  // Without the walls the end lanes inject too: two lanes of N + 1 more.
+  auto open = make(inflow_with("uniform"));
+  const ParticleCloud b = drive(*open, 100);
+  const long with_walls = between_walls->summary()["particles_injected"].get<long>();
+  const long without = open->summary()["particles_injected"].get<long>();
+  EXPECT_EQ(without - with_walls, 2 * without / (kHeight / kH + 1));
+  // Both carry the profile's flux U H t.
+  EXPECT_NEAR(between_walls->summary()["area_prescribed"].get<double>(), kU * kHeight * 1.0, 1e-12);
 }
 
 TEST(InflowBoundary, ATableIsInterpolatedLinearlyAndNormalizedToMeanOne) {

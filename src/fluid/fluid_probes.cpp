@@ -39,7 +39,10 @@ const KeyTable kElevationKeys(
                 {"band", 0.0, "Particles method: half-width (m) of the band; default: 1.5 h (at least h / 4).",
                  kDerived}}));
 
-const KeyTable kPressureKeys("/probes/* (fluid body, type pressure)", "The mean pressure (Pa) over a sensor segment.",
+const KeyTable kPressureKeys("/probes/* (fluid body, type pressure)",
+                             "The mean pressure (Pa) of the particles on a sensor segment; with \"from\" equal to "
+                             "\"to\", a point sensor: the pressure interpolated (P1) in the element that holds the "
+                             "point, 0 where no element does (dry).",
                              probe_keys({"pressure"}, {{"from", nullptr, "One end of the segment [x, y] (m)."},
                                                        {"to", nullptr, "The other end [x, y] (m)."},
                                                        {"tolerance", 0.0,
@@ -251,6 +254,20 @@ std::vector<double> FluidProbe::sample() const {
       if (segment_distance(q) <= band_ && !(q.y() <= top)) top = q.y();
     }
     return {top};
+  }
+  if (type_ == "pressure" && (b_ - a_).norm() == 0.0) {
+    // A point sensor: the P1 pressure of the element that holds the point (within round-off of its edges, so a
+    // point on a wall is held), 0 when none does (a dry sensor).
+    for (const auto& t : m_.triangles()) {
+      const Vec2 x0 = m_.pos(t[0]), e1 = m_.pos(t[1]) - x0, e2 = m_.pos(t[2]) - x0, q = a_ - x0;
+      const double det = e1.x() * e2.y() - e1.y() * e2.x();
+      if (!(std::abs(det) > 0)) continue;
+      const double l1 = (q.x() * e2.y() - q.y() * e2.x()) / det, l2 = (e1.x() * q.y() - e1.y() * q.x()) / det;
+      const double tol = 1e-9;
+      if (l1 < -tol || l2 < -tol || l1 + l2 > 1 + tol) continue;
+      return {(1 - l1 - l2) * m_.pressure(t[0]) + l1 * m_.pressure(t[1]) + l2 * m_.pressure(t[2])};
+    }
+    return {0.0};
   }
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)

@@ -7,7 +7,8 @@
 // the latter with the Robin free-surface pressure ("free_surface_pressure": "robin"). A tank carried at constant
 // velocity keeps its water, which moves with it (the domain box follows moving walls: before, this tank lost all
 // but 0.04 % of its water with the default settings and 0.2 % with the walls as constraints, left the domain box,
-// and the runs stopped at 0.85 s).
+// and the runs stopped at 0.85 s). A point pressure sensor between the particles reads the hydrostatic pressure (it
+// read 0 with no particle within half a spacing), one on the floor reads rho g H and one above the water reads 0.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -119,6 +120,23 @@ std::string carried_tank(const std::string& detection, const std::string& walls)
       {"type", "prescribed_velocity"}, {"value", {0.5, 0.3}}, {"function", {{"type", "constant"}}}};
   b["initial_velocity"] = {0.5, 0.3};
   return j.dump();
+}
+
+TEST(StillWater, APointPressureSensorReadsTheHydrostaticPressureBetweenParticles) {
+  nlohmann::json j = nlohmann::json::parse(still_tank("advected", "none", "constraints", "robin"));
+  j["analysis"]["end_time"] = 0.1;
+  const auto point = [](const char* name, double x, double y) {
+    return nlohmann::json{{"name", name}, {"type", "pressure"}, {"body", "water"}, {"from", {x, y}}, {"to", {x, y}}};
+  };
+  // (0.21, 0.09) is 0.014 m from the nearest particle of the 0.02 m lattice: none within half a spacing.
+  j["probes"] = {point("p_mid", 0.21, 0.09), point("p_floor", 0.21, 0.0), point("p_dry", 0.21, 0.25)};
+  const RunResult r = run_case_text(fresh_dir("still_water_point_pressure"), j.dump());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const double rho_g = 1000.0 * 9.81;
+  EXPECT_NEAR(p["p_mid"].back(), rho_g * (0.2 - 0.09), 0.01 * rho_g * 0.11);
+  EXPECT_NEAR(p["p_floor"].back(), rho_g * 0.2, 0.01 * rho_g * 0.2);
+  EXPECT_EQ(p["p_dry"].back(), 0.0);
 }
 
 TEST(StillWater, ACarriedTankKeepsItsWater) {

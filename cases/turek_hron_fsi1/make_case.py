@@ -66,12 +66,23 @@ def case(h, dt, end_time, tag):
 
 
 def shell_case(h, dt, end_time, tag, elements=10):
-    """FSI1 with the flag as positional shell elements (cases/*_shell): its mid-line y = 0.2 m from the root section,
-    whose corners are the flag's on the cylinder (x = 0.2497 m), to the tip (0.6, 0.2), thickness 0.02 m, `elements`
-    cubic elements, clamped at the root (position and section held, as the T10 flag's arc inside the cylinder). The
-    shell's faces (eta = +-1/2) are the triangles' flag's faces, so that the fluid and the interface (the same
-    polyline: lower face, end, upper face) are the main case's."""
-    c = case(h, dt, end_time, tag)
+    """FSI1 with the flag as positional shell elements (to_shell)."""
+    c = to_shell(case(h, dt, end_time, tag), elements)
+    c["name"] = "turek_hron_fsi1_shell"
+    c["description"] = ("Turek & Hron (2006) FSI1 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
+                        "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
+                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, rho = 1000, "
+                        "mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 0.2 m/s (Re = 20): drag, "
+                        "lift, the tip's displacement (%s)" % (elements, tag))
+    return c
+
+
+def to_shell(c, elements=10):
+    """A Turek-Hron FSI case `c` with its flag as positional shell elements (cases/*_shell): its mid-line y = 0.2 m
+    from the root section, whose corners are the flag's on the cylinder (x = 0.2497 m), to the tip (0.6, 0.2),
+    thickness 0.02 m, `elements` cubic elements, clamped at the root (position and section held, as the T10 flag's
+    arc inside the cylinder). The shell's faces (eta = +-1/2) are the triangles' flag's faces, so that the fluid and
+    the interface (the same polyline: lower face, end, upper face) are the main case's."""
     water, solid = c["bodies"]
     root = c["couplings"][0]["interface"]["points"][0][0]
     assert abs(root - c["couplings"][0]["interface"]["points"][-1][0]) < 1e-12
@@ -85,12 +96,6 @@ def shell_case(h, dt, end_time, tag, elements=10):
         "boundary_conditions": [{"type": "fixed", "select": {"type": "point", "at": [root, YC]}}],
     }
     c["bodies"] = [water, shell]
-    c["name"] = "turek_hron_fsi1_shell"
-    c["description"] = ("Turek & Hron (2006) FSI1 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
-                        "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
-                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, rho = 1000, "
-                        "mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 0.2 m/s (Re = 20): drag, "
-                        "lift, the tip's displacement (%s)" % (elements, tag))
     return c
 
 

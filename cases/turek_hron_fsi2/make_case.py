@@ -1,7 +1,8 @@
 """Writes the case file of turek_hron_fsi2: turek_hron_fsi1's (its make_case.py: turek_hron_cfd1's channel with the
 flag an elastic solid coupled to the fluid) with the inflow's mean speed 1 m/s (Re = 100), the flag's density
 10000 kg/m^3 and a time step for the Courant number (peak speed 1.5 m/s: 1.5 dt / h = 0.375): case.json (h = 0.01 m,
-dt = 0.0025 s, 12 s of flow: the flag's oscillation grows from the remeshing's noise and becomes periodic).
+dt = 0.0025 s, 12 s of flow: the flag's oscillation grows from the remeshing's noise and becomes periodic), and
+case_shell.json, the same with the flag as shell elements (shell_case).
 Usage: /usr/bin/python3 cases/turek_hron_fsi2/make_case.py (rewrites it)."""
 import importlib.util
 import json
@@ -27,6 +28,21 @@ def case(h, dt, end_time, tag):
                         end_time, tag)
 
 
+def shell_case(h, dt, end_time, tag, elements=10):
+    """FSI2 with the flag as 10 cubic positional shell elements along its centre line (fsi1.to_shell)."""
+    c = fsi1.to_shell(case(h, dt, end_time, tag), elements)
+    c["name"] = "turek_hron_fsi2_shell"
+    c["description"] = ("Turek & Hron (2006) FSI2 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
+                        "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
+                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, "
+                        "rho = 10000, mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 1 m/s "
+                        "(Re = 100): the flag's periodic oscillation, drag, lift, the tip's displacement (%s)"
+                        % (elements, tag))
+    return c
+
+
 if __name__ == "__main__":
     with open(os.path.join(here, "case.json"), "w") as f:
         f.write(cfd1.compact(json.dumps(case(0.01, 0.0025, 12.0, "h = 0.01 m, dt = 0.0025 s"), indent=2)) + "\n")
+    with open(os.path.join(here, "case_shell.json"), "w") as f:
+        f.write(cfd1.compact(json.dumps(shell_case(0.01, 0.0025, 12.0, "h = 0.01 m, dt = 0.0025 s"), indent=2)) + "\n")

@@ -15,7 +15,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 # Cheapest first (full-mode wall time on the 2-core machine, see README.md).
 STUDIES = ["wall_pressure", "adaptivity", "conservation", "efg", "added_mass", "alpha_sensitivity", "convergence", "stability_map", "accuracy_walltime",
-           "dem_blast"]
+           "dem_blast", "turek_hron_fsi"]
 
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("--exe", default=os.path.join(REPO, "build", "lagfsi"))

@@ -156,6 +156,9 @@ SEQUENCES = [("fixed, Δt/2", {"analysis.dt": dtg / 2}), ("fixed, Δt", {}), ("f
              ("adaptive, C 0.3, at most 4 Δt", {"analysis.time_step": {"type": "adaptive", "courant": 0.3, "max": 4 * dtg}}),
              ("adaptive, C 0.5, at most 4 Δt, growth 1.02",
               {"analysis.time_step": {"type": "adaptive", "courant": 0.5, "max": 4 * dtg, "growth": 1.02}})]
+# The same two adaptive runs from inputs that differ in the last digit: Δt and h written with 15 digits.
+ROUNDED = {"analysis.dt": float("%.15g" % dtg), "bodies.0.spacing": float("%.15g" % (fg * gate["h0"]))}
+SEQUENCES += [(name + ", Δt and h to 15 digits", dict(sets, **ROUNDED)) for name, sets in (SEQUENCES[4], SEQUENCES[7])]
 if S.quick:
     SEQUENCES = SEQUENCES[1:2]
 gate_ref_run = S.run(gate["case"], "elastic_gate_antoci_uniform_f%.3f" % gate["uniform"][-1],

@@ -271,17 +271,12 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
     walls = std::make_unique<WallParticles>();
   if (navier) walls->set_navier_friction(c_.mu, slip_length);
   boundaries_.set_walls(std::move(walls));
-  // The particle size field (size_field.hpp): an adaptive one needs the conservative management (the alpha
-  // detection removes particles instead of merging them) and graded regions (unstructured particles).
+  // The particle size field (size_field.hpp): an adaptive one needs remeshing and graded regions (unstructured
+  // particles).
   SizeField size;
   size.read(b, c_.h);
   if (size.adaptive()) {
     if (!c_.remesh) b.at("size_field").fail("type", "\"adaptive\" needs \"remesh\": true");
-    if (rs.detection == meshing::DomainDetection::Alpha)
-      b.at("size_field")
-          .fail("type",
-                "\"adaptive\" needs \"domain_detection\": \"advected\" or \"level_set\" (the alpha "
-                "detection removes particles where an adaptive field merges them)");
     if (b.string("particles") != "unstructured")
       b.at("size_field").fail("type", "\"adaptive\" needs \"particles\": \"unstructured\" (graded regions)");
   }

@@ -343,28 +343,81 @@ void RemeshPipeline::follow_size_field(const BoundaryChains& chain, const std::v
     if (cloud_.is_fluid(i)) cloud_.set_h(i, h[static_cast<size_t>(i)]);
 }
 
+std::vector<std::pair<Index, Index>> RemeshPipeline::coarsen_pairs(const std::vector<Vec2>& pts,
+                                                                   const std::function<bool(Index)>& interior) const {
+  // Equilibrium of the management: edges between kCoarsenFraction h and about 1.5 h (an element larger than
+  // insert_area_factor h^2 gets a particle).
+  constexpr double kCoarsenFraction = 0.6;
+  std::vector<std::tuple<double, Index, Index>> pairs;
+  for (const auto& t : mesh_.tri)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = t[k], c = t[(k + 1) % 3];
+      if (a > c || !interior(a) || !interior(c)) continue;  // each interior edge once (it has two elements)
+      const double ratio = (pts[a] - pts[c]).norm() / (0.5 * (cloud_.h(a) + cloud_.h(c)));
+      if (ratio < kCoarsenFraction) pairs.emplace_back(ratio, a, c);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::pair<Index, Index>> out;
+  out.reserve(pairs.size());
+  for (const auto& [ratio, a, c] : pairs) out.emplace_back(a, c);
+  return out;
+}
+
 void RemeshPipeline::coarsen(Management& m) {
   // An adaptive size field: two interior fluid particles joined by an edge of the advected mesh and closer than
   // kCoarsenFraction times their mean size are merged (merge_pair: mass-weighted state at their centre of mass,
   // so neither the domain, nor the area, nor the momentum changes), the closest pairs (relative to their size)
   // first, each particle at most once a remesh; the insertion in oversized elements refines where the size falls.
-  // Equilibrium: edges between kCoarsenFraction h and about 1.5 h (an element larger than insert_area_factor h^2).
-  constexpr double kCoarsenFraction = 0.6;
-  std::vector<std::tuple<double, Index, Index>> pairs;
   const auto interior = [&](Index i) { return cloud_.is_fluid(i) && !m.on_boundary(i) && m.walled(i) == 0; };
-  for (const auto& t : mesh_.tri)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = t[k], c = t[(k + 1) % 3];
-      if (a > c || !interior(a) || !interior(c)) continue;  // each interior edge once (it has two elements)
-      const double ratio = (m.pts[a] - m.pts[c]).norm() / (0.5 * (cloud_.h(a) + cloud_.h(c)));
-      if (ratio < kCoarsenFraction) pairs.emplace_back(ratio, a, c);
-    }
-  std::sort(pairs.begin(), pairs.end());
-  for (const auto& [ratio, a, c] : pairs)
+  for (const auto& [a, c] : coarsen_pairs(m.pts, interior))
     if (!m.touched[a] && !m.touched[c]) {
       merge_pair(m, a, c);
       ++coarsened_;
     }
+}
+
+bool RemeshPipeline::follow_size_field_alpha(double t) {
+  // The sources: the free surface, the particles of elements with a wall's or a structure's particle (the wet faces)
+  // and, through SizeField::targets, the particles in no element.
+  const Index np = cloud_.n();
+  std::vector<char> source(static_cast<size_t>(np), 0), beside(static_cast<size_t>(np), 0);
+  for (const auto& e : mesh_.tri)
+    if (!cloud_.is_fluid(e[0]) || !cloud_.is_fluid(e[1]) || !cloud_.is_fluid(e[2]))
+      for (Index i : e) beside[static_cast<size_t>(i)] = 1;
+  for (Index i = 0; i < np; ++i)
+    source[i] = !cloud_.is_fluid(i) || beside[i] || (static_cast<size_t>(i) < mesh_.free.size() && mesh_.free[i]);
+  const std::vector<Vec2> pts = cloud_.positions();
+  if (size_.strain_rate() > 0) {
+    std::vector<Vec2> v(static_cast<size_t>(np));
+    for (Index i = 0; i < np; ++i) v[static_cast<size_t>(i)] = cloud_.vel(i);
+    size_.mark_straining(pts, v, mesh_.tri, source);
+  }
+  std::vector<double> h;
+  size_.targets(pts, mesh_.tri, source, t, h);
+  for (Index i = 0; i < np; ++i)
+    if (cloud_.is_fluid(i)) cloud_.set_h(i, h[static_cast<size_t>(i)]);
+  // Interior pairs closer than their size merge into the survivor at their centre of mass with their momentum (the
+  // lumped shares of the mesh as masses); the alpha shape of the new cloud then sets the domain, as at every remesh.
+  const std::vector<double> mass = mesh_.nodal_areas(cloud_.x(), np);
+  const auto interior = [&](Index i) { return cloud_.is_fluid(i) && !source[static_cast<size_t>(i)]; };
+  std::vector<char> drop(static_cast<size_t>(np), 0), touched(static_cast<size_t>(np), 0);
+  Vec& x = cloud_.x();
+  Vec& v = cloud_.v();
+  Vec& a = cloud_.a();
+  Vec& p = cloud_.p();
+  for (const auto& [i, j] : coarsen_pairs(pts, interior)) {
+    if (touched[i] || touched[j]) continue;
+    touched[i] = touched[j] = 1;
+    const double w = mass[i] + mass[j], si = w > 0 ? mass[i] / w : 0.5, sj = 1.0 - si;
+    x.segment<2>(2 * i) = si * x.segment<2>(2 * i) + sj * x.segment<2>(2 * j);
+    v.segment<2>(2 * i) = si * v.segment<2>(2 * i) + sj * v.segment<2>(2 * j);
+    a.segment<2>(2 * i) = si * a.segment<2>(2 * i) + sj * a.segment<2>(2 * j);
+    p[i] = si * p[i] + sj * p[j];
+    cloud_.set_h(i, std::max(cloud_.h(i), cloud_.h(j)));
+    drop[static_cast<size_t>(j)] = 1;
+    ++coarsened_;
+  }
+  return drop_particles(drop);
 }
 
 void RemeshPipeline::split_long_edges(Management& m) {

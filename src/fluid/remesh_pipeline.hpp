@@ -97,6 +97,10 @@ class RemeshPipeline {
   bool remove_close_particles();
   /// Inserts particles at the centroids of the oversized elements; true when some were.
   bool insert_particles();
+  /// An adaptive size field under the alpha detection, on the mesh just made: the fluid particles take its targets at
+  /// t (sources: the free surface, the particles in an element with a wall's or a structure's particle and those in
+  /// no element), and interior pairs closer than 0.6 of their mean size merge (coarsen_pairs); true when some did.
+  bool follow_size_field_alpha(double t);
   /// Removes the fluid particles outside the domain box and those an outflow takes (their share of the mesh's area
   /// leaves `volume`'s reference); throws SolverError when none is left (t_new in the message).
   bool drop_outside_domain(double t_new, VolumeCorrection& volume);
@@ -158,6 +162,10 @@ class RemeshPipeline {
   /// An adaptive size field: the fluid particles' sizes become its targets on the advected mesh at t (sources: the
   /// mesh's boundary, the wall and ghost particles and the particles on walls).
   void follow_size_field(const BoundaryChains& chain, const std::vector<char>& on_wall, double t);
+  /// The pairs of particles joined by an edge of the mesh, both `interior`, closer than 0.6 of their mean size, the
+  /// closest (relative to their size) first.
+  std::vector<std::pair<Index, Index>> coarsen_pairs(const std::vector<Vec2>& pts,
+                                                     const std::function<bool(Index)>& interior) const;
   /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
   /// particle go, the others are renumbered (renumber_).
   bool drop_particles(const std::vector<char>& drop);

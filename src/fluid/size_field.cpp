@@ -26,7 +26,7 @@ const KeyTable kSizeAdaptiveKeys(
     "Particles sized by where the flow needs them: the spacing h at the free surface, the walls, the structures "
     "and the open boundaries, growing with the distance d from them as h + gradation d up to max_size; "
     "re-evaluated at every remesh, the particle management merging and inserting particles to follow it. Needs "
-    "the advected or level-set detection and unstructured particles. `\"size_field\": \"adaptive\"` takes every "
+    "unstructured particles. `\"size_field\": \"adaptive\"` takes every "
     "default.",
     {{"type", "adaptive", "`adaptive`."},
      {"max_size", 0.0, "The largest size (m), in the bulk; default: 4 h.", kDerived},

@@ -107,6 +107,24 @@ TEST(StillWater, AGradedSizeFieldStaysStill) {
   EXPECT_EQ(log["nodes"].front(), log["nodes"].back());
 }
 
+// The same graded particles under the alpha shape (its surface correction, walls of particles): still, none merged.
+TEST(StillWater, AGradedSizeFieldStaysStillUnderTheAlphaShape) {
+  nlohmann::json j = nlohmann::json::parse(still_tank("alpha", "surface", "particles", "dirichlet"));
+  j["bodies"][0]["particles"] = "unstructured";
+  j["bodies"][0]["size_field"] = "adaptive";
+  const RunResult r = run_case_text(fresh_dir("still_water_graded_alpha"), j.dump());
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const Csv p = read_csv(r.out_dir / "probes.csv");
+  const auto& v = p["max_speed"];
+  ASSERT_GT(v.size(), 1999u);
+  EXPECT_LT(*std::max_element(v.begin(), v.end()), 1e-4 * std::sqrt(9.81 * 0.2));
+  const auto& a = p["area"];
+  EXPECT_NEAR(a.back(), a.front(), 1e-6 * a.front());
+  EXPECT_EQ(summary_of(r)["bodies"][0]["remeshing"]["particles_coarsened"].get<long>(), 0);
+  const Csv log = read_csv(r.out_dir / "log.csv");
+  EXPECT_EQ(log["nodes"].front(), log["nodes"].back());
+}
+
 /// The still tank (slip walls) carried at (0.5, 0.3) m/s for 1 s, its water moving with it from the start.
 std::string carried_tank(const std::string& detection, const std::string& walls) {
   nlohmann::json j =

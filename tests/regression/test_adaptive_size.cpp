@@ -2,7 +2,8 @@
 // (cases/dam_break_tank/case_adaptive.json) through the wall impact: the graded column starts with fewer particles
 // than the uniform one at the same finest size, the management merges and inserts particles as the flow moves
 // while the water is kept, the particles' sizes reach the .vtu, and a run stopped and restarted from its checkpoint
-// gives the whole run's probes bit for bit.
+// gives the whole run's probes bit for bit. Under the alpha detection (the fractional step's default) the twin also
+// coarsens its column's core and keeps its water through the impact (the surface correction holds the area).
 #include "case_runner.hpp"
 #include "fluid_checks.hpp"
 #include "process.hpp"
@@ -32,6 +33,18 @@ TEST(AdaptiveSize, TheDamBreakTwinFollowsItsSizeFieldAndKeepsItsWater) {
   EXPECT_LT(body["fluid_area"]["water_drift_max"].get<double>(), 0.005);
   // The sizes in the ParaView files: from h at the surface to several h inside the column.
   EXPECT_NE(file_text(graded.out_dir / "water" / "water_00000.vtu").find("particle_size"), std::string::npos);
+}
+
+TEST(AdaptiveSize, TheTwinFollowsItsSizeFieldUnderTheAlphaDetection) {
+  const RunResult graded =
+      run_case_1thread(kTwin, "adaptive_size_alpha",
+                       {"analysis.end_time=0.4", "bodies.0.scheme.type=fractional_step", "bodies.0.preset=classic"});
+  ASSERT_EQ(graded.exit_code, 0) << graded.stderr_text;
+  const auto body = summary_of(graded)["bodies"][0];
+  EXPECT_EQ(body["remeshing"]["domain_detection"], "alpha");
+  EXPECT_GT(body["remeshing"]["particles_coarsened"].get<long>(), 0);
+  const auto& area = body["fluid_area"];
+  EXPECT_NEAR(area["final"].get<double>(), area["initial"].get<double>(), 0.002 * area["initial"].get<double>());
 }
 
 TEST(AdaptiveSize, AGradedRunRestartsBitForBit) {

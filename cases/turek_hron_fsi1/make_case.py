@@ -67,13 +67,19 @@ def case(h, dt, end_time, tag):
 
 def shell_case(h, dt, end_time, tag, elements=10):
     """FSI1 with the flag as positional shell elements (to_shell)."""
-    c = to_shell(case(h, dt, end_time, tag), elements)
-    c["name"] = "turek_hron_fsi1_shell"
-    c["description"] = ("Turek & Hron (2006) FSI1 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
+    return named_shell(to_shell(case(h, dt, end_time, tag), elements), "FSI1", elements,
+                       "rho = 1000, mu = 0.5 MPa, nu = 0.4", "0.2 m/s (Re = 20)", "drag, lift, the tip's displacement",
+                       tag)
+
+
+def named_shell(c, test, elements, flag_text, flow_text, what, tag):
+    """The name and description of a shell variant (to_shell) of the Turek-Hron test `test`."""
+    c["name"] = "turek_hron_%s_shell" % test.lower()
+    c["description"] = ("Turek & Hron (2006) %s with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
                         "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
-                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, rho = 1000, "
-                        "mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 0.2 m/s (Re = 20): drag, "
-                        "lift, the tip's displacement (%s)" % (elements, tag))
+                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, %s, "
+                        "plane strain), parabolic inflow of mean %s: %s (%s)"
+                        % (test, elements, flag_text, flow_text, what, tag))
     return c
 
 

@@ -30,15 +30,9 @@ def case(h, dt, end_time, tag):
 
 def shell_case(h, dt, end_time, tag, elements=10):
     """FSI2 with the flag as 10 cubic positional shell elements along its centre line (fsi1.to_shell)."""
-    c = fsi1.to_shell(case(h, dt, end_time, tag), elements)
-    c["name"] = "turek_hron_fsi2_shell"
-    c["description"] = ("Turek & Hron (2006) FSI2 with the flag as shell elements: channel 2.5 x 0.41 m, a rigid "
-                        "cylinder (r = 0.05 m) with an elastic flag 0.35 x 0.02 m as %d cubic positional shell "
-                        "elements along its centre line, clamped at the cylinder (SVK in the shell's frame, "
-                        "rho = 10000, mu = 0.5 MPa, nu = 0.4, plane strain), parabolic inflow of mean 1 m/s "
-                        "(Re = 100): the flag's periodic oscillation, drag, lift, the tip's displacement (%s)"
-                        % (elements, tag))
-    return c
+    return fsi1.named_shell(fsi1.to_shell(case(h, dt, end_time, tag), elements), "FSI2", elements,
+                            "rho = 10000, mu = 0.5 MPa, nu = 0.4", "1 m/s (Re = 100)",
+                            "the flag's periodic oscillation, drag, lift, the tip's displacement", tag)
 
 
 if __name__ == "__main__":

@@ -331,6 +331,11 @@ void RemeshPipeline::follow_size_field(const BoundaryChains& chain, const std::v
   for (Index i = 0; i < np; ++i)
     source[i] = !cloud_.is_fluid(i) || chain.next[i] >= 0 || chain.prev[i] >= 0 ||
                 (!on_wall.empty() && on_wall[static_cast<size_t>(i)] != 0);
+  apply_size_field(source, t);
+}
+
+void RemeshPipeline::apply_size_field(std::vector<char>& source, double t) {
+  const Index np = cloud_.n();
   const std::vector<Vec2> pts = cloud_.positions();
   if (size_.strain_rate() > 0) {  // the flow indicator: where the flow strains fast, as at a surface
     std::vector<Vec2> v(static_cast<size_t>(np));
@@ -386,16 +391,8 @@ bool RemeshPipeline::follow_size_field_alpha(double t) {
       for (Index i : e) beside[static_cast<size_t>(i)] = 1;
   for (Index i = 0; i < np; ++i)
     source[i] = !cloud_.is_fluid(i) || beside[i] || (static_cast<size_t>(i) < mesh_.free.size() && mesh_.free[i]);
+  apply_size_field(source, t);
   const std::vector<Vec2> pts = cloud_.positions();
-  if (size_.strain_rate() > 0) {
-    std::vector<Vec2> v(static_cast<size_t>(np));
-    for (Index i = 0; i < np; ++i) v[static_cast<size_t>(i)] = cloud_.vel(i);
-    size_.mark_straining(pts, v, mesh_.tri, source);
-  }
-  std::vector<double> h;
-  size_.targets(pts, mesh_.tri, source, t, h);
-  for (Index i = 0; i < np; ++i)
-    if (cloud_.is_fluid(i)) cloud_.set_h(i, h[static_cast<size_t>(i)]);
   // Interior pairs closer than their size merge into the survivor at their centre of mass with their momentum (the
   // lumped shares of the mesh as masses); the alpha shape of the new cloud then sets the domain, as at every remesh.
   const std::vector<double> mass = mesh_.nodal_areas(cloud_.x(), np);

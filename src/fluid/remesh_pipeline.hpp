@@ -162,6 +162,9 @@ class RemeshPipeline {
   /// An adaptive size field: the fluid particles' sizes become its targets on the advected mesh at t (sources: the
   /// mesh's boundary, the wall and ghost particles and the particles on walls).
   void follow_size_field(const BoundaryChains& chain, const std::vector<char>& on_wall, double t);
+  /// The fluid particles' sizes: the size field's targets at t on the mesh from the features `source` (per particle;
+  /// the flow indicator's particles are added to it).
+  void apply_size_field(std::vector<char>& source, double t);
   /// The pairs of particles joined by an edge of the mesh, both `interior`, closer than 0.6 of their mean size, the
   /// closest (relative to their size) first.
   std::vector<std::pair<Index, Index>> coarsen_pairs(const std::vector<Vec2>& pts,

@@ -121,8 +121,27 @@ class FluidProbe final : public Probe {
   int wall_ = -1;  // wall_force: the wall's index
   /// The discharge through a_-b_ (the part of it in each element, where u is linear: its midpoint's u.n).
   double discharge() const;
-  /// Component component_ of the velocity at a_, or nan.
-  double velocity_at() const;
+  /// The P1 interpolation at a_ of the nodal values value(i) in the first element that holds a_ (its barycentric
+  /// coordinates at least -tol), or `outside` when none does.
+  template <class Value>
+  double interpolated_at(double tol, double outside, Value value) const {
+    for (const auto& t : m_.triangles()) {
+      const Vec2 p[3] = {m_.pos(t[0]), m_.pos(t[1]), m_.pos(t[2])};
+      const double area2 = cross(p[1] - p[0], p[2] - p[0]);
+      if (!(std::abs(area2) > 0)) continue;
+      double w[3];
+      bool in = true;
+      for (int k = 0; k < 3; ++k) {
+        w[k] = cross(p[(k + 1) % 3] - a_, p[(k + 2) % 3] - a_) / area2;
+        in = in && w[k] >= -tol;
+      }
+      if (!in) continue;
+      double v = 0;
+      for (int k = 0; k < 3; ++k) v += w[k] * value(t[k]);
+      return v;
+    }
+    return outside;
+  }
 };
 
 }  // namespace
@@ -235,7 +254,9 @@ std::vector<double> FluidProbe::sample() const {
     return {v};
   }
   if (type_ == "discharge") return {discharge()};
-  if (type_ == "velocity") return {velocity_at()};
+  if (type_ == "velocity")  // component component_ of the velocity at a_, nan outside the fluid
+    return {interpolated_at(1e-12, std::numeric_limits<double>::quiet_NaN(),
+                            [&](Index i) { return m_.vel(i)[component_]; })};
   if (type_ == "wall_force") return {m_.wall_force(wall_)[component_]};
   if (type_ == "water_above") {
     Index above = 0, fluid = 0;
@@ -258,16 +279,7 @@ std::vector<double> FluidProbe::sample() const {
   if (type_ == "pressure" && (b_ - a_).norm() == 0.0) {
     // A point sensor: the P1 pressure of the element that holds the point (within round-off of its edges, so a
     // point on a wall is held), 0 when none does (a dry sensor).
-    for (const auto& t : m_.triangles()) {
-      const Vec2 x0 = m_.pos(t[0]), e1 = m_.pos(t[1]) - x0, e2 = m_.pos(t[2]) - x0, q = a_ - x0;
-      const double det = e1.x() * e2.y() - e1.y() * e2.x();
-      if (!(std::abs(det) > 0)) continue;
-      const double l1 = (q.x() * e2.y() - q.y() * e2.x()) / det, l2 = (e1.x() * q.y() - e1.y() * q.x()) / det;
-      const double tol = 1e-9;
-      if (l1 < -tol || l2 < -tol || l1 + l2 > 1 + tol) continue;
-      return {(1 - l1 - l2) * m_.pressure(t[0]) + l1 * m_.pressure(t[1]) + l2 * m_.pressure(t[2])};
-    }
-    return {0.0};
+    return {interpolated_at(1e-9, 0.0, [&](Index i) { return m_.pressure(i); })};
   }
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
@@ -333,25 +345,6 @@ double FluidProbe::discharge() const {
     q += (hi - lo) * length * u.dot(n);
   }
   return q;
-}
-
-double FluidProbe::velocity_at() const {
-  for (const auto& t : m_.triangles()) {
-    const Vec2 p[3] = {m_.pos(t[0]), m_.pos(t[1]), m_.pos(t[2])};
-    const double area2 = cross(p[1] - p[0], p[2] - p[0]);
-    if (!(std::abs(area2) > 0)) continue;
-    double w[3];
-    bool in = true;
-    for (int k = 0; k < 3; ++k) {
-      w[k] = cross(p[(k + 1) % 3] - a_, p[(k + 2) % 3] - a_) / area2;
-      in = in && w[k] >= -1e-12;
-    }
-    if (!in) continue;
-    double v = 0;
-    for (int k = 0; k < 3; ++k) v += w[k] * m_.vel(t[k])[component_];
-    return v;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace lagfsi::fluid

@@ -230,12 +230,17 @@ def _parse(path, buf):
     return d
 
 
-def _read_pvtu(path):
+def _xml_root(path, what):
+    """The root element of the XML file `path` and its folder; VtkReadError naming `what` when it is not readable."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:
-        raise VtkReadError("%s: not a readable .pvtu file (%s)" % (path, e))
-    base = os.path.dirname(os.path.abspath(path))
+        raise VtkReadError("%s: not a readable %s (%s)" % (path, what, e))
+    return root, os.path.dirname(os.path.abspath(path))
+
+
+def _read_pvtu(path):
+    root, base = _xml_root(path, ".pvtu file")
     pieces = [read_vtk(os.path.join(base, el.get("Source"))) for el in root.iter("Piece") if el.get("Source")]
     if not pieces:
         raise VtkReadError("%s: no Piece" % path)
@@ -255,11 +260,7 @@ def _read_pvtu(path):
 
 def read_pvd(path):
     """(time, absolute path) of every data set of a .pvd collection, sorted by time (stable)."""
-    try:
-        root = ET.parse(path).getroot()
-    except (OSError, ET.ParseError) as e:
-        raise VtkReadError("%s: not a readable .pvd collection (%s)" % (path, e))
-    base = os.path.dirname(os.path.abspath(path))
+    root, base = _xml_root(path, ".pvd collection")
     out = []
     for ds in root.iter("DataSet"):
         f = ds.get("file")

@@ -9,14 +9,16 @@ writes CSV tables and PNG charts, and takes the same options:
   --cases DIR   the case files (default <repo>/cases)
   --rerun       run again even when a run folder with the same command (and executable time stamp) already
                 holds a finished run
+  --plan FILE   make no run: write the runs still needed to FILE for jobs.py (an MPI launch or a job array), then
+                run again without --plan to collect them
 Post-processing reuses cases/tools/lagfsi_post (read_csv, last_period_stats, interp, ...; the .pvd/.vtu reader
 lagfsi_post.vtkxml)."""
 import argparse
+import atexit
 import csv
 import json
 import math
 import os
-import resource
 import shlex
 import subprocess
 import sys
@@ -26,6 +28,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 CASES = os.path.join(REPO, "cases")
 sys.path.insert(0, os.path.join(CASES, "tools"))
+sys.path.insert(0, HERE)
+import runjob  # noqa: E402  (one run and its record, shared with the jobs of a plan: jobs.py)
 import lagfsi_post  # noqa: E402  (read_csv, last_period_stats, interp, peak, coupling_lines, save)
 from lagfsi_post import read_csv  # noqa: E402
 from lagfsi_post.vtkxml import read_pvd, read_vtk  # noqa: E402  (the VTK XML reader shared with the pictures)
@@ -34,7 +38,9 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported for the studies)
 
-EXIT_NAMES = {0: "ok", 1: "usage", 2: "bad input", 3: "solver failure", 4: "internal error", -1: "timeout"}
+PENDING = -2  # the exit code of a run in a --plan: not made yet
+EXIT_NAMES = {0: "ok", 1: "usage", 2: "bad input", 3: "solver failure", 4: "internal error", -1: "timeout",
+              PENDING: "pending (planned, not made yet)"}
 
 
 # ------------------------------------------------------------------------------------------------ options
@@ -55,6 +61,11 @@ class Study:
                              "executable was built from)")
         ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run (default 1)")
         ap.add_argument("--no-nice", action="store_true", help="do not run the solver under nice -n 19")
+        ap.add_argument("--plan", metavar="FILE", default=None,
+                        help="make no run: write the runs still to be made (not finished in --out) to FILE, one JSON "
+                             "job per line, for jobs.py (a batch job array or mpirun); then run the study again "
+                             "without --plan to collect them (a study whose runs depend on earlier results plans "
+                             "them in waves: plan again until the plan is empty)")
         self.args = ap.parse_args(argv)
         self.name = name
         self.quick = self.args.quick
@@ -73,6 +84,11 @@ class Study:
         self.written = []  # tables and charts, checked by finish()
         self.run_wall = 0.0  # the wall time of every run of this study, reused ones included
         self.n_runs = 0
+        self.n_reused = 0
+        self.plan = [] if self.args.plan else None  # --plan: the jobs the study still needs
+        if self.plan is not None:
+            atexit.register(self._write_plan)
+            sys.excepthook = self._pending_excepthook
         if not os.access(self.exe, os.X_OK):
             sys.exit("%s: lagfsi executable not found at %s (give --exe)" % (name, self.exe))
         print("[%s] %s mode; exe %s; runs in %s; results in %s" % (name, mode, self.exe, self.runs_dir,
@@ -83,7 +99,8 @@ class Study:
     def run(self, case, tag, sets=(), timeout=None):
         """Runs `case` (a path, relative to cases/ if not absolute) with the --set overrides `sets` (a dict or a
         list of "key=value") into runs_dir/tag. Returns a Run. A finished run with the same command is reused
-        unless --rerun. timeout (s): the run is killed and reported with rc -1."""
+        unless --rerun. timeout (s): the run is killed and reported with rc -1. With --plan the run is not made but
+        added to the plan (a pending Run: rc PENDING, no output)."""
         case_path = case if os.path.isabs(case) else os.path.join(self.cases, case)
         if isinstance(sets, dict):
             sets = ["%s=%s" % (k, v if isinstance(v, str) else json.dumps(v)) for k, v in sets.items()]
@@ -91,50 +108,46 @@ class Study:
         cmd = [self.exe, "run", case_path, "-o", out, "--threads", str(self.args.threads), "--quiet"]
         for s in sets:
             cmd += ["--set", s]
-        stamp = os.path.join(out, "study_run.json")
-        exe_mtime = os.path.getmtime(self.exe)
-        if not self.args.rerun and os.path.isfile(stamp):
-            with open(stamp) as f:
-                old = json.load(f)
-            if (run_key(old.get("cmd", [])) == run_key(cmd) and old.get("exe_mtime", exe_mtime) == exe_mtime
-                    and os.path.isfile(os.path.join(out, "summary.json"))):
-                self.run_wall += old["wall"]
-                self.n_runs += 1
-                return Run(out, old["rc"], old["wall"], cmd, old.get("stderr", ""), old.get("cpu"))
-        if os.path.isdir(out):
-            for root, dirs, files in os.walk(out, topdown=False):
-                for f in files:
-                    os.remove(os.path.join(root, f))
-                for d in dirs:
-                    os.rmdir(os.path.join(root, d))
-        os.makedirs(out, exist_ok=True)
-        full = cmd if self.args.no_nice else ["nice", "-n", "19"] + cmd
-        load = os.getloadavg()[0]
-        t = time.time()
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        try:
-            p = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout,
-                               universal_newlines=True)
-            rc, err = p.returncode, p.stderr
-        except subprocess.TimeoutExpired:
-            rc, err = -1, "timeout after %s s" % timeout
-        wall = time.time() - t
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)  # the run's own, whatever shares the machine
-        self.run_wall += wall
+        old = None if self.args.rerun else runjob.finished(cmd, out)
         self.n_runs += 1
-        with open(stamp, "w") as f:
-            json.dump({"cmd": cmd, "exe_mtime": exe_mtime, "rc": rc, "wall": wall, "cpu": cpu, "load_before": load,
-                       "stderr": err[-2000:]}, f, indent=1)
-        r = Run(out, rc, wall, cmd, err, cpu)
-        print("  %-44s rc=%d (%s) %6.1f s%s" % (tag, rc, EXIT_NAMES.get(rc, "?"), wall,
-                                                 "" if rc == 0 else "  " + r.message[:110]), flush=True)
+        if old is not None:
+            self.run_wall += old["wall"]
+            self.n_reused += 1
+            return Run(out, old["rc"], old["wall"], cmd, old.get("stderr", ""), old.get("cpu"))
+        job = {"cmd": cmd, "out": out, "timeout": timeout, "nice": not self.args.no_nice}
+        if self.plan is not None:
+            if all(j["out"] != out for j in self.plan):  # one job per folder, however often the study asks
+                self.plan.append(job)
+            return Run(out, PENDING, 0.0, cmd, EXIT_NAMES[PENDING])
+        rec = runjob.execute(job)
+        self.run_wall += rec["wall"]
+        r = Run(out, rec["rc"], rec["wall"], cmd, rec["stderr"], rec["cpu"])
+        print("  %-44s rc=%d (%s) %6.1f s%s" % (tag, r.rc, EXIT_NAMES.get(r.rc, "?"), r.wall,
+                                                 "" if r.rc == 0 else "  " + r.message[:110]), flush=True)
         return r
+
+    def _write_plan(self):
+        """--plan: the pending jobs, one JSON line each (jobs.py reads them), and what to do next."""
+        with open(self.args.plan, "w") as f:
+            for job in self.plan:
+                f.write(json.dumps(job) + "\n")
+        print("[%s] plan: %d runs to make (%d finished) -> %s%s" % (
+            self.name, len(self.plan), self.n_reused, self.args.plan,
+            "; run them with jobs.py, then this study again" if self.plan else ""), flush=True)
+
+    def _pending_excepthook(self, kind, value, tb):
+        """--plan: an analysis that fails on runs not made yet is not an error (the plan is still written)."""
+        if self.plan:
+            print("[%s] analysis stopped on the pending runs (%s: %s)" % (self.name, kind.__name__, value))
+            sys.exit(0)
+        sys.__excepthook__(kind, value, tb)
 
     # ---------------------------------------------------------------------------------------- outputs
 
     def table(self, filename, rows, columns=None):
-        """Writes rows (dicts) as a CSV table into the results folder; returns its path."""
+        """Writes rows (dicts) as a CSV table into the results folder; returns its path (None with --plan)."""
+        if self.plan is not None:
+            return None
         columns = columns or list(rows[0].keys())
         path = os.path.join(self.results, filename)
         with open(path, "w", newline="") as f:
@@ -147,6 +160,9 @@ class Study:
         return path
 
     def figure(self, fig, filename):
+        if self.plan is not None:
+            plt.close(fig)
+            return None
         path = os.path.join(self.results, filename)
         fig.savefig(path, dpi=110, bbox_inches="tight")
         plt.close(fig)
@@ -156,7 +172,7 @@ class Study:
 
     def readme_table(self, markdown):
         """With --publish in full mode: puts `markdown` between the study README's generated-table markers."""
-        if not (self.args.publish and not self.quick):
+        if not (self.args.publish and not self.quick) or self.plan is not None:
             return
         readme = os.path.join(HERE, self.name, "README.md")
         with open(readme) as f:
@@ -171,11 +187,13 @@ class Study:
     def finish(self, required_finite=(), extra_problems=()):
         """Writes meta.json; checks that every table and chart exists and is non-empty and, in quick mode, that the
         columns `required_finite` ((filename, column) pairs) hold only finite numbers and that there are no
-        `extra_problems`. Exits 1 on a failed check."""
+        `extra_problems`. Exits 1 on a failed check. With --plan: writes the plan instead and exits 0."""
+        if self.plan is not None:
+            sys.exit(0)  # the plan is written at exit
         meta = {"study": self.name, "mode": "quick" if self.quick else "full", "commit": commit(self.exe),
                 "source": source_dir(self.exe),
                 "exe": self.exe, "version": version(self.exe), "wall_time_s": round(time.time() - self.t0, 1),
-                "runs": self.n_runs, "runs_wall_time_s": round(self.run_wall, 1),
+                "runs": self.n_runs, "runs_reused": self.n_reused, "runs_wall_time_s": round(self.run_wall, 1),
                 "threads": self.args.threads, "machine_cpus": os.cpu_count()}
         path = os.path.join(self.results, "meta.json")
         with open(path, "w") as f:
@@ -192,21 +210,15 @@ class Study:
                     problems.append("%s: column %s not all finite: %s" % (filename, col, vals))
             except (OSError, KeyError, IndexError) as e:
                 problems.append("%s: %s" % (filename, e))
-        print("[%s] %s mode done in %.0f s (commit %s)" % (self.name, meta["mode"], meta["wall_time_s"],
-                                                           meta["commit"]))
+        print("[%s] %s mode done in %.0f s, %d runs (%d reused) (commit %s)" % (
+            self.name, meta["mode"], meta["wall_time_s"], self.n_runs, self.n_reused, meta["commit"]))
         if problems:
             print("[%s] CHECK FAILED:\n  " % self.name + "\n  ".join(problems))
             sys.exit(1)
         return meta
 
 
-def run_key(cmd):
-    """The command with the case file named relative to its cases folder (the same case in another checkout of the
-    same commit is the same run)."""
-    k = list(cmd)
-    if len(k) > 2 and "/cases/" in k[2]:
-        k[2] = k[2].split("/cases/")[-1]
-    return k
+run_key = runjob.run_key
 
 
 class Run:

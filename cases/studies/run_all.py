@@ -1,8 +1,10 @@
 """Runs every study of cases/studies/ one after the other, the cheapest first.
 
 Usage: /usr/bin/python3 cases/studies/run_all.py [--quick] [--exe PATH] [--out DIR] [--publish] [--rerun]
-                                                [--cases DIR] [--only NAME ...]
+                                                [--cases DIR] [--only NAME ...] [--plan DIR]
   --out DIR   root of the output folders: DIR/<study> (default <repo>/out/studies)
+  --plan DIR  make no run: each study writes the runs it still needs to DIR/<study>.jsonl, to run as separate jobs
+              (`jobs.py DIR/*.jsonl` under mpirun or as a job array); then run_all.py without --plan collects them
 Every study gets the same --exe/--quick/--publish/--rerun. Exits non-zero if a study fails (in quick mode: its
 outputs are missing or not finite). Prints the wall time of each study."""
 import argparse
@@ -25,7 +27,10 @@ ap.add_argument("--quick", action="store_true")
 ap.add_argument("--publish", action="store_true")
 ap.add_argument("--rerun", action="store_true")
 ap.add_argument("--only", nargs="*", default=None, choices=STUDIES)
+ap.add_argument("--plan", metavar="DIR", default=None)
 a = ap.parse_args()
+if a.plan:
+    os.makedirs(a.plan, exist_ok=True)
 
 failed, times = [], []
 t_all = time.time()
@@ -33,6 +38,7 @@ for name in a.only or STUDIES:
     cmd = [sys.executable, os.path.join(HERE, name, "run.py"), "--exe", a.exe, "--out", os.path.join(a.out, name)]
     cmd += [f for f, on in (("--quick", a.quick), ("--publish", a.publish), ("--rerun", a.rerun)) if on]
     cmd += ["--cases", a.cases] if a.cases else []
+    cmd += ["--plan", os.path.join(a.plan, name + ".jsonl")] if a.plan else []
     print("=== %s: %s" % (name, " ".join(cmd)), flush=True)
     t = time.time()
     rc = subprocess.call(cmd)

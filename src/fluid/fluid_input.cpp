@@ -271,6 +271,7 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
     walls = std::make_unique<WallParticles>();
   if (navier) walls->set_navier_friction(c_.mu, slip_length);
   boundaries_.set_walls(std::move(walls));
+  if (wall_constraints_) remesh_.set_wall_lines([this](const Vec2& x) { return boundaries_.along(x); });
   // The particle size field (size_field.hpp): an adaptive one needs remeshing and graded regions (unstructured
   // particles).
   SizeField size;

@@ -124,11 +124,15 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   remesh_pe_total_ += energy.potential() - pe0;
   if (volume.type() == VolumeCorrection::Type::surface) {
     // The faces of inflows and outflows are boundaries of the mesh but not free surface: moved outwards, an
-    // inlet's face would be carried out of the channel and an outlet's would push water out.
+    // inlet's face would be carried out of the channel and an outlet's would push water out. The particles on
+    // walls as constraints stay on their lines (set_wall_lines).
     std::vector<char> still;
-    if (at_open_face_) {
+    if (at_open_face_ || on_wall_line_) {
       still.assign(static_cast<size_t>(cloud_.n()), 0);
-      for (Index i = 0; i < cloud_.n(); ++i) still[static_cast<size_t>(i)] = at_open_face_(cloud_.pos(i)) ? 1 : 0;
+      for (Index i = 0; i < cloud_.n(); ++i) {
+        const Vec2 p = cloud_.pos(i);
+        still[static_cast<size_t>(i)] = (at_open_face_ && at_open_face_(p)) || (on_wall_line_ && on_wall_line_(p));
+      }
     }
     volume.restore_area(still);
   }

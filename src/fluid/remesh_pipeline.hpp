@@ -63,6 +63,11 @@ class RemeshPipeline {
   }
   /// Whether a point lies on the face of an inflow or outflow (the particles the surface correction leaves alone).
   void set_open_faces(std::function<bool(const Vec2&)> at_open_face) { at_open_face_ = std::move(at_open_face); }
+  /// Whether a point lies on a wall that holds its particles by constraints: the surface correction leaves them
+  /// alone too (moved along the area's gradient, a particle at the water's edge on a wall leaves the wall's line,
+  /// and the wall puts it back in the step: the correction and the step undo each other, and the churn scatters
+  /// the water).
+  void set_wall_lines(std::function<bool(const Vec2&)> on_wall_line) { on_wall_line_ = std::move(on_wall_line); }
 
   /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
   /// detections.
@@ -188,6 +193,7 @@ class RemeshPipeline {
   std::function<void(int, long, double)> left_;
   std::vector<std::array<Vec2, 3>> open_regions_;
   std::function<bool(const Vec2&)> at_open_face_;  // set_open_faces
+  std::function<bool(const Vec2&)> on_wall_line_;  // set_wall_lines
   std::vector<Index> renumber_;                    // the last drop_particles: old index -> new index, -1 if dropped
   std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's
                                  // survivor or of the wall particle that stands for it (-1: none)

@@ -96,7 +96,7 @@ constexpr double kShapeBound = 0.125;
 constexpr double kSecondPassSize = 1.5;
 /// Expected number of triangles per unit of area / h^2 (about 1 / 0.43).
 constexpr double kAreaPerElement = 0.43;
-constexpr double kMaxElements = 5e6;
+constexpr double kMaxElements = 1e9;  // the caller's max_elements is the limit; this only bounds it
 
 [[noreturn]] void fail(const std::string& why) { throw std::invalid_argument("mesh_polygon: " + why); }
 
@@ -323,7 +323,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
   for (const auto* loop : loops)
     for (std::size_t i = 0; i < loop->size(); ++i)
       boundary_points += std::ceil(((*loop)[(i + 1) % loop->size()] - (*loop)[i]).norm() / h);
-  if (!(boundary_points <= 4.0 * kMaxElements)) fail("too many boundary points for this h");
+  if (!(boundary_points <= 4.0 * std::min(max_elements, kMaxElements))) fail("too many boundary points for this h");
   for (const auto* loop : loops) {
     const std::size_t n = loop->size();
     CDT::Vertex_handle first, prev;

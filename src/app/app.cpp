@@ -2,11 +2,13 @@
 
 #include <lagfsi/app/analysis.hpp>
 #include <lagfsi/app/app.hpp>
+#include <lagfsi/case.hpp>
 #include <lagfsi/mpi_run.hpp>
 #include <lagfsi/params.hpp>
 #include <lagfsi/text.hpp>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -22,7 +24,8 @@ namespace {
 const char* kUsageText =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
     "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n"
-    "       lagfsi check CASE.json [--set key.path=value ...]\n"
+    "                            [--max-nodes N]\n"
+    "       lagfsi check CASE.json [--set key.path=value ...] [--max-nodes N]\n"
     "       lagfsi keys\n"
     "       lagfsi --version | --help | COMMAND --help\n";
 
@@ -41,7 +44,8 @@ const char* kHelp =
 
 const char* kRunHelp =
     "usage: lagfsi run CASE.json [-o OUTDIR] [--set key.path=value ...] [--threads N] [--quiet]\n"
-    "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n\n"
+    "                            [--progress auto|bar|lines|none] [--restart OUTDIR] [--stop-after-step K]\n"
+    "                            [--max-nodes N]\n\n"
     "Runs a case and writes OUTDIR/{resolved_case.json, <body>.pvd, <body>/*.vtu, probes.csv, log.csv,\n"
     "summary.json}. OUTDIR (default out/<case name>) is locked while the run writes into it and must not be\n"
     "the case file's own folder.\n\n"
@@ -59,7 +63,10 @@ const char* kRunHelp =
     "                          step, the ParaView series continued; bit for bit like a run that was not\n"
     "                          stopped when the threads are the same (e.g. --threads 1)\n"
     "  --stop-after-step K     end the run after step K as if interrupted (a checkpoint is written when the\n"
-    "                          case asks for them), summary.json says \"stopped\", exit code 0\n\n"
+    "                          case asks for them), summary.json says \"stopped\", exit code 0\n"
+    "  --max-nodes N           the most nodes one mesh may have (a body's, a fluid region's particles;\n"
+    "                          default 2000000): a larger one is refused as a likely mistake (a size in the\n"
+    "                          wrong unit); large runs raise it (e.g. --max-nodes 5e6)\n\n"
     "Checkpoints: \"output\": {\"checkpoint\": {\"every_steps\": N, \"every_minutes\": M, \"keep\": 2}} in the\n"
     "case writes OUTDIR/checkpoint.bin every N steps and/or M minutes of wall time (atomically; keep 2 also\n"
     "keeps the one before as checkpoint.prev.bin), and when a signal ends the run. Solids, shells, fluids,\n"
@@ -70,11 +77,12 @@ const char* kRunHelp =
     "            130 / 143 interrupted\n";
 
 const char* kCheckHelp =
-    "usage: lagfsi check CASE.json [--set key.path=value ...]\n\n"
+    "usage: lagfsi check CASE.json [--set key.path=value ...] [--max-nodes N]\n\n"
     "Validates a case (meshes and models are built, bodies checked for overlaps and output names) and\n"
     "prints it on stdout with every default filled in; runs nothing.\n\n"
     "options:\n"
-    "  --set key.path=value    override a case value, as for run\n\n"
+    "  --set key.path=value    override a case value, as for run\n"
+    "  --max-nodes N           the most nodes one mesh may have, as for run\n\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 5 stdout cannot be written\n";
 
 const char* kKeysHelp =
@@ -212,6 +220,19 @@ int app_main(int argc, char** argv, const char* git_commit) {
       const long n = whole_number(v);
       if (n < 1) return usage_error("--stop-after-step needs a positive integer (got '" + echo(v) + "')");
       opt.stop_after_step = n;
+    } else if (a == "--max-nodes" || a.rfind("--max-nodes=", 0) == 0) {
+      if (a == "--max-nodes" && !value()) return usage_error("--max-nodes needs a number of nodes" + see);
+      if (a != "--max-nodes") v = a.substr(12);
+      double n = -1;
+      size_t used = 0;
+      try {
+        n = std::stod(v, &used);
+      } catch (...) {
+        used = 0;
+      }
+      if (used != v.size() || !(n >= 1) || !std::isfinite(n) || n != std::floor(n))
+        return usage_error("--max-nodes needs a positive whole number, e.g. 5000000 or 5e6 (got '" + echo(v) + "')");
+      set_max_mesh_nodes(n);
     } else if (a == "--quiet" || a == "-q") {
       opt.quiet = true;
     } else if (!a.empty() && a[0] == '-') {

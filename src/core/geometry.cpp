@@ -174,6 +174,13 @@ std::vector<std::vector<Vec2>> geometry_loops(Params g, double h) {
   return loops;
 }
 
+namespace {
+double g_max_mesh_nodes = 2e6;
+}
+
+double max_mesh_nodes() { return g_max_mesh_nodes; }
+void set_max_mesh_nodes(double nodes) { g_max_mesh_nodes = nodes; }
+
 TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>& size) {
   if (!g.json().is_object() || !g.has("type")) g.fail("type", "required key is missing");
   const std::string type = g.choice("type", {"rectangle", "polygon", "circle_cut"});
@@ -182,12 +189,13 @@ TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>&
   const int order = m.integer("order", 1);
   if (order > 3) m.fail("order", "must be 1, 2 or 3");
   const std::string mtype = m.choice("type", {"unstructured", "structured"});
-  // At most about 2 million nodes once elevated (an element of order p brings about p^2/2 nodes).
-  const double max_elements = 2e6 / std::max(0.5, 0.5 * order * order);
+  // At most max_mesh_nodes() nodes once elevated (an element of order p brings about p^2/2 nodes).
+  const double max_elements = g_max_mesh_nodes / std::max(0.5, 0.5 * order * order);
   auto too_many = [&](double elements) {
     m.fail("size", "about " + std::to_string(static_cast<long long>(elements)) + " elements, more than the " +
-                       std::to_string(static_cast<long long>(max_elements)) + " of 2 million nodes at order " +
-                       std::to_string(order));
+                       std::to_string(static_cast<long long>(max_elements)) + " of " +
+                       std::to_string(static_cast<long long>(g_max_mesh_nodes)) + " nodes at order " +
+                       std::to_string(order) + " (--max-nodes raises the limit)");
   };
   TriMesh linear;
   try {

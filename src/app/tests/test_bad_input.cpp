@@ -519,12 +519,28 @@ TEST(BadInput, SolidMeshTooFineForItsOrder) {
   j["bodies"][0]["mesh"]["size"] = 1e-4;  // structured: 2 x 10 000 x 1 000 triangles
   Outcome o = run_json("mesh_structured_too_fine", j);
   EXPECT_EQ(o.code, 2);
-  expect_one_line(o, "/bodies/0/mesh/size", "2 million nodes at order 1");
+  expect_one_line(o, "/bodies/0/mesh/size", "of 2000000 nodes at order 1");
   j = base_case();
   j["bodies"][0]["mesh"] = {{"type", "unstructured"}, {"size", 3e-4}, {"order", 3}};
   o = run_json("mesh_unstructured_too_fine", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/geometry", "more than the limit");
+}
+
+TEST(BadInput, TheMeshLimitIsTheMaxNodesFlags) {
+  // --max-nodes sets the limit above: a case that passes by default is refused under a lower one, naming the flag.
+  Outcome o = run_json("max_nodes_default", base_case());
+  EXPECT_EQ(o.code, 0) << o.message;
+  o = run_json("max_nodes_low", base_case(), "--max-nodes 10");
+  EXPECT_EQ(o.code, 2);
+  expect_one_line(o, "/bodies/0/mesh/size", "of 10 nodes at order 1 (--max-nodes raises the limit)");
+  o = run_json("max_nodes_high", base_case(), "--max-nodes 5e6");
+  EXPECT_EQ(o.code, 0) << o.message;
+  for (const char* bad : {"--max-nodes 0", "--max-nodes 2.5", "--max-nodes lots", "--max-nodes=1e400"}) {
+    o = run_json("max_nodes_bad", base_case(), bad);
+    EXPECT_EQ(o.code, 1) << bad;
+    EXPECT_NE(o.message.find("--max-nodes needs a positive whole number"), std::string::npos) << o.message;
+  }
 }
 
 TEST(BadInput, StaticBodyThatIsNotHeld) {

@@ -71,6 +71,12 @@ const Json& case_defaults();
 /// `size` (unstructured meshes): a local target size at a point, at least the mesh's "size" (meshing::mesh_polygon).
 TriMesh build_mesh(Params geometry, Params mesh, const std::function<double(const Vec2&)>& size = nullptr);
 
+/// The most nodes build_mesh makes for one mesh (after elevation to its order), 2 million unless set: a mesh past it
+/// is refused as a likely mistake (a size in the wrong unit meshes for minutes and fills the memory). Runs that
+/// need more raise it (`lagfsi run --max-nodes N`); the process-wide value is set before the case is built.
+double max_mesh_nodes();
+void set_max_mesh_nodes(double nodes);
+
 /// The outline of a "circle_cut" geometry (counter-clockwise like its polygon), the arc in pieces of about h.
 std::vector<Vec2> circle_cut_outline(Params geometry, double h);
 /// The loops that bound a geometry (its outer loop, then its holes; a circle_cut's arc in pieces of about h).

@@ -12,8 +12,10 @@ residual's rows over the processes, solver set-up, solve, rest) and the speed-up
 the same size (wall time per step, measured in this one invocation).
 
 usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
-           [--steps 6] [--warmup 2] [--doc docs/running.md]
---doc: rewrite the table between the markers <!-- bench_mpi begin --> and <!-- bench_mpi end --> of that file.
+           [--steps 6] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
+           [--marker bench_mpi]
+--doc: rewrite the table between the markers <!-- MARKER begin --> and <!-- MARKER end --> of that file.
+Sizes past the 2 million nodes a mesh may have by default pass --max-nodes.
 Run it on an otherwise idle machine: P processes need P free cores.
 OUTDIR (default BUILD/bench_mpi/) receives bench_mpi.csv and the runs' output folders.
 """
@@ -34,10 +36,10 @@ COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_partic
            "setup", "solve", "rest", "peak_mb", "speedup"]
 
 
-def run(exe, outdir, launch, processes, n, steps, warmup):
+def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     h = H0 * (N0 / n) ** 0.5
     dt = DT * h / H0
-    tag = f"{launch}_np{processes}_n{int(n)}"
+    tag = f"{launch}_np{processes}_n{int(n)}_{scheme}"
     out = os.path.join(outdir, tag)
     shutil.rmtree(out, ignore_errors=True)
     mpi = [] if launch == "serial" else [shutil.which("mpirun") or "mpirun", "--allow-run-as-root", "--oversubscribe",
@@ -45,6 +47,7 @@ def run(exe, outdir, launch, processes, n, steps, warmup):
     args = (["/usr/bin/time", "-f", "%M"] + mpi +
             [exe, "run", CASE, "-o", out, "--quiet", "--threads", "1",
              "--set", f"analysis.dt={dt:.6g}", "--set", f"analysis.end_time={steps * dt + dt / 2:.6g}",
+             "--max-nodes", f"{max(2e6, 1.2 * n):.0f}", "--set", f"bodies.0.scheme.type={scheme}",
              "--set", f"bodies.0.spacing={h:.6g}", "--set", "bodies.0.scheme.linear_solver=petsc",
              "--set", "output.vtk=false", "--set", "output.every=100000"])
     p = subprocess.run(args, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
@@ -65,9 +68,10 @@ def run(exe, outdir, launch, processes, n, steps, warmup):
     return r
 
 
-def markdown(rows, commit, machine):
-    lines = [f"Measured at {commit} on {machine} (`tests/bench/bench_mpi.py`): the dam break's first steps, the "
-             "monolithic scheme with the PETSc solver, one thread per process; µs per particle-step over the steps "
+def markdown(rows, commit, machine, scheme, command):
+    what = {"monolithic_pspg": "monolithic scheme", "fractional_step": "fractional step"}[scheme]
+    lines = [f"Measured at {commit} on {machine} (`{command}`): the dam break's first steps, the "
+             f"{what} with the PETSc solver, one thread per process; µs per particle-step over the steps "
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
              "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation).", "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
@@ -79,14 +83,14 @@ def markdown(rows, commit, machine):
     return "\n".join(lines) + "\n"
 
 
-def publish(rows, doc):
+def publish(rows, doc, marker, scheme, command):
     commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}")
+    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}", scheme, command)
     print(table)
     if doc:
         text = open(doc).read()
-        begin, end = "<!-- bench_mpi begin -->", "<!-- bench_mpi end -->"
+        begin, end = f"<!-- {marker} begin -->", f"<!-- {marker} end -->"
         if begin not in text or end not in text:
             sys.exit(f"bench_mpi: {doc} has no {begin} ... {end} markers")
         head, rest = text.split(begin, 1)
@@ -101,16 +105,18 @@ def main():
     ap.add_argument("--processes", nargs="+", type=int, default=[2])
     ap.add_argument("--steps", type=int, default=6)
     ap.add_argument("--warmup", type=int, default=2)
+    ap.add_argument("--scheme", default="monolithic_pspg", choices=["monolithic_pspg", "fractional_step"])
     ap.add_argument("--doc")
+    ap.add_argument("--marker", default="bench_mpi")
     a = ap.parse_args()
     exe = os.path.join(a.build, "lagfsi")
     outdir = a.outdir or os.path.join(a.build, "bench_mpi")
     os.makedirs(outdir, exist_ok=True)
     rows = []
     for n in a.sizes:
-        size_rows = [run(exe, outdir, "serial", 1, n, a.steps, a.warmup),
-                     run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup)]
-        size_rows += [run(exe, outdir, "mpirun", p, n, a.steps, a.warmup) for p in a.processes]
+        size_rows = [run(exe, outdir, "serial", 1, n, a.steps, a.warmup, a.scheme),
+                     run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup, a.scheme)]
+        size_rows += [run(exe, outdir, "mpirun", p, n, a.steps, a.warmup, a.scheme) for p in a.processes]
         size_rows = [r for r in size_rows if r]
         base = next((r for r in size_rows if r["launch"] == "mpirun" and r["processes"] == 1), None)
         for r in size_rows:
@@ -123,7 +129,10 @@ def main():
         w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
-    publish(rows, a.doc)
+    command = "tests/bench/bench_mpi.py --sizes " + " ".join("%g" % n for n in a.sizes)
+    if a.scheme != "monolithic_pspg":
+        command += " --scheme " + a.scheme
+    publish(rows, a.doc, a.marker, a.scheme, command)
 
 
 if __name__ == "__main__":

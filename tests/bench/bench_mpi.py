@@ -129,7 +129,7 @@ def main():
         w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
-    command = "tests/bench/bench_mpi.py --sizes " + " ".join("%g" % n for n in a.sizes)
+    command = "tests/bench/bench_mpi.py --sizes " + " ".join(("%g" % n).replace("e+0", "e") for n in a.sizes)
     if a.scheme != "monolithic_pspg":
         command += " --scheme " + a.scheme
     publish(rows, a.doc, a.marker, a.scheme, command)

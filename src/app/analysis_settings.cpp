@@ -23,7 +23,8 @@ const KeyTable kAnalysisKeys(
      {"integrator", Json::object(),
       "Time integrator (see /analysis/integrator (type newmark) and others); default: {\"type\": \"newmark\"}, or "
       "generalized_alpha with "
-      "rho_inf 0.8 when a fluid body has the Robin free-surface pressure with walls as constraints.",
+      "rho_inf 0.8 when a fluid body of the monolithic scheme has walls as constraints and the Robin free-surface "
+      "pressure or an inflow or outflow.",
       kDerived},
      {"newton", Json::object(), "Newton iteration settings (see /analysis/newton)."},
      {"linear_solver", Json{{"type", "cholmod"}},

@@ -94,7 +94,7 @@ std::vector<KeyDecl> scheme_keys(const std::string& type, std::vector<KeyDecl> o
       {"volume_correction", "none",
        "How the area the remeshing adds or removes is put back: surface, source, particle (advected or level-set "
        "detection, no inflow or outflow) or none; default: surface with the alpha detection, "
-       "particle with the monolithic scheme and remeshing (none with an inflow or outflow), none otherwise.",
+       "particle with the monolithic scheme and remeshing (surface with an inflow or outflow), none otherwise.",
        kDerived},
       {"split_edge_factor", 1.6,
        "Advected and level-set detection: free-surface edges longer than this times h are split (0: off, else "
@@ -387,8 +387,8 @@ void FluidModel::build_particles(Params b) {
     if (volume_.type() == VolumeCorrection::Type::particle)
       b.at("scheme").fail("volume_correction",
                           "\"particle\" keeps each particle's own area, which an inflow's new layers and an "
-                          "outflow's removals do not have: use \"none\" (the default with open boundaries), "
-                          "\"source\" or \"surface\"");
+                          "outflow's removals do not have: use \"surface\" (the default with open boundaries), "
+                          "\"source\" or \"none\"");
     remesh_.set_open_boundaries([this](const Vec2& x) { return boundaries_.taker(x); },
                                 [this](int k, long n, double area) { boundaries_.left(k, n, area); },
                                 boundaries_.fluid_regions());

@@ -225,12 +225,14 @@ TEST(BadInputCase, IntegratorStability) {
 TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   // `check` prints the case with every default filled in. With the monolithic scheme and remeshing the defaults
   // are the conservative ones (docs/decisions/0001-0006); the fractional step, a fixed mesh and a chosen "alpha" keep
-  // the classic PFEM's (src/fluid/fluid_input.cpp). A Robin free surface with the walls as constraints makes
-  // generalized-alpha the analysis' default integrator (fluid_preferred_integrator); any other case, wall particles
-  // with a Robin surface included, gets Newmark.
+  // the classic PFEM's (src/fluid/fluid_input.cpp). Walls as constraints with a Robin free surface, or with an
+  // inflow or outflow, make generalized-alpha the analysis' default integrator (fluid_preferred_integrator); any
+  // other case, wall particles with a Robin surface included, gets Newmark. An inflow or outflow takes p = 0 on the
+  // free surface and the surface correction.
   struct Expected {
     std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
     double contact_gap, relaxation_time;
+    bool open = false;  // an inflow or outflow
   };
   auto resolved = [](const std::string& tag, const json& body, const Expected& e) {
     const Finished r = check(tag, case_of({body}));
@@ -238,7 +240,7 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
     const size_t start = r.out.find('{');
     ASSERT_NE(start, std::string::npos) << r.out;
     const json root = json::parse(r.out.substr(start));
-    const bool generalized_alpha = e.free_surface_pressure == "robin" && e.wall_model == "constraints";
+    const bool generalized_alpha = (e.free_surface_pressure == "robin" || e.open) && e.wall_model == "constraints";
     EXPECT_EQ(root["analysis"]["integrator"]["type"], generalized_alpha ? "generalized_alpha" : "newmark") << tag;
     if (generalized_alpha) {
       EXPECT_EQ(root["analysis"]["integrator"]["rho_inf"].get<double>(), 0.8) << tag;
@@ -275,6 +277,15 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   json dirichlet = mono;
   dirichlet["scheme"]["free_surface_pressure"] = "dirichlet";
   resolved("defaults_dirichlet", dirichlet, {"advected", "constraints", "navier", "dirichlet", "particle", 0.3, 0.01});
+  json open = mono;
+  open["walls"] = json::parse(R"([{"name": "floor", "points": [[0, 0], [1.0, 0]]}])");
+  open["boundaries"] = json::parse(R"([{"type": "inflow", "name": "inlet", "segment": [[0, 0], [0, 0.2]],
+                                        "velocity": [0.1, 0]},
+                                       {"type": "outflow", "name": "outlet", "segment": [[1.0, 0], [1.0, 0.3]]}])");
+  resolved("defaults_open", open, {"advected", "constraints", "navier", "dirichlet", "surface", 0.3, 0.1, true});
+  open["wall_model"] = "particles";
+  resolved("defaults_open_wall_particles", open,
+           {"advected", "particles", "held", "dirichlet", "surface", 0.3, 0.1, true});
   // An integrator the case names is kept.
   json c = case_of({mono});
   c["analysis"]["integrator"] = {{"type", "newmark"}};

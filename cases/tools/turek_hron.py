@@ -1,7 +1,7 @@
 """The Turek & Hron (2006) cases (cases/turek_hron_*): the benchmark's values, the drag and the lift of the cylinder
 with its flag, time means over the last seconds of a run; for the rigid CFD tests their records (claims_record) and
-the comparison picture (cfd_forces); for the flapping flag (FSI2, FSI3) its periodic statistics, records and picture
-(fsi_oscillation)."""
+the comparison picture (cfd_forces), and the periodic drag and lift of CFD3 (cfd_oscillation); for the flapping flag
+(FSI2, FSI3) its periodic statistics, records and picture (fsi_oscillation)."""
 import cmath
 import math
 import os
@@ -89,6 +89,101 @@ def cfd_forces(out, case_dir, test, window, q_in, lift_span):
     save(fig, out, "comparison_%s.png" % tag)
 
 
+def centred_mean(v, dt, width):
+    """A centred running mean of the series v (time step dt) over `width` s."""
+    n = max(0, int(round(0.5 * width / dt)))
+    return [sum(v[max(0, k - n):k + n + 1]) / len(v[max(0, k - n):k + n + 1]) for k in range(len(v))]
+
+
+def periodogram_peak_of(tw, w, band):
+    """The frequency (Hz, steps of 0.001 Hz within `band`) that maximizes |sum_k (w_k - mean) exp(-2 pi i nu t_k)|
+    over the samples w at times tw."""
+    m = sum(w) / len(w)
+    best = (0.0, 0.0)
+    for j in range(int(round(1000 * band[0])), int(round(1000 * band[1])) + 1):
+        nu = 0.001 * j
+        a = abs(sum((x - m) * cmath.exp(-2j * math.pi * nu * tk) for x, tk in zip(w, tw)))
+        best = max(best, (a, nu))
+    return best[1]
+
+
+def phase_average_of(t, v, f, window, bins=40):
+    """Mean and amplitude ((max + min)/2, (max - min)/2) of the series v (times t) averaged over the whole periods
+    1/f that end the last `window` s, in `bins` phase bins; and the number of periods."""
+    n = int(window * f)
+    start = t[-1] - n / f
+    sums, counts = [0.0] * bins, [0] * bins
+    for k, tk in enumerate(t):
+        if tk >= start - 1e-9:
+            b = min(bins - 1, int(((tk - start) * f % 1.0) * bins))
+            sums[b] += v[k]
+            counts[b] += 1
+    avg = [s_ / c for s_, c in zip(sums, counts) if c > 0]
+    return {"mean": 0.5 * (max(avg) + min(avg)), "amplitude": 0.5 * (max(avg) - min(avg)), "periods": n}
+
+
+def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
+    """The periodic drag and lift of the rigid obstacle (CFD3) in the run in `out` against
+    reference/turek_hron_2006_<test>.csv of `case_dir`, with the flapping flag's conventions (fsi_oscillation): the
+    lift's frequency f is the peak of its periodogram over the last `window` s within `band` Hz; the drag's and the
+    lift's mean and amplitude are those of their phase average over the whole periods 1/f that end the window, after
+    a centred running mean over `smooth` s (the remeshing's step-to-step noise; *_raw_amplitude without it).
+    Records drag_mean, drag_amplitude, lift_mean, lift_amplitude, lift_frequency, drag_raw_amplitude,
+    lift_raw_amplitude, lift_noise (the standard deviation of the lift about its centred mean, N/m); prints them and
+    draws comparison_<OUTDIR's last part>.png."""
+    tag = os.path.basename(os.path.normpath(out))
+    ref = {k: dict(zip(("mean", "amplitude", "frequency"), v)) for k, v in reference(case_dir, test).items()}
+    p = read_csv(os.path.join(out, "probes.csv"))
+    t = p["time"]
+    dt = t[1] - t[0]
+    drag, lift = total_forces(p)
+    window = min(window, 0.5 * t[-1])
+    t0 = t[-1] - window
+    late = [k for k, tk in enumerate(t) if tk >= t0 - 1e-9]
+    f = periodogram_peak_of([t[k] for k in late], [lift[k] for k in late], band)
+    values = {"lift_frequency": f}
+    smoothed = {"drag": centred_mean(drag, dt, smooth), "lift": centred_mean(lift, dt, smooth)}
+    for name, v in (("drag", drag), ("lift", lift)):
+        s = phase_average_of(t, smoothed[name], f, window)
+        values[name + "_mean"], values[name + "_amplitude"] = s["mean"], s["amplitude"]
+        values[name + "_raw_amplitude"] = phase_average_of(t, v, f, window)["amplitude"]
+    values["lift_noise"] = math.sqrt(sum((lift[k] - smoothed["lift"][k]) ** 2 for k in late) / len(late))
+    for k, v in values.items():
+        record(k, v)
+    periods = int(window * f)
+    print("%s: lift frequency %.3f Hz (reference %.4g, %+.1f %%); over %d periods ending at %.2f s:" % (
+        tag, f, ref["lift"]["frequency"], 100 * (f / ref["lift"]["frequency"] - 1), periods, t[-1]))
+    for name in ("drag", "lift"):
+        r = ref[name]
+        print("  %-4s mean %8.2f (reference %8.2f)  amplitude %7.2f (reference %7.2f, %+.1f %%; unsmoothed %.2f) N/m"
+              % (name, values[name + "_mean"], r["mean"], values[name + "_amplitude"], r["amplitude"],
+                 100 * (values[name + "_amplitude"] / r["amplitude"] - 1), values[name + "_raw_amplitude"]))
+    print("  the lift's step-to-step noise: %.1f N/m" % values["lift_noise"])
+
+    fig, axes = plt.subplots(2, 1, figsize=(12, 7), sharex=True)
+    for ax, name, v in ((axes[0], "drag", drag), (axes[1], "lift", lift)):
+        ax.plot(t, v, lw=0.4, color="0.7", label="lagfsi, each step")
+        ax.plot(t, smoothed[name], lw=0.8, label="lagfsi, centred mean over %g s" % smooth)
+        r = ref[name]
+        for y, ls in ((r["mean"], "--"), (r["mean"] + r["amplitude"], ":"), (r["mean"] - r["amplitude"], ":")):
+            ax.axhline(y, color="k", ls=ls, lw=0.8)
+        ax.plot([], [], color="k", ls=":", label="Turek & Hron (2006) %s: %.4g +- %.4g N/m [%.2f Hz]"
+                % (test, r["mean"], r["amplitude"], r["frequency"]))
+        ax.axvspan(t0, t[-1], color="0.92", zorder=0)
+        ax.set_ylabel("%s [N/m]" % name)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+    axes[0].set_ylim(0.5 * ref["drag"]["mean"], 1.5 * ref["drag"]["mean"])
+    axes[1].set_ylim(-2.5 * ref["lift"]["amplitude"], 2.5 * ref["lift"]["amplitude"])
+    axes[1].set_xlabel("t [s]")
+    fig.suptitle("%s (%s): lift %.0f +- %.0f N/m [%.2f Hz], drag %.0f +- %.1f N/m" % (
+        os.path.basename(os.path.abspath(case_dir)), tag, values["lift_mean"], values["lift_amplitude"], f,
+        values["drag_mean"], values["drag_amplitude"]))
+    fig.tight_layout()
+    save(fig, out, "comparison_%s.png" % tag)
+    return values
+
+
 def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     """The flag's periodic oscillation in the run in `out` against reference/turek_hron_2006_<test>.csv of `case_dir`,
     as mean = (max + min)/2 and amplitude = (max - min)/2 over a period and the frequency, in the last `window` s of
@@ -117,11 +212,7 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     series = {"drag": drag, "lift": lift, "ux_A": p["tip_ux"], "uy_A": p["tip_uy"]}
     steps = [k for k in range(len(t)) if p["fsi_iterations"][k] > 0]
 
-    def centred_mean(v, width):
-        n = max(0, int(round(0.5 * width / dt)))
-        return [sum(v[max(0, k - n):k + n + 1]) / len(v[max(0, k - n):k + n + 1]) for k in range(len(v))]
-
-    smoothed = {"drag": centred_mean(series["drag"], smooth), "lift": centred_mean(series["lift"], smooth),
+    smoothed = {"drag": centred_mean(series["drag"], dt, smooth), "lift": centred_mean(series["lift"], dt, smooth),
                 "ux_A": series["ux_A"], "uy_A": series["uy_A"]}
     window = min(window, 0.5 * t[-1])
     t0 = t[-1] - window
@@ -136,27 +227,10 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
         return s
 
     def periodogram_peak(v):
-        w = [v[k] for k in late]
-        m = sum(w) / len(w)
-        best = (0.0, 0.0)
-        for j in range(int(round(1000 * band[0])), int(round(1000 * band[1])) + 1):
-            nu = 0.001 * j
-            a = abs(sum((x - m) * cmath.exp(-2j * math.pi * nu * tk) for x, tk in zip(w, tw)))
-            best = max(best, (a, nu))
-        return best[1]
+        return periodogram_peak_of(tw, [v[k] for k in late], band)
 
-    def phase_average_stats(v, f, bins=40):
-        """Mean and amplitude of v's average over the whole periods 1/f that end the window, in phase bins."""
-        n = int(window * f)
-        start = t[-1] - n / f
-        sums, counts = [0.0] * bins, [0] * bins
-        for k in late:
-            if t[k] >= start - 1e-9:
-                b = min(bins - 1, int(((t[k] - start) * f % 1.0) * bins))
-                sums[b] += v[k]
-                counts[b] += 1
-        avg = [s_ / c for s_, c in zip(sums, counts) if c > 0]
-        return {"mean": 0.5 * (max(avg) + min(avg)), "amplitude": 0.5 * (max(avg) - min(avg)), "periods": n}
+    def phase_average_stats(v, f):
+        return phase_average_of(t, v, f, window)
 
     stats = {name: stats_of(series[name]) for name in ("ux_A", "uy_A")}
     f_y = stats["uy_A"]["frequency"]

@@ -384,19 +384,20 @@ TEST(WallConstraints, ARetryAfterAFailedRemeshKeepsTheCloudsPressures) {
 TEST(WallConstraints, TheSurfaceCorrectionLeavesTheParticlesOnTheWallsThere) {
   const RunResult r = run_case_file(
       "cases/dam_break_tank/case.json", "wall_constraints_surface_correction",
-      {"bodies.0.scheme.type=fractional_step", "bodies.0.domain_detection=advected",
-       "bodies.0.wall_model=constraints", "bodies.0.scheme.volume_correction=surface", "analysis.end_time=0.3",
-       "output.vtk=false"},
+      {"bodies.0.scheme.type=fractional_step", "bodies.0.domain_detection=advected", "bodies.0.wall_model=constraints",
+       "bodies.0.scheme.volume_correction=surface", "analysis.end_time=0.3", "output.vtk=false"},
       "--threads 1");
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const auto s = summary_of(r);
   const auto& fluid = s["bodies"][0];
-  const double drift = fluid["fluid_area"]["drift_without_left"].get<double>() /
-                       fluid["fluid_area"]["initial"].get<double>();
-  const double churn = std::abs(fluid["fluid_area"]["change_in_steps"].get<double>()) /
-                       fluid["fluid_area"]["initial"].get<double>();
-  std::printf("surface correction on walls as constraints: water drift %.4f, steps' change %.4f of the water, "
-              "%ld wall crossings\n", drift, churn, fluid["wall_crossings"].get<long>());
+  const double drift =
+      fluid["fluid_area"]["drift_without_left"].get<double>() / fluid["fluid_area"]["initial"].get<double>();
+  const double churn =
+      std::abs(fluid["fluid_area"]["change_in_steps"].get<double>()) / fluid["fluid_area"]["initial"].get<double>();
+  std::printf(
+      "surface correction on walls as constraints: water drift %.4f, steps' change %.4f of the water, "
+      "%ld wall crossings\n",
+      drift, churn, fluid["wall_crossings"].get<long>());
   EXPECT_LT(std::abs(drift), 0.02);
   EXPECT_LT(churn, 0.05) << "the steps take back what the correction moved";
   EXPECT_LT(fluid["wall_crossings"].get<long>(), 200);

@@ -80,9 +80,8 @@ void SizeField::read(Params body, double h) {
   Params regions = s.at("regions");
   for (size_t k = 0; k < regions.size(); ++k) {
     Params r = regions.at(k);
-    if (!r.json().is_object() || !r.has("type")) r.fail("type", "required key is missing");
+    r.validate(kSizeBoxKeys);  // "type" defaults to "box", the one kind of region
     r.choice("type", {"box"});
-    r.validate(kSizeBoxKeys);
     Box b{r.vec2("min"), r.vec2("max"), r.positive("size"), r.number("from"), r.number("to")};
     if (!(b.hi.x() > b.lo.x() && b.hi.y() > b.lo.y())) r.fail("max", "must lie above and to the right of min");
     if (b.size < h) r.fail("size", "must be at least the spacing (" + std::to_string(h) + ")");

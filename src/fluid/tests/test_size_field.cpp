@@ -172,6 +172,13 @@ TEST(SizeField, BadInputNamesItsKey) {
             std::string::npos);
   EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"strain_rate", -1}}).find("/bodies/0/size_field/strain_rate"),
             std::string::npos);
+  // A region's type may be left out (its default, "box"); another is refused.
+  EXPECT_EQ(error_of(Json{{"type", "adaptive"}, {"regions", {{{"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.05}}}}}),
+            "no error");
+  EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"regions", {{{"type", "disc"}, {"min", {0, 0}}, {"max", {1, 1}},
+                                                               {"size", 0.05}}}}})
+                .find("/bodies/0/size_field/regions/0/type"),
+            std::string::npos);
   const Json small = {{"type", "box"}, {"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.001}};
   EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"regions", {small}}}).find("/bodies/0/size_field/regions/0/size"),
             std::string::npos);

@@ -6,8 +6,8 @@ Usage: /usr/bin/python3 cases/studies/jobs.py PLAN [PLAN ...] [--index I] [--cou
               `--index $SLURM_ARRAY_TASK_ID` (cases/studies/slurm_array.sh)
   --count     print the number of jobs and exit (the array's size)
   neither     every job; under `mpirun -n P` each of the P processes runs the jobs whose number modulo P is its rank
-              (read from the launcher's environment: OMPI_COMM_WORLD_RANK/SIZE, PMI_RANK/SIZE or PMIX_RANK), one after
-              the other
+              (read from the launcher's environment: Open MPI's OMPI_COMM_WORLD_RANK/SIZE, MPICH's PMI_RANK/SIZE or
+              srun's SLURM_PROCID/SLURM_NTASKS), one after the other
 Each job is one lagfsi run into its own folder with the record its study reuses (runjob.py), so after the jobs,
 `run.py` without --plan finds every run finished and writes the tables and charts. A job whose run fails is a
 result for its study (a stability map's failures are its data): the exit code is non-zero only when a job could
@@ -23,7 +23,7 @@ import runjob  # noqa: E402
 def rank_size():
     """This process's rank and the number of processes of its launch (0, 1 outside a launcher)."""
     for r, n in (("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"), ("PMI_RANK", "PMI_SIZE"),
-                 ("PMIX_RANK", "OMPI_UNIVERSE_SIZE")):
+                 ("SLURM_PROCID", "SLURM_NTASKS")):
         if r in os.environ and n in os.environ:
             return int(os.environ[r]), int(os.environ[n])
     return 0, 1

@@ -243,7 +243,10 @@ TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>&
       }
     }
   } catch (const std::invalid_argument& e) {
-    g.fail(std::string("cannot mesh this geometry: ") + e.what());
+    // The mesher's element limit is max_elements, ours: say how a run that needs more raises it.
+    const std::string why = e.what();
+    const bool limit = why.find("more than the limit") != std::string::npos;
+    g.fail("cannot mesh this geometry: " + why + (limit ? " (--max-nodes raises the limit)" : ""));
   }
   return order == 1 ? linear : meshing::elevate(linear, order);
 }

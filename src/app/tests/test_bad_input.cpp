@@ -525,9 +525,10 @@ TEST(BadInput, SolidMeshTooFineForItsOrder) {
   o = run_json("mesh_unstructured_too_fine", j);
   EXPECT_EQ(o.code, 2);
   expect_one_line(o, "/bodies/0/geometry", "more than the limit");
+  expect_one_line(o, "/bodies/0/geometry", "(--max-nodes raises the limit)");
 }
 
-TEST(BadInput, TheMeshLimitIsTheMaxNodesFlags) {
+TEST(BadInput, TheMaxNodesFlagSetsTheMeshLimit) {
   // --max-nodes sets the limit above: a case that passes by default is refused under a lower one, naming the flag.
   Outcome o = run_json("max_nodes_default", base_case());
   EXPECT_EQ(o.code, 0) << o.message;

@@ -122,6 +122,17 @@ def phase_average_of(t, v, f, window, bins=40):
     return {"mean": 0.5 * (max(avg) + min(avg)), "amplitude": 0.5 * (max(avg) - min(avg)), "periods": n}
 
 
+def periodic_run(out, case_dir, test):
+    """What a periodic case's statistics start from: the run's tag (OUTDIR's last part), the reference rows as
+    {quantity: {"mean", "amplitude", "frequency"}}, the probes, their times and step, the drag and the lift."""
+    tag = os.path.basename(os.path.normpath(out))
+    ref = {k: dict(zip(("mean", "amplitude", "frequency"), v)) for k, v in reference(case_dir, test).items()}
+    p = read_csv(os.path.join(out, "probes.csv"))
+    t = p["time"]
+    drag, lift = total_forces(p)
+    return tag, ref, p, t, t[1] - t[0], drag, lift
+
+
 def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
     """The periodic drag and lift of the rigid obstacle (CFD3) in the run in `out` against
     reference/turek_hron_2006_<test>.csv of `case_dir`, with the flapping flag's conventions (fsi_oscillation): the
@@ -131,12 +142,7 @@ def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
     Records drag_mean, drag_amplitude, lift_mean, lift_amplitude, lift_frequency, drag_raw_amplitude,
     lift_raw_amplitude, lift_noise (the standard deviation of the lift about its centred mean, N/m); prints them and
     draws comparison_<OUTDIR's last part>.png."""
-    tag = os.path.basename(os.path.normpath(out))
-    ref = {k: dict(zip(("mean", "amplitude", "frequency"), v)) for k, v in reference(case_dir, test).items()}
-    p = read_csv(os.path.join(out, "probes.csv"))
-    t = p["time"]
-    dt = t[1] - t[0]
-    drag, lift = total_forces(p)
+    tag, ref, p, t, dt, drag, lift = periodic_run(out, case_dir, test)
     window = min(window, 0.5 * t[-1])
     t0 = t[-1] - window
     late = [k for k, tk in enumerate(t) if tk >= t0 - 1e-9]
@@ -201,14 +207,8 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     Records: ux_A_mean, ux_A_amplitude, ux_A_frequency, the same for uy_A, drag and lift (m, N/m, Hz),
     drag_raw_amplitude, lift_raw_amplitude, iterations (coupling passes per step, mean over the run),
     iterations_window (over the window), iterations_max; prints them and draws comparison_<OUTDIR's last part>.png."""
-    tag = os.path.basename(os.path.normpath(out))
+    tag, ref, p, t, dt, drag, lift = periodic_run(out, case_dir, test)
     name_of_case = os.path.basename(os.path.abspath(case_dir))
-    ref = {k: dict(zip(("mean", "amplitude", "frequency"), v)) for k, v in reference(case_dir, test).items()}
-
-    p = read_csv(os.path.join(out, "probes.csv"))
-    t = p["time"]
-    dt = t[1] - t[0]
-    drag, lift = total_forces(p)
     series = {"drag": drag, "lift": lift, "ux_A": p["tip_ux"], "uy_A": p["tip_uy"]}
     steps = [k for k in range(len(t)) if p["fsi_iterations"][k] > 0]
 

@@ -15,14 +15,17 @@ spec.loader.exec_module(cfd1)
 U = 1.0  # m/s, the inflow's mean speed (peak 1.5 U)
 
 
-def case(h, dt, end_time, tag):
+def case(h, dt, end_time, tag, test="CFD2", u=U, what="drag and lift"):
+    """CFD1's case with the inflow's mean speed u (Re = 100 u), named after `test` (turek_hron_cfd3's make_case.py
+    writes CFD3 with it)."""
     c = cfd1.case(h, dt, end_time, tag)
     inflow = c["bodies"][0]["boundaries"][0]
     assert inflow["type"] == "inflow"
-    inflow["velocity"] = [U, 0]
-    c["name"] = "turek_hron_cfd2"
-    c["description"] = ("Turek & Hron (2006) CFD2: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with its flag "
-                        "as a rigid wall, parabolic inflow of mean 1 m/s (Re = 100), drag and lift (%s)" % tag)
+    inflow["velocity"] = [u, 0]
+    c["name"] = "turek_hron_" + test.lower()
+    c["description"] = ("Turek & Hron (2006) %s: channel 2.5 x 0.41 m, a rigid cylinder (r = 0.05 m) with its flag "
+                        "as a rigid wall, parabolic inflow of mean %g m/s (Re = %g), %s (%s)"
+                        % (test, u, 100 * u, what, tag))
     return c
 
 

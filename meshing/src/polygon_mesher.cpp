@@ -96,9 +96,10 @@ constexpr double kShapeBound = 0.125;
 constexpr double kSecondPassSize = 1.5;
 /// Expected number of triangles per unit of area / h^2 (about 1 / 0.43).
 constexpr double kAreaPerElement = 0.43;
-constexpr double kMaxElements = 1e9;  // the caller's max_elements is the limit; this only bounds it
 
 [[noreturn]] void fail(const std::string& why) { throw std::invalid_argument("mesh_polygon: " + why); }
+/// The mesh would pass the caller's max_elements.
+[[noreturn]] void too_large(const std::string& why) { throw MeshTooLarge("mesh_polygon: " + why); }
 
 std::string loop_name(std::size_t loop) {
   return loop == 0 ? std::string("outer loop") : "hole " + std::to_string(loop - 1);
@@ -309,11 +310,11 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
   }
   if (!(area > 0.0)) fail("the holes cover the whole region");
   const double expected = area / (kAreaPerElement * h * h);
-  if (!(expected <= std::min(max_elements, kMaxElements))) {
+  if (!(expected <= max_elements)) {
     std::ostringstream os;
     os << "about " << expected << " elements expected (area " << area << ", h " << h << "), more than the limit "
-       << std::min(max_elements, kMaxElements);
-    fail(os.str());
+       << max_elements;
+    too_large(os.str());
   }
   check_feature_size(loops, h);  // after the size check: it compares every vertex with every segment
 
@@ -323,7 +324,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
   for (const auto* loop : loops)
     for (std::size_t i = 0; i < loop->size(); ++i)
       boundary_points += std::ceil(((*loop)[(i + 1) % loop->size()] - (*loop)[i]).norm() / h);
-  if (!(boundary_points <= 4.0 * std::min(max_elements, kMaxElements))) fail("too many boundary points for this h");
+  if (!(boundary_points <= 4.0 * max_elements)) too_large("too many boundary points for this h");
   for (const auto* loop : loops) {
     const std::size_t n = loop->size();
     CDT::Vertex_handle first, prev;
@@ -351,7 +352,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
   mark_nesting_levels(cdt);
   // Refinement one point at a time, so that a region whose small angles make it insert far more points than
   // its area suggests stops at the limit (a flag stretched to 210 m took minutes and 5 GB) instead of ending.
-  const double max_vertices = std::min(max_elements, kMaxElements);  // about half the elements, with margin
+  const double max_vertices = max_elements;  // about half the elements, with margin
   auto refine = [&](auto& mesher) {
     mesher.init(/*domain_specified=*/true);
     while (mesher.step_by_step_refine_mesh())
@@ -359,7 +360,7 @@ TriMesh mesh_polygon(const PolygonRegion& region, double h, double max_elements,
         std::ostringstream os;
         os << "the refinement needs more than " << max_vertices << " points at h = " << h
            << " (small angles or a region far larger than h)";
-        fail(os.str());
+        too_large(os.str());
       }
   };
   {

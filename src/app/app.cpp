@@ -104,6 +104,19 @@ int max_threads() {
   return 4 * static_cast<int>(hw > 0 ? hw : 64);
 }
 
+/// A node count as --max-nodes takes it: a whole number >= 1, written plainly or in exponent form (5e6); -1 for
+/// anything else.
+double node_count(const std::string& text) {
+  double n = -1;
+  size_t used = 0;
+  try {
+    n = std::stod(text, &used);
+  } catch (...) {
+    return -1;
+  }
+  return used == text.size() && n >= 1 && std::isfinite(n) && n == std::floor(n) ? n : -1;
+}
+
 }  // namespace
 
 int app_main(int argc, char** argv, const char* git_commit) {
@@ -223,14 +236,8 @@ int app_main(int argc, char** argv, const char* git_commit) {
     } else if (a == "--max-nodes" || a.rfind("--max-nodes=", 0) == 0) {
       if (a == "--max-nodes" && !value()) return usage_error("--max-nodes needs a number of nodes" + see);
       if (a != "--max-nodes") v = a.substr(12);
-      double n = -1;
-      size_t used = 0;
-      try {
-        n = std::stod(v, &used);
-      } catch (...) {
-        used = 0;
-      }
-      if (used != v.size() || !(n >= 1) || !std::isfinite(n) || n != std::floor(n))
+      const double n = node_count(v);
+      if (n < 1)
         return usage_error("--max-nodes needs a positive whole number, e.g. 5000000 or 5e6 (got '" + echo(v) + "')");
       set_max_mesh_nodes(n);
     } else if (a == "--quiet" || a == "-q") {

@@ -242,11 +242,10 @@ TriMesh build_mesh(Params g, Params m, const std::function<double(const Vec2&)>&
         linear = meshing::mesh_polygon(r, h, max_elements, size);
       }
     }
+  } catch (const meshing::MeshTooLarge& e) {  // the limit is ours (max_mesh_nodes): say how to raise it
+    g.fail(std::string("cannot mesh this geometry: ") + e.what() + " (--max-nodes raises the limit)");
   } catch (const std::invalid_argument& e) {
-    // The mesher's element limit is max_elements, ours: say how a run that needs more raises it.
-    const std::string why = e.what();
-    const bool limit = why.find("more than the limit") != std::string::npos;
-    g.fail("cannot mesh this geometry: " + why + (limit ? " (--max-nodes raises the limit)" : ""));
+    g.fail(std::string("cannot mesh this geometry: ") + e.what());
   }
   return order == 1 ? linear : meshing::elevate(linear, order);
 }

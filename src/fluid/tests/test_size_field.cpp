@@ -175,8 +175,8 @@ TEST(SizeField, BadInputNamesItsKey) {
   // A region's type may be left out (its default, "box"); another is refused.
   EXPECT_EQ(error_of(Json{{"type", "adaptive"}, {"regions", {{{"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.05}}}}}),
             "no error");
-  EXPECT_NE(error_of(Json{{"type", "adaptive"}, {"regions", {{{"type", "disc"}, {"min", {0, 0}}, {"max", {1, 1}},
-                                                               {"size", 0.05}}}}})
+  EXPECT_NE(error_of(Json{{"type", "adaptive"},
+                          {"regions", {{{"type", "disc"}, {"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.05}}}}})
                 .find("/bodies/0/size_field/regions/0/type"),
             std::string::npos);
   const Json small = {{"type", "box"}, {"min", {0, 0}}, {"max", {1, 1}}, {"size", 0.001}};

@@ -7,6 +7,7 @@
 #include <lagfsi/types.hpp>
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,13 +20,19 @@ struct PolygonRegion {
   std::vector<std::vector<Vec2>> holes;
 };
 
+/// mesh_polygon's refusal of a mesh past its `max_elements` (an std::invalid_argument like its other refusals):
+/// the caller, which set the limit, can say how to raise it.
+struct MeshTooLarge : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
 /// Unstructured linear mesh of the region with target edge size h (boundary segments are split to
 /// at most h first, so that the boundary node spacing is about h; then CGAL's Delaunay mesher refines
 /// with the size criterion h and the shape criterion (minimum angle about 20.7 degrees)).
 /// Throws std::invalid_argument for a degenerate region (fewer than 3 points, zero area,
 /// self-intersecting loop, h <= 0 or h not finite, a feature thinner than h/50, or more than `max_elements`
 /// elements: expected from the area before meshing, or counted during the refinement, which small input
-/// angles can drive far beyond the area's estimate).
+/// angles can drive far beyond the area's estimate; that one as MeshTooLarge).
 /// A graded mesh: `size` (when given) is the local target edge size at a point, at least h (the boundary is
 /// still split at h, the finest size, and the faces are refined until their longest edge is below the size at
 /// their centroid); its gradation is the caller's (a size that grows by g per unit length gives elements that

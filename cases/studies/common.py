@@ -218,9 +218,6 @@ class Study:
         return meta
 
 
-run_key = runjob.run_key
-
-
 class Run:
     """One finished (or failed) lagfsi run: rc, wall and cpu (s, measured around the process; cpu: user + system of
     the process, None for a run recorded before it was measured), out folder."""

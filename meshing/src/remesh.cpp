@@ -367,6 +367,7 @@ void keep_faces(const RemeshInput& in, DT& dt, RemeshResult& result) {
     const FaceGeometry g = face_geometry(in, f);
     const Index a = g.a, b = g.b, c = g.c;
     f->info() = 0;
+    if (g.walls == 3 && g.cr > 1e-12 * std::max({g.lab2, g.lac2, g.lbc2})) result.boundary_only.push_back({a, b, c});
     const Verdict verdict = detect(in, g);
     if (verdict == Verdict::RemovedAlpha) {
       ++removed_alpha;

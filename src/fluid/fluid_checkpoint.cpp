@@ -39,6 +39,12 @@ void RemeshPipeline::serialize(StateArchive& ar) {
         remesh_pe_total_);
   ar.io(merged_, merged_meeting_, split_, inserted_, added_outside_, separated_, wall_removed_, kept_edges_,
         area_excess_, coarsened_);
+  ar.io(wet_corners_);
+  if (ar.loading())
+    for (const auto& t : wet_corners_)
+      for (Index i : t)
+        if (i < 0 || i >= cloud_.n() || cloud_.kind(i) != ParticleKind::Wall)
+          throw CheckpointError("a wet corner names a particle that is not a wall's");
 }
 
 void VolumeCorrection::serialize(StateArchive& ar) {

@@ -267,8 +267,12 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
     walls = std::make_unique<FixedMeshWalls>();
   else if (wall_constraints_)
     walls = std::make_unique<WallContacts>(c_.h, c_.wall_snap_fraction, c_.gravity, 0.01 * c_.rho * c_.gravity.norm());
-  else
-    walls = std::make_unique<WallParticles>();
+  else {
+    auto particles = std::make_unique<WallParticles>();
+    const WallParticles* solid = particles.get();  // owned by boundaries_, which outlives remesh_'s use of it
+    remesh_.set_wall_solid([solid](const Vec2& x, double t) { return solid->solid_depth(x, t).depth; });
+    walls = std::move(particles);
+  }
   if (navier) walls->set_navier_friction(c_.mu, slip_length);
   boundaries_.set_walls(std::move(walls));
   if (wall_constraints_) remesh_.set_wall_lines([this](const Vec2& x) { return boundaries_.along(x); });

@@ -46,6 +46,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -267,13 +268,23 @@ class WallParticles final : public FluidWalls {
       if (i < static_cast<Index>(slip_particle_.size()) && slip_particle_[i]) return true;
     return false;
   }
-  /// Fluid particles whose step crossed a wall segment go back to its fluid side (x_start the positions at the
-  /// start of the step, t the end of the step).
+  /// Fluid particles whose step took them into a wall's solid go back to its fluid side (x_start the positions at
+  /// the start of the step, t the end of the step).
   void keep_inside_walls(ParticleCloud& cloud, const FluidMesh& mesh, const Vec& x_start, double t);
   double after_step(const StepEnd& s) override {
     keep_inside_walls(s.cloud, s.mesh, s.x_start, s.t);
     return 0.0;
   }
+
+  /// Where a point lies against the solid behind the sided wall segments at time t: its depth in it (the distance
+  /// to the segments' nearest point, negative on the fluid side; -inf without sided segments), that point and the
+  /// unit normal towards the fluid there (at a vertex the mean of the normals of the segments meeting there).
+  struct SolidDepth {
+    double depth = -std::numeric_limits<double>::infinity();
+    bool inside = false;
+    Vec2 foot = Vec2::Zero(), normal = Vec2::Zero();
+  };
+  SolidDepth solid_depth(const Vec2& p, double t) const;
 
  private:
   std::vector<char> slip_particle_;  // per wall particle (wall particles come first and are never removed)

@@ -58,6 +58,7 @@ meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b)
   triangles.reserve(mesh_.tri.size());
   for (const auto& t : mesh_.tri) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
   triangles.insert(triangles.end(), open_regions_.begin(), open_regions_.end());  // an inflow's strip
+  for (const auto& t : wet_corners_) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
   std::vector<std::array<Vec2, 2>> boundary;
   for (Index i = 0; i < cloud_.n(); ++i)
     if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});
@@ -274,11 +275,19 @@ void RemeshPipeline::merge_pressed_against_walls(Management& m) {
   // distance is to the face's segments, not only to its ghost particles: the Delaunay mesh does not keep
   // a face segment as an edge, and a surface particle drifting onto the face midway between two ghosts (each
   // half a spacing away) was joined to them by two triangles that stay valid as it crosses, and went into the
-  // structure (the plate of cases/flexible_tank).
+  // structure (the plate of cases/flexible_tank). The same holds for a wall's particles: a particle pressed onto
+  // the edge between two wall particles of its element that runs along a wall (its midpoint on the wall's line, not
+  // the long side of a corner's triangle) goes as well; its element
+  // was removed as flat, which made the particle a free surface with p = 0 inside the water, and a wake's suction
+  // opened a crack from it (Turek & Hron's cylinder with graded particles).
   const std::vector<Vec2>& pts = m.pts;
-  const auto pressed = [&](Index f, Index g) {
+  const auto pressed = [&](Index f, Index g, Index third) {
     const double r_close = s_.close_fraction * cloud_.h(f);
     if ((pts[f] - pts[g]).norm() < r_close) return true;
+    if (wall_depth_ && cloud_.kind(g) == ParticleKind::Wall && cloud_.kind(third) == ParticleKind::Wall &&
+        segment_distance(pts[f], pts[g], pts[third]) < r_close &&
+        std::abs(wall_depth_(0.5 * (pts[g] + pts[third]), t_remesh_)) < 1e-3 * cloud_.h(f))
+      return true;
     for (Index q : ghosts_.face_neighbours(g))
       if (segment_distance(pts[f], pts[g], pts[q]) < r_close) return true;
     return false;
@@ -289,7 +298,7 @@ void RemeshPipeline::merge_pressed_against_walls(Management& m) {
       const bool fa = cloud_.kind(a) == ParticleKind::Fluid, fc = cloud_.kind(c) == ParticleKind::Fluid;
       if (fa == fc) continue;
       const Index f = fa ? a : c;
-      if (m.touched[f] || !pressed(f, f == a ? c : a)) continue;
+      if (m.touched[f] || !pressed(f, f == a ? c : a, t[(k + 2) % 3])) continue;
       Index partner = -1;
       if (m.on_boundary(f))
         for (Index q : {m.chain.next[f], m.chain.prev[f]})

@@ -86,6 +86,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
   const double area0 = mesh_.area(cloud_.x()), ke0 = energy.kinetic(), pe0 = energy.potential();
+  t_remesh_ = t_new;
   if (s_.detection == meshing::DomainDetection::Alpha) {
     remesh_now();
     if (size_.adaptive() && follow_size_field_alpha(t_new)) remesh_now();
@@ -157,6 +158,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
   } catch (const std::exception& e) {
     throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
   }
+  const std::vector<std::array<Index, 3>> boundary_only = std::move(r.boundary_only);
   added_outside_ += r.added_outside;
   kept_edges_ += r.kept_edges;
   separated_ += r.separated_inside;
@@ -223,6 +225,46 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     std::vector<char> walls(cloud_.n(), 0);
     for (Index i = 0; i < cloud_.n(); ++i) walls[i] = kind[i] != ParticleKind::Fluid;
     mark_free_surface(walls);
+  }
+  find_wet_corners(boundary_only, t_remesh_);
+}
+
+void RemeshPipeline::find_wet_corners(const std::vector<std::array<Index, 3>>& faces, double t) {
+  wet_corners_.clear();
+  if (!wall_depth_ || s_.detection == meshing::DomainDetection::Alpha) return;
+  const std::vector<ParticleKind>& kind = cloud_.kind();
+  std::vector<std::array<Index, 3>> candidates;
+  for (const auto& f : faces) {
+    if (kind[f[0]] != ParticleKind::Wall || kind[f[1]] != ParticleKind::Wall || kind[f[2]] != ParticleKind::Wall)
+      continue;
+    if (!(wall_depth_((cloud_.pos(f[0]) + cloud_.pos(f[1]) + cloud_.pos(f[2])) / 3.0, t) > 0)) candidates.push_back(f);
+  }
+  if (candidates.empty()) return;
+  // The edges between two wall particles of the mesh's elements, then those of the corners taken, until none is
+  // added (a corner's fan of several triangles reaches the mesh through its neighbours).
+  std::vector<std::pair<Index, Index>> edges;
+  const auto edge = [](Index a, Index b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for (const auto& e : mesh_.tri)
+    for (int k = 0; k < 3; ++k)
+      if (kind[e[k]] == ParticleKind::Wall && kind[e[(k + 1) % 3]] == ParticleKind::Wall)
+        edges.push_back(edge(e[k], e[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> taken(candidates.size(), 0);
+  for (bool grew = true; grew;) {
+    grew = false;
+    std::vector<std::pair<Index, Index>> added;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      if (taken[c]) continue;
+      const auto& f = candidates[c];
+      for (int k = 0; k < 3 && !taken[c]; ++k)
+        taken[c] = std::binary_search(edges.begin(), edges.end(), edge(f[k], f[(k + 1) % 3]));
+      if (!taken[c]) continue;
+      grew = true;
+      wet_corners_.push_back(f);
+      for (int k = 0; k < 3; ++k) added.push_back(edge(f[k], f[(k + 1) % 3]));
+    }
+    edges.insert(edges.end(), added.begin(), added.end());
+    std::sort(edges.begin(), edges.end());
   }
 }
 

@@ -69,6 +69,18 @@ class RemeshPipeline {
   /// the water).
   void set_wall_lines(std::function<bool(const Vec2&)> on_wall_line) { on_wall_line_ = std::move(on_wall_line); }
 
+  /// The depth of a point at time t in the solid behind the walls' particles ("wall_model": "particles"; negative
+  /// on the fluid side, zero on a wall's line). A fluid particle pressed onto a wall's line between two of its
+  /// particles then goes as one pressed against a wall particle (merge_pressed_against_walls), and the advected
+  /// and level-set detections count as fluid the triangles of wall particles alone that lie on the
+  /// fluid side and touch the fluid's mesh, through an edge or through another such triangle (wet corners): at a
+  /// corner where two walls meet at less than 180 degrees on the fluid's side (a cylinder and the plate behind it),
+  /// the Delaunay triangles between the corner's wall particles belong to no element, and a fluid particle coming
+  /// close to the corner would otherwise make elements outside the advected domain with two wall particles, which
+  /// the detection refuses (a dry wall's meniscus): the corner became a free surface, a hole with p = 0 that a wake's
+  /// suction opened into a cavity and carried downstream.
+  void set_wall_solid(std::function<double(const Vec2&, double)> depth) { wall_depth_ = std::move(depth); }
+
   /// A triangle of the fluid regions (build_particles): the initial domain of the advected and level-set
   /// detections.
   void add_region_triangle(const std::array<Vec2, 3>& t) { region_triangles_.push_back(t); }
@@ -174,6 +186,9 @@ class RemeshPipeline {
   /// closest (relative to their size) first.
   std::vector<std::pair<Index, Index>> coarsen_pairs(const std::vector<Vec2>& pts,
                                                      const std::function<bool(Index)>& interior) const;
+  /// The wet corners (set_wall_solid) of the mesh just made, from the Delaunay triangles of wall particles alone
+  /// (`faces`), at time t.
+  void find_wet_corners(const std::vector<std::array<Index, 3>>& faces, double t);
   /// Removes the flagged particles (fluid only) from the cloud; the elements of the mesh that use a removed
   /// particle go, the others are renumbered (renumber_).
   bool drop_particles(const std::vector<char>& drop);
@@ -192,9 +207,14 @@ class RemeshPipeline {
   std::function<int(const Vec2&)> taker_;              // open boundaries (set_open_boundaries)
   std::function<void(int, long, double)> left_;
   std::vector<std::array<Vec2, 3>> open_regions_;
-  std::function<bool(const Vec2&)> at_open_face_;  // set_open_faces
-  std::function<bool(const Vec2&)> on_wall_line_;  // set_wall_lines
-  std::vector<Index> renumber_;                    // the last drop_particles: old index -> new index, -1 if dropped
+  std::function<bool(const Vec2&)> at_open_face_;          // set_open_faces
+  std::function<bool(const Vec2&)> on_wall_line_;          // set_wall_lines
+  std::function<double(const Vec2&, double)> wall_depth_;  // set_wall_solid
+  // Triangles of wall particles (never removed: their indices stay) counted as fluid by the next advected domain
+  // (find_wet_corners).
+  std::vector<std::array<Index, 3>> wet_corners_;
+  double t_remesh_ = 0;          // the time of the remesh under way (remesh_step)
+  std::vector<Index> renumber_;  // the last drop_particles: old index -> new index, -1 if dropped
   std::vector<Index> survivor_;  // the last manage_particles: old index -> new index of it, of its merge's
                                  // survivor or of the wall particle that stands for it (-1: none)
   // Remeshing's effect per step (log.csv) and over the run (summary.json).

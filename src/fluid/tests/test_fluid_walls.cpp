@@ -1,9 +1,13 @@
 // The PFEM fluid's wall particles keep the fluid in (WallParticles::keep_inside_walls, a white-box test of the
-// private src/fluid/fluid_walls.hpp): a particle whose step ends beyond a wall segment by more than the
-// tolerance (0.5 h for a particle in no element with a wall particle) is put back on the segment's fluid side.
+// private src/fluid/fluid_walls.hpp): a particle whose step ends deeper than the tolerance (0.5 h for a particle in
+// no element with a wall particle) in the solid behind the walls (its distance to their nearest point) is put back
+// on the fluid side there.
 //  - A film sliding along a tank's floor a little below it leaves through the corner, where it is past the end
 //    of both segments: it goes back to the corner (before, it was in neither span and left the tank: the
 //    dam break with the level-set detection lost water there).
+//  - The same at a corner between two walls (a cylinder and the plate behind it, Turek & Hron's channel): a
+//    particle the recirculation pushes into the corner goes back (before, past the end of either wall's segment,
+//    it slid into the plate, and the mesh filled the solid).
 //  - A particle falling past the outside corner of an obstacle is not pulled onto the obstacle's top: past a
 //    segment's end only counts where the particle is beyond the neighbouring segment too.
 //  - The fluid side of a segment the initial fluid cannot see (an obstacle's downstream face, hidden by the
@@ -62,9 +66,36 @@ TEST(FluidWalls, AFilmBelowTheFloorDoesNotLeaveThroughTheTanksCorner) {
   const Vec2 p = step(s, {0.589, -0.002});
   EXPECT_LT(p.x(), 0.584);
   EXPECT_GE(p.y(), -0.002);
-  EXPECT_NEAR(p.x(), 0.584 - 0.05 * kH, 1e-12);                 // at the corner, 0.05 h on the fluid side
-  EXPECT_NEAR(s.cloud.v()[2 * (s.cloud.n() - 1)], 0.0, 1e-12);  // its velocity into the wall is gone
+  const double r = 0.05 * kH / std::sqrt(2.0);  // at the corner, 0.05 h along its bisector on the fluid side
+  EXPECT_NEAR(p.x(), 0.584 - r, 1e-12);
+  EXPECT_NEAR(p.y(), r, 1e-12);
+  EXPECT_LT(s.cloud.v().segment<2>(2 * (s.cloud.n() - 1)).dot(Vec2(-1, 1)), 1e-12);  // no velocity into the walls
   EXPECT_EQ(s.walls.crossings(), 1);
+}
+
+TEST(FluidWalls, AParticlePushedIntoACornerBetweenTwoWallsGoesBack) {
+  WallScene<WallParticles> s;
+  // A post (x = 0.1) with a plate 0.02 m thick behind it, the plate a wall of its own whose ends meet the post's.
+  const Json walls = Json::array({{{"name", "post_top"}, {"points", {{0.1, 0.3}, {0.1, 0.11}}}},
+                                  {{"name", "plate"}, {"points", {{0.1, 0.11}, {0.3, 0.11}, {0.3, 0.09}, {0.1, 0.09}}}},
+                                  {{"name", "post_bottom"}, {"points", {{0.1, 0.09}, {0.1, -0.1}}}}});
+  make(s, walls, {{0.2, 0.2}, {0.2, 0.0}, {0.4, 0.1}}, {0.102, 0.1115});
+  // From the corner's fluid side to 4 mm left of the post's line and 6 mm below the plate's top: past the end of
+  // every segment near it, 0.99 h from the corner.
+  const Vec2 p = step(s, {0.096, 0.104});
+  const double r = 0.05 * kH / std::sqrt(2.0);
+  EXPECT_NEAR(p.x(), 0.1 + r, 1e-12);
+  EXPECT_NEAR(p.y(), 0.11 + r, 1e-12);
+  EXPECT_EQ(s.walls.crossings(), 1);
+}
+
+TEST(FluidWalls, AParticleLessThanHalfASpacingBehindAWallIsLeftAlone) {
+  WallScene<WallParticles> s;
+  const Json tank = Json::array({{{"name", "tank"}, {"points", {{0, 0.584}, {0, 0}, {0.584, 0}, {0.584, 0.584}}}}});
+  make(s, tank, {{0.1, 0.1}, {0.3, 0.2}, {0.5, 0.05}}, {0.3, 0.001});
+  const Vec2 p = step(s, {0.31, -0.45 * kH});  // a film's particle dipping below the floor
+  EXPECT_DOUBLE_EQ(p.y(), -0.45 * kH);
+  EXPECT_EQ(s.walls.crossings(), 0);
 }
 
 TEST(FluidWalls, AParticleFallingPastAnObstaclesCornerStaysBesideIt) {

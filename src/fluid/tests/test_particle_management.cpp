@@ -15,6 +15,13 @@
 //    pressed against a ghost: the distance is to the face's segment. The Delaunay mesh does not keep the
 //    segment as an edge, and the two triangles that join the particle to the two ghosts stay valid as it
 //    crosses (flexible_tank under generalized-alpha: water went into the plate at its waterline).
+//  - a fluid particle that comes into the triangle of a corner's wall particles ("wall_model": "particles") makes
+//    elements with two of them outside the advected domain: the corner counts as wet (the triangle lies on the
+//    fluid side and touches the mesh), so they are fluid. They were refused, and the corner became a hole with
+//    p = 0 that a wake's suction opened into a cavity (Turek & Hron's channel with graded particles lost 16 % of
+//    its water in 4 s).
+//  - a fluid particle pressed onto a wall's line between two of its particles goes as one pressed against a wall
+//    particle: its flat element was removed and left it a free surface with p = 0 inside the water.
 // And the free-surface marking with walls as constraints (RemeshPipeline::mark_free_surface): an unshared edge
 // between two particles on walls is a wall only where it runs along one. The long side of a triangle in a
 // tank's corner, from a floor particle to a side wall's, is a free surface. Marked a wall, the triangle had no
@@ -30,6 +37,7 @@
 #include "ghosts.hpp"
 #include "remesh_pipeline.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -166,6 +174,62 @@ TEST(ParticleManagement, TheLongSideOfACornersTriangleIsAFreeSurface) {
   s.remesh.mark_free_surface(on_wall, along);
   EXPECT_EQ(s.mesh.free[0] + s.mesh.free[2] + s.mesh.free[3], 3);
   EXPECT_EQ(s.mesh.free[1], 0);
+}
+
+TEST(ParticleManagement, AParticleComingIntoACornerOfWallParticlesWetsIt) {
+  // Wall particles along the floor and a side wall ("wall_model": "particles"; the solid x < 0 or y < 0), two
+  // spacings of water over the corner. The Delaunay triangle of the corner's three wall particles, 0-1-5, belongs
+  // to no element.
+  const std::vector<Vec2> pts = {{0, 0},         {kH, 0},        {2 * kH, 0},         {3 * kH, 0},
+                                 {0, 3 * kH},    {0, kH},        {0, 2 * kH},         {1.1 * kH, 1.1 * kH},
+                                 {2.2 * kH, kH}, {kH, 2.2 * kH}, {2.2 * kH, 2.2 * kH}};
+  std::vector<ParticleKind> kind(pts.size(), ParticleKind::Fluid);
+  for (int i = 0; i < 7; ++i) kind[static_cast<size_t>(i)] = ParticleKind::Wall;
+  Scene s(pts, {});
+  s.cloud.assign(pts, kind, kH);
+  s.remesh.set_wall_solid([](const Vec2& x, double) { return -std::min(x.x(), x.y()); });  // depth in the solid
+  const auto corner_wet = [&] {
+    for (const auto& t : s.mesh.tri)
+      if (t[0] == 0 || t[1] == 0 || t[2] == 0) return true;
+    return false;
+  };
+  s.remesh.remesh_step(0.001, s.volume, s.energy);
+  ASSERT_FALSE(corner_wet()) << "the corner's triangle is the walls' alone";
+  // Particle 7 moves into the corner's triangle, across the edge 1-5 (its element 7-5-1 turns over): its Delaunay
+  // elements with the corner lie outside the advected domain and have two wall particles, which the detection
+  // refuses unless the corner counts as wet.
+  s.cloud.x().segment<2>(14) = Vec2(0.4 * kH, 0.4 * kH);
+  s.remesh.remesh_step(0.002, s.volume, s.energy);
+  EXPECT_TRUE(corner_wet()) << "the particle's elements with the corner are fluid";
+  EXPECT_EQ(s.mesh.free[7], 0) << "no hole at the corner";
+  // Without the walls' solid no corner is wet: the same step leaves the corner dry and the particle on a hole.
+  Scene dry(pts, {});
+  dry.cloud.assign(pts, kind, kH);
+  dry.remesh.remesh_step(0.001, dry.volume, dry.energy);
+  dry.cloud.x().segment<2>(14) = Vec2(0.4 * kH, 0.4 * kH);
+  dry.remesh.remesh_step(0.002, dry.volume, dry.energy);
+  for (const auto& t : dry.mesh.tri) EXPECT_TRUE(t[0] != 0 && t[1] != 0 && t[2] != 0);
+  EXPECT_EQ(dry.mesh.free[7], 1);
+}
+
+TEST(ParticleManagement, AParticlePressedOntoAWallsLineBetweenItsParticlesGoes) {
+  // Three wall particles on a floor (the solid y < 0), a fluid particle 0.05 h above the line midway between the
+  // first two (0.5 h from each: not pressed against either), two fluid particles above.
+  const std::vector<Vec2> pts = {{0, 0}, {kH, 0}, {2 * kH, 0}, {0.5 * kH, 0.05 * kH}, {0.5 * kH, kH}, {1.5 * kH, kH}};
+  const std::vector<std::array<Index, 3>> tri = {{0, 1, 3}, {3, 1, 4}, {0, 3, 4}, {1, 5, 4}, {1, 2, 5}};
+  std::vector<ParticleKind> kind(pts.size(), ParticleKind::Fluid);
+  kind[0] = kind[1] = kind[2] = ParticleKind::Wall;
+  const auto remaining = [&](bool with_walls) {
+    Scene s(pts, tri);
+    s.cloud.assign(pts, kind, kH);
+    if (with_walls) s.remesh.set_wall_solid([](const Vec2& x, double) { return -x.y(); });
+    s.remesh.remesh_step(0.001, s.volume, s.energy);
+    Index fluid = 0;
+    for (Index i = 0; i < s.cloud.n(); ++i) fluid += s.cloud.kind(i) == ParticleKind::Fluid;
+    return fluid;
+  };
+  EXPECT_EQ(remaining(true), 2) << "the pressed particle went, the wall stands for it";
+  EXPECT_EQ(remaining(false), 3) << "without the walls' lines it is pressed against no particle";
 }
 
 }  // namespace

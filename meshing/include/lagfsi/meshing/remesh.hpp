@@ -61,21 +61,23 @@ struct RemeshSettings {
 };
 
 struct RemeshResult {
-  std::vector<std::array<Index, 3>> triangles;  ///< kept elements, counter-clockwise
-  std::vector<std::uint8_t> free_surface;       ///< per particle: 1 if a fluid particle on an unshared edge
-  std::vector<std::uint8_t> connected;          ///< per particle: 1 if used by at least one kept element
-  double area = 0;                              ///< total area of the kept elements
-  int removed_alpha = 0;                        ///< elements deleted by the alpha test
-  int removed_boundary_only = 0;                ///< elements deleted because all their particles are walls/ghosts
-  int added_outside = 0;                        ///< Advected / LevelSet: kept elements outside the previous domain
-  int separated_inside = 0;                     ///< Advected / LevelSet: elements inside it deleted (separation)
-  int restored_edges = 0;                       ///< Advected / LevelSet: previous boundary edges flipped back in
-  int lost_edges = 0;                           ///< Advected / LevelSet: previous boundary edges left out (crossed
-                                                ///< by more than one Delaunay edge)
-  int kept_edges = 0;                           ///< keep_edges_angle > 0: previous interior edges flipped back in
-  std::vector<Index> added_elements;            ///< Advected / LevelSet: indices (in `triangles`) of the kept
-                                                ///< elements outside the previous domain
-  std::vector<std::array<Index, 3>> separated;  ///< Advected / LevelSet: the elements inside it deleted
+  std::vector<std::array<Index, 3>> triangles;      ///< kept elements, counter-clockwise
+  std::vector<std::uint8_t> free_surface;           ///< per particle: 1 if a fluid particle on an unshared edge
+  std::vector<std::uint8_t> connected;              ///< per particle: 1 if used by at least one kept element
+  double area = 0;                                  ///< total area of the kept elements
+  int removed_alpha = 0;                            ///< elements deleted by the alpha test
+  int removed_boundary_only = 0;                    ///< elements deleted because all their particles are walls/ghosts
+  int added_outside = 0;                            ///< Advected / LevelSet: kept elements outside the previous domain
+  int separated_inside = 0;                         ///< Advected / LevelSet: elements inside it deleted (separation)
+  int restored_edges = 0;                           ///< Advected / LevelSet: previous boundary edges flipped back in
+  int lost_edges = 0;                               ///< Advected / LevelSet: previous boundary edges left out (crossed
+                                                    ///< by more than one Delaunay edge)
+  int kept_edges = 0;                               ///< keep_edges_angle > 0: previous interior edges flipped back in
+  std::vector<Index> added_elements;                ///< Advected / LevelSet: indices (in `triangles`) of the kept
+                                                    ///< elements outside the previous domain
+  std::vector<std::array<Index, 3>> separated;      ///< Advected / LevelSet: the elements inside it deleted
+  std::vector<std::array<Index, 3>> boundary_only;  ///< the Delaunay faces (not flat) whose particles are all
+                                                    ///< walls/ghosts, never kept, counter-clockwise
 };
 
 /// Triangulates `points` (Delaunay, built by range insertion with spatial sorting; each vertex keeps its

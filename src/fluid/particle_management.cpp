@@ -277,9 +277,9 @@ void RemeshPipeline::merge_pressed_against_walls(Management& m) {
   // half a spacing away) was joined to them by two triangles that stay valid as it crosses, and went into the
   // structure (the plate of cases/flexible_tank). The same holds for a wall's particles: a particle pressed onto
   // the edge between two wall particles of its element that runs along a wall (its midpoint on the wall's line, not
-  // the long side of a corner's triangle) goes as well; its element
-  // was removed as flat, which made the particle a free surface with p = 0 inside the water, and a wake's suction
-  // opened a crack from it (Turek & Hron's cylinder with graded particles).
+  // the long side of a corner's triangle) goes as well. Its element was removed as flat, which made the particle a
+  // free surface with p = 0 inside the water, and a wake's suction opened a crack from it (Turek & Hron's cylinder
+  // with graded particles).
   const std::vector<Vec2>& pts = m.pts;
   const auto pressed = [&](Index f, Index g, Index third) {
     const double r_close = s_.close_fraction * cloud_.h(f);

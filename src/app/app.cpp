@@ -104,6 +104,18 @@ int max_threads() {
   return 4 * static_cast<int>(hw > 0 ? hw : 64);
 }
 
+/// The integer the whole text spells (std::stol, nothing left over), or -1.
+long whole_number(const std::string& text) {
+  size_t used = 0;
+  long n = -1;
+  try {
+    n = std::stol(text, &used);
+  } catch (...) {
+    return -1;
+  }
+  return used == text.size() ? n : -1;
+}
+
 /// A node count as --max-nodes takes it: a whole number >= 1, written plainly or in exponent form (5e6); -1 for
 /// anything else.
 double node_count(const std::string& text) {
@@ -178,17 +190,6 @@ int app_main(int argc, char** argv, const char* git_commit) {
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     std::string v;
-    // The integer the whole text spells (std::stol, nothing left over), or -1.
-    auto whole_number = [](const std::string& text) -> long {
-      size_t used = 0;
-      long n = -1;
-      try {
-        n = std::stol(text, &used);
-      } catch (...) {
-        return -1;
-      }
-      return used == text.size() ? n : -1;
-    };
     auto value = [&]() -> bool {
       if (i + 1 >= args.size()) return false;
       v = args[++i];

@@ -5,24 +5,34 @@
 //                             or g(s) / int_0^1 g ds ("table": g interpolated linearly in the case's points (s, f),
 //                             constant beyond the first and last; normalized to mean 1 by its exact integral),
 // with U the case's mean velocity and f its time function (1 without one): every profile has mean int_0^1 phi ds = 1,
-// so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. Every fluid particle
-// in the inlet layer (depth d = (x - a).n in [-h/2, h), s in [0, 1]) follows u over the step in both components (a
-// Dirichlet condition on its motion, as a moving lid's), and its pressure stays an unknown with its continuity
-// equation: the layer is a boundary of the mesh, not a free surface.
+// so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. The segment is
+// divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the spacing of a structured region that starts at
+// the segment). What the inflow holds ("hold"):
+//  - "points": one fluid particle fixed at each lane's point of the segment, with the velocity
+//    u(s_k, t) (a Dirichlet condition at fixed points, as an Eulerian inlet's nodes): the mesh's inlet is the line
+//    of these points, and the discrete flux through it, the trapezoidal rule of u on the lanes, is the same at every
+//    step whatever the triangles behind it. The first step, before the points exist, holds the layer below.
+//  - "layer" (the default): every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in [0, 1])
+//  follows u over
+//    the step in both components (a Dirichlet condition on its motion, as a moving lid's). The linear interpolant
+//    of a curved profile on the layer's triangles is not divergence-free, and those triangles change every step:
+//    the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and every jitter is a pressure kick
+//    on the whole confined column of water.
+// The held particles' pressures stay unknowns with their continuity equations: the inlet is a boundary of the mesh,
+// not a free surface.
 //
-// Injection (after each step): the segment is divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the
-// spacing of a structured region that starts at the segment). Each lane adds up the distance its inflow velocity
-// carried the fluid, d_k += u_n(s_k) int f dt, and when it reaches a spacing, d_k -= h, a new particle enters at
-// depth d_k (where it would be had it entered at that instant) with the inflow's velocity and the nearest
-// particle's pressure: particles enter in layers at exactly the rate the profile carries them, as in the inflows of
-// Kratos' PFEM and of PFEM-2 (Idelsohn et al. 2013). A lane whose inflow velocity is zero (a parabolic profile's
-// ends, which walls hold) gets none, nor does an end lane where a wall's or a structure's particle sits within half
-// a spacing of the segment's end (walls of particles: the wall particle at the corner already bounds the mesh
-// there, and a particle injected on it would coincide with it). The area that entered is the profile's flux, u_n L int
-// f dt (summary.json also counts the particles, each lane's width times h: the trapezoidal rule of phi on the lanes,
-// which is 1 - 1/N^2 of the flux for the parabola and 1 for a table whose points are among the lanes'). The strip of
-// depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that the elements
-// joining a new layer to the flow are kept.
+// Injection (after each step): each lane adds up the distance its inflow velocity carried the fluid,
+// d_k += u_n(s_k) int f dt, and when it reaches a spacing, d_k -= h, a new particle enters at depth d_k (where it
+// would be had it entered at that instant; h/2 further with "points", in front of the lane's fixed particle) with
+// the inflow's velocity and the nearest particle's pressure: particles enter in layers at exactly the rate the profile
+// carries them, as in the inflows of Kratos' PFEM and of PFEM-2 (Idelsohn et al. 2013). A lane whose inflow velocity is
+// zero (a parabolic profile's ends, which walls hold) gets none, nor does an end lane where a wall's or a structure's
+// particle sits within half a spacing of the segment's end (walls of particles: the wall particle at the corner already
+// bounds the mesh there, and a particle injected on it would coincide with it). The area that entered is the profile's
+// flux, u_n L int f dt (summary.json also counts the particles, each lane's width times h: the trapezoidal rule of phi
+// on the lanes, which is 1 - 1/N^2 of the flux for the parabola and 1 for a table whose points are among the lanes').
+// The strip of depth 1.5 h behind the segment counts as fluid for the advected and level-set domain detections, so that
+// the elements joining a new layer to the flow are kept.
 #include "fluid_boundary.hpp"
 
 #include <algorithm>
@@ -52,7 +62,13 @@ const KeyTable kInflowKeys(
       "table)); a string is short for {\"type\": ...}."},
      {"function", Json::object(),
       "A time function f(t) scaling the velocity (see time function (type ...)), e.g. a smooth start; default {}: "
-      "1."}});
+      "1."},
+     {"hold", "layer",
+      "What carries the profile into the water: `layer` (every particle within [-h/2, h) of the segment moved at the "
+      "profile's velocity: its triangles change every step and the flux jitters, a pressure kick on a confined flow) "
+      "or `points` (one particle fixed at each lane's point of the segment, one spacing apart, moving the water at "
+      "the profile's velocity; new particles enter half a spacing in front of them: the flux through the inlet is "
+      "the same at every step; decision 0018)."}});
 
 const KeyTable kBuiltInProfileKeys("/bodies/*/boundaries/*/profile (fluid body, inflow, type uniform or parabolic)",
                                    "A built-in profile: uniform (phi = 1) or parabolic (phi = 6 s (1 - s)).",
@@ -148,6 +164,7 @@ class Inflow final : public FluidBoundary {
     profile_ = InflowProfile(p);
     fn_ = BoundaryFunction(p, ctx.base_dir);
     lanes_ = std::max<Index>(1, static_cast<Index>(std::lround(seg_.length / h_)));
+    points_ = p.choice("hold", {"points", "layer"}) == "points";
   }
 
   bool open() const override { return true; }
@@ -162,10 +179,20 @@ class Inflow final : public FluidBoundary {
                  std::vector<BoundaryConstraint>& out) override {
     t0_ = t;
     held_velocity_.assign(static_cast<size_t>(cloud.n()), Vec2::Zero());
+    fixed_.assign(static_cast<size_t>(cloud.n()), 0);
     long held = 0;
+    const bool points = points_ && !lane_point_.empty();
     for (Index i = 0; i < cloud.n(); ++i) {
       if (!cloud.is_fluid(i) || taken[static_cast<size_t>(i)]) continue;
       if (!in_inlet(cloud.pos(i))) continue;
+      if (points) {
+        // A lane's point is held in place; any other particle that came within a quarter spacing of the segment
+        // (behind the points: the new ones enter half a spacing in front) is moved with the profile, forwards.
+        if (at_lane_point(cloud.pos(i)))
+          fixed_[static_cast<size_t>(i)] = 1;
+        else if ((cloud.pos(i) - seg_.a).dot(seg_.normal) >= 0.25 * h_)
+          continue;
+      }
       const double s = (cloud.pos(i) - seg_.a).dot(seg_.tangent) / seg_.length;
       held_velocity_[static_cast<size_t>(i)] = u_ * profile(s);
       out.push_back({i, 0, cloud.pos(i).x()});
@@ -175,6 +202,7 @@ class Inflow final : public FluidBoundary {
     held_max_ = std::max(held_max_, held);
   }
   double position(const BoundaryConstraint& k, double t) const override {
+    if (fixed_[static_cast<size_t>(k.i)]) return k.base;  // a lane's point: the water moves past it
     return k.base + held_velocity_[static_cast<size_t>(k.i)][k.c] * (integral(t) - integral(t0_));
   }
   double velocity(const BoundaryConstraint& k, double t) const override {
@@ -190,6 +218,8 @@ class Inflow final : public FluidBoundary {
     // Each lane's distance travelled since its last particle entered; a lane that has travelled a spacing gets
     // the next one, where it would be had it entered at that instant (the injected area is the profile's flux).
     const double swept = integral(t) - integral(t0_);
+    if (points_) place_lane_points(cloud, t);
+    const double offset = points_ ? 0.5 * h_ : 0.0;
     const auto nl = static_cast<size_t>(lanes_ + 1);
     if (phase_.size() != nl) phase_.assign(nl, 0.0);
     std::vector<ParticleCloud::Particle> added;
@@ -206,7 +236,7 @@ class Inflow final : public FluidBoundary {
       ParticleCloud::Particle q;
       q.kind = ParticleKind::Fluid;
       q.h = h_;
-      q.x = q.X0 = seg_.a + seg_.tangent * (s * seg_.length) + seg_.normal * phase_[k];
+      q.x = q.X0 = seg_.a + seg_.tangent * (s * seg_.length) + seg_.normal * (phase_[k] + offset);
       q.v = u_ * (profile(s) * value(t));
       q.a = u_ * (profile(s) * rate(t));
       q.p = nearest_pressure(cloud, q.x);
@@ -236,10 +266,59 @@ class Inflow final : public FluidBoundary {
             {"particles_held_max", held_max_}};
   }
   void serialize(StateArchive& ar) override {
-    ar.io(t0_, phase_, injected_, area_injected_, area_prescribed_, held_max_);
+    ar.io(t0_, phase_, injected_, area_injected_, area_prescribed_, held_max_, lane_point_);
   }
 
  private:
+  Vec2 lane_position(size_t k) const {
+    return seg_.a + seg_.tangent * (static_cast<double>(k) / static_cast<double>(lanes_) * seg_.length);
+  }
+  /// Whether x is a lane's fixed point (positions held by position() keep it to the bit).
+  bool at_lane_point(const Vec2& x) const {
+    const long k = std::lround((x - seg_.a).dot(seg_.tangent) / seg_.length * static_cast<double>(lanes_));
+    if (k < 0 || k > lanes_ || !lane_point_[static_cast<size_t>(k)]) return false;
+    return (x - lane_position(static_cast<size_t>(k))).norm() < 1e-9 * h_;
+  }
+  /// "points": every lane with an inflow (and, at an end, no wall's or structure's particle there) has a fluid
+  /// particle at its point with the profile's velocity: the nearest fluid particle within half a spacing moved there
+  /// (a remesh may have merged the lane's particle away, or the region's particles start on the segment), or a new
+  /// one.
+  void place_lane_points(ParticleCloud& cloud, double t) {
+    const auto nl = static_cast<size_t>(lanes_ + 1);
+    lane_point_.assign(nl, 0);
+    std::vector<ParticleCloud::Particle> added;
+    for (size_t k = 0; k < nl; ++k) {
+      const double s = static_cast<double>(k) / static_cast<double>(lanes_);
+      const Vec2 at = lane_position(k);
+      if (!(u_.dot(seg_.normal) * profile(s) > 0) || ((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, at)))
+        continue;
+      lane_point_[k] = 1;
+      Index nearest = -1;
+      double d2 = 0.25 * h_ * h_;
+      for (Index i = 0; i < cloud.n(); ++i)
+        if (cloud.is_fluid(i) && (cloud.pos(i) - at).squaredNorm() < d2) {
+          d2 = (cloud.pos(i) - at).squaredNorm();
+          nearest = i;
+        }
+      const Vec2 v = u_ * (profile(s) * value(t)), a = u_ * (profile(s) * rate(t));
+      if (nearest < 0) {
+        ParticleCloud::Particle q;
+        q.kind = ParticleKind::Fluid;
+        q.h = h_;
+        q.x = q.X0 = at;
+        q.v = v;
+        q.a = a;
+        q.p = nearest_pressure(cloud, at);
+        added.push_back(q);
+        continue;
+      }
+      cloud.x().segment<2>(2 * nearest) = at;
+      cloud.v().segment<2>(2 * nearest) = v;
+      cloud.a().segment<2>(2 * nearest) = a;
+    }
+    if (!added.empty()) cloud.append(added);
+  }
+
   /// Whether a wall's or a structure's particle lies within half a spacing of x.
   bool boundary_particle_near(const ParticleCloud& cloud, const Vec2& x) const {
     for (Index i = 0; i < cloud.n(); ++i)
@@ -270,6 +349,9 @@ class Inflow final : public FluidBoundary {
   BoundaryFunction fn_;
   Index lanes_ = 1;
   double t0_ = 0;
+  bool points_ = false;              // "hold": "points" (else "layer")
+  std::vector<char> lane_point_;     // per lane: it has a fixed point ("points"; empty before the first step's end)
+  std::vector<char> fixed_;          // per particle: held at its place (a lane's point) over the step
   std::vector<Vec2> held_velocity_;  // per particle: its inflow velocity over the step (zero if not held)
   std::vector<double> phase_;        // per lane: the distance travelled since its last particle entered
   long injected_ = 0, held_max_ = 0;

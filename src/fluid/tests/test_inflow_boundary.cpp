@@ -9,6 +9,9 @@
 //  - A bad table is refused in one line naming the JSON path of the bad value.
 //  - A uniform inflow between walls of particles injects nothing on the wall particles at its ends (the end lanes
 //    are left to them), and injects at its ends when no wall particle is there.
+//  - Held points ("hold": "points"): after the first step one particle sits at each lane's point that has an inflow,
+//    held there (its position does not move over a step) at the profile's velocity, and nothing else is held; the
+//    new particles enter half a spacing or more in front of the points, at the same rate as with the held layer.
 #include <gtest/gtest.h>
 
 #include "fluid_boundary.hpp"
@@ -140,6 +143,38 @@ TEST(InflowBoundary, ATableBeyondItsPointsKeepsItsEndValues) {
   ASSERT_EQ(held.size(), 4u);
   EXPECT_NEAR(inflow->velocity(held[0], 0.0), 2 * kU, 1e-5);
   EXPECT_NEAR(inflow->velocity(held[2], 0.0), 0.0, 1e-12);
+}
+
+TEST(InflowBoundary, HeldPointsStayAtTheLanesAndTheNewParticlesEnterInFrontOfThem) {
+  Json points = inflow_with("parabolic");
+  points["hold"] = "points";
+  auto inflow = make(points), layer = make(inflow_with("parabolic"));
+  const ParticleCloud cloud = drive(*inflow, 100);
+  drive(*layer, 100);
+  // The parabola is zero at the segment's ends: lanes 1 .. N - 1 have points.
+  const int lanes = static_cast<int>(std::lround(kHeight / kH));
+  std::vector<BoundaryConstraint> held;
+  inflow->constrain(cloud, std::vector<char>(static_cast<size_t>(cloud.n()), 0), 1.0, held);
+  ASSERT_EQ(held.size(), static_cast<size_t>(2 * (lanes - 1)));
+  for (const BoundaryConstraint& k : held) {
+    const Vec2 x = cloud.pos(k.i);
+    const double s = x.y() / kHeight;
+    EXPECT_EQ(x.x(), 0.0) << k.i;
+    EXPECT_NEAR(s * lanes, std::round(s * lanes), 1e-12) << k.i;
+    EXPECT_EQ(inflow->position(k, 1.0 + kDt), k.base) << k.i;  // held at its point over the step
+    EXPECT_NEAR(inflow->velocity(k, 1.0), k.c == 0 ? kU * 6 * s * (1 - s) : 0.0, 1e-12) << k.i;
+  }
+  // The others are half a spacing or more in front of the segment.
+  long in_front = 0;
+  for (Index i = 0; i < cloud.n(); ++i)
+    if (cloud.pos(i).x() > 0) {
+      EXPECT_GE(cloud.pos(i).x(), 0.5 * kH * (1 - 1e-12)) << i;
+      ++in_front;
+    }
+  // Injected at the held layer's rate, and counted alike.
+  EXPECT_EQ(in_front, inflow->summary()["particles_injected"].get<long>());
+  EXPECT_EQ(inflow->summary()["particles_injected"], layer->summary()["particles_injected"]);
+  EXPECT_EQ(inflow->summary()["area_injected"], layer->summary()["area_injected"]);
 }
 
 TEST(InflowBoundary, ABuiltInProfileMayBeGivenAsAnObject) {

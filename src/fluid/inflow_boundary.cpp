@@ -8,16 +8,16 @@
 // so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. The segment is
 // divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the spacing of a structured region that starts at
 // the segment). What the inflow holds ("hold"):
-//  - "points": one fluid particle fixed at each lane's point of the segment, with the velocity
-//    u(s_k, t) (a Dirichlet condition at fixed points, as an Eulerian inlet's nodes): the mesh's inlet is the line
-//    of these points, and the discrete flux through it, the trapezoidal rule of u on the lanes, is the same at every
-//    step whatever the triangles behind it. The first step, before the points exist, holds the layer below.
-//  - "layer" (the default): every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in [0, 1])
-//  follows u over
-//    the step in both components (a Dirichlet condition on its motion, as a moving lid's). The linear interpolant
-//    of a curved profile on the layer's triangles is not divergence-free, and those triangles change every step:
-//    the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and every jitter is a pressure kick
-//    on the whole confined column of water.
+//  - "layer" (the default): every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in
+//    [0, 1]) follows u over the step in both components (a Dirichlet condition on its motion, as a moving lid's).
+//    The linear interpolant of a curved profile on the layer's triangles is not divergence-free, and those
+//    triangles change every step: the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and
+//    every jitter is a pressure kick on the whole confined column of water.
+//  - "points": one fluid particle fixed at each lane's point of the segment, with the velocity u(s_k, t) (a
+//    Dirichlet condition at fixed points, as an Eulerian inlet's nodes), and any other particle that comes within
+//    h/4 of the segment moved with the profile: the mesh's inlet is the line of the points, and the discrete flux
+//    through it, the trapezoidal rule of u on the lanes, is the same at every step whatever the triangles behind
+//    it. The first step, before the points exist, holds the layer.
 // The held particles' pressures stay unknowns with their continuity equations: the inlet is a boundary of the mesh,
 // not a free surface.
 //
@@ -287,6 +287,9 @@ class Inflow final : public FluidBoundary {
     const auto nl = static_cast<size_t>(lanes_ + 1);
     lane_point_.assign(nl, 0);
     std::vector<ParticleCloud::Particle> added;
+    std::vector<Index> near;  // the fluid particles within half a spacing of the segment's line (one pass)
+    for (Index i = 0; i < cloud.n(); ++i)
+      if (cloud.is_fluid(i) && std::abs((cloud.pos(i) - seg_.a).dot(seg_.normal)) < 0.5 * h_) near.push_back(i);
     for (size_t k = 0; k < nl; ++k) {
       const double s = static_cast<double>(k) / static_cast<double>(lanes_);
       const Vec2 at = lane_position(k);
@@ -295,8 +298,8 @@ class Inflow final : public FluidBoundary {
       lane_point_[k] = 1;
       Index nearest = -1;
       double d2 = 0.25 * h_ * h_;
-      for (Index i = 0; i < cloud.n(); ++i)
-        if (cloud.is_fluid(i) && (cloud.pos(i) - at).squaredNorm() < d2) {
+      for (Index i : near)
+        if ((cloud.pos(i) - at).squaredNorm() < d2) {
           d2 = (cloud.pos(i) - at).squaredNorm();
           nearest = i;
         }

@@ -206,7 +206,7 @@ TEST(OpenBoundaries, AChannelRunRestartsBitForBit) {
 TEST(OpenBoundaries, AChannelWithHeldPointsRestartsBitForBit) {
   const auto [full, stopped, part] =
       run_and_restart(channel("fractional_step", 0.3, "", R"(, "hold": "points")"),
-                      "--quiet --threads 1 --set output.checkpoint.every_steps=10", 17, "channel");
+                      "--quiet --threads 1 --set output.checkpoint.every_steps=10", 17, "channel_points");
   ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
   ASSERT_EQ(stopped.exit_code, 0) << stopped.stderr_text;
   ASSERT_EQ(part.exit_code, 0) << part.stderr_text;

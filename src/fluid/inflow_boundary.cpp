@@ -218,7 +218,8 @@ class Inflow final : public FluidBoundary {
     // Each lane's distance travelled since its last particle entered; a lane that has travelled a spacing gets
     // the next one, where it would be had it entered at that instant (the injected area is the profile's flux).
     const double swept = integral(t) - integral(t0_);
-    if (points_) place_lane_points(cloud, t);
+    const std::vector<char> open = open_lanes(cloud);
+    if (points_) place_lane_points(cloud, t, open);
     const double offset = points_ ? 0.5 * h_ : 0.0;
     const auto nl = static_cast<size_t>(lanes_ + 1);
     if (phase_.size() != nl) phase_.assign(nl, 0.0);
@@ -226,21 +227,12 @@ class Inflow final : public FluidBoundary {
     double area = 0.0;
     const double width = seg_.length / static_cast<double>(lanes_);
     for (size_t k = 0; k < nl; ++k) {
+      if (!open[k]) continue;
       const double s = static_cast<double>(k) / static_cast<double>(lanes_);
-      const double un = u_.dot(seg_.normal) * profile(s);
-      if (!(un > 0)) continue;
-      if ((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, seg_.a + seg_.tangent * (s * seg_.length))) continue;
-      phase_[k] += un * swept;
+      phase_[k] += u_.dot(seg_.normal) * profile(s) * swept;
       if (phase_[k] < h_ * (1 - 1e-9)) continue;
       phase_[k] = std::max(0.0, phase_[k] - h_);
-      ParticleCloud::Particle q;
-      q.kind = ParticleKind::Fluid;
-      q.h = h_;
-      q.x = q.X0 = seg_.a + seg_.tangent * (s * seg_.length) + seg_.normal * (phase_[k] + offset);
-      q.v = u_ * (profile(s) * value(t));
-      q.a = u_ * (profile(s) * rate(t));
-      q.p = nearest_pressure(cloud, q.x);
-      added.push_back(q);
+      added.push_back(entering(cloud, lane_position(k) + seg_.normal * (phase_[k] + offset), s, t));
       area += (k == 0 || k + 1 == nl ? 0.5 : 1.0) * width * h_;
     }
     if (!added.empty()) cloud.append(added);
@@ -279,23 +271,41 @@ class Inflow final : public FluidBoundary {
     if (k < 0 || k > lanes_ || !lane_point_[static_cast<size_t>(k)]) return false;
     return (x - lane_position(static_cast<size_t>(k))).norm() < 1e-9 * h_;
   }
-  /// "points": every lane with an inflow (and, at an end, no wall's or structure's particle there) has a fluid
-  /// particle at its point with the profile's velocity: the nearest fluid particle within half a spacing moved there
-  /// (a remesh may have merged the lane's particle away, or the region's particles start on the segment), or a new
-  /// one.
-  void place_lane_points(ParticleCloud& cloud, double t) {
+  /// Per lane: whether it carries water in, its inflow velocity positive and, at an end of the segment, no wall's or
+  /// structure's particle there.
+  std::vector<char> open_lanes(const ParticleCloud& cloud) const {
     const auto nl = static_cast<size_t>(lanes_ + 1);
-    lane_point_.assign(nl, 0);
+    std::vector<char> open(nl, 0);
+    for (size_t k = 0; k < nl; ++k)
+      open[k] = u_.dot(seg_.normal) * profile(static_cast<double>(k) / static_cast<double>(lanes_)) > 0 &&
+                !((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, lane_position(k)));
+    return open;
+  }
+  /// A new fluid particle at x (lane coordinate s) with the inflow's velocity and acceleration at time t and the
+  /// pressure of its nearest fluid neighbour.
+  ParticleCloud::Particle entering(const ParticleCloud& cloud, const Vec2& x, double s, double t) const {
+    ParticleCloud::Particle q;
+    q.kind = ParticleKind::Fluid;
+    q.h = h_;
+    q.x = q.X0 = x;
+    q.v = u_ * (profile(s) * value(t));
+    q.a = u_ * (profile(s) * rate(t));
+    q.p = nearest_pressure(cloud, x);
+    return q;
+  }
+  /// "points": every open lane has a fluid particle at its point with the profile's velocity: the nearest fluid
+  /// particle within half a spacing moved there (a remesh may have merged the lane's particle away, or the region's
+  /// particles start on the segment), or a new one.
+  void place_lane_points(ParticleCloud& cloud, double t, const std::vector<char>& open) {
+    lane_point_ = open;
     std::vector<ParticleCloud::Particle> added;
     std::vector<Index> near;  // the fluid particles within half a spacing of the segment's line (one pass)
     for (Index i = 0; i < cloud.n(); ++i)
       if (cloud.is_fluid(i) && std::abs((cloud.pos(i) - seg_.a).dot(seg_.normal)) < 0.5 * h_) near.push_back(i);
-    for (size_t k = 0; k < nl; ++k) {
+    for (size_t k = 0; k < open.size(); ++k) {
+      if (!open[k]) continue;
       const double s = static_cast<double>(k) / static_cast<double>(lanes_);
       const Vec2 at = lane_position(k);
-      if (!(u_.dot(seg_.normal) * profile(s) > 0) || ((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, at)))
-        continue;
-      lane_point_[k] = 1;
       Index nearest = -1;
       double d2 = 0.25 * h_ * h_;
       for (Index i : near)
@@ -303,21 +313,13 @@ class Inflow final : public FluidBoundary {
           d2 = (cloud.pos(i) - at).squaredNorm();
           nearest = i;
         }
-      const Vec2 v = u_ * (profile(s) * value(t)), a = u_ * (profile(s) * rate(t));
       if (nearest < 0) {
-        ParticleCloud::Particle q;
-        q.kind = ParticleKind::Fluid;
-        q.h = h_;
-        q.x = q.X0 = at;
-        q.v = v;
-        q.a = a;
-        q.p = nearest_pressure(cloud, at);
-        added.push_back(q);
+        added.push_back(entering(cloud, at, s, t));
         continue;
       }
       cloud.x().segment<2>(2 * nearest) = at;
-      cloud.v().segment<2>(2 * nearest) = v;
-      cloud.a().segment<2>(2 * nearest) = a;
+      cloud.v().segment<2>(2 * nearest) = u_ * (profile(s) * value(t));
+      cloud.a().segment<2>(2 * nearest) = u_ * (profile(s) * rate(t));
     }
     if (!added.empty()) cloud.append(added);
   }

@@ -8,16 +8,17 @@
 // so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. The segment is
 // divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the spacing of a structured region that starts at
 // the segment). What the inflow holds ("hold"):
-//  - "layer" (the default): every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in
-//    [0, 1]) follows u over the step in both components (a Dirichlet condition on its motion, as a moving lid's).
-//    The linear interpolant of a curved profile on the layer's triangles is not divergence-free, and those
-//    triangles change every step: the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and
-//    every jitter is a pressure kick on the whole confined column of water.
-//  - "points": one fluid particle fixed at each lane's point of the segment, with the velocity u(s_k, t) (a
+//  - "points" (the default): one fluid particle fixed at each lane's point of the segment, with the velocity u(s_k, t)
+//  (a
 //    Dirichlet condition at fixed points, as an Eulerian inlet's nodes), and any other particle that comes within
 //    h/4 of the segment moved with the profile: the mesh's inlet is the line of the points, and the discrete flux
 //    through it, the trapezoidal rule of u on the lanes, is the same at every step whatever the triangles behind
 //    it. The first step, before the points exist, holds the layer.
+//  - "layer": every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in
+//    [0, 1]) follows u over the step in both components (a Dirichlet condition on its motion, as a moving lid's).
+//    The linear interpolant of a curved profile on the layer's triangles is not divergence-free, and those
+//    triangles change every step: the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and
+//    every jitter is a pressure kick on the whole confined column of water.
 // The held particles' pressures stay unknowns with their continuity equations: the inlet is a boundary of the mesh,
 // not a free surface.
 //
@@ -63,12 +64,12 @@ const KeyTable kInflowKeys(
      {"function", Json::object(),
       "A time function f(t) scaling the velocity (see time function (type ...)), e.g. a smooth start; default {}: "
       "1."},
-     {"hold", "layer",
-      "What carries the profile into the water: `layer` (every particle within [-h/2, h) of the segment moved at the "
-      "profile's velocity: its triangles change every step and the flux jitters, a pressure kick on a confined flow) "
-      "or `points` (one particle fixed at each lane's point of the segment, one spacing apart, moving the water at "
-      "the profile's velocity; new particles enter half a spacing in front of them: the flux through the inlet is "
-      "the same at every step; decision 0018)."}});
+     {"hold", "points",
+      "What carries the profile into the water: `points` (one particle fixed at each lane's point of the segment, "
+      "one spacing apart, moving the water at the profile's velocity; new particles enter half a spacing in front "
+      "of them: the flux through the inlet is the same at every step) or `layer` (every particle within [-h/2, h) "
+      "of the segment moved at the profile's velocity: its triangles change every step and the flux jitters, a "
+      "pressure kick on a confined flow; decision 0018)."}});
 
 const KeyTable kBuiltInProfileKeys("/bodies/*/boundaries/*/profile (fluid body, inflow, type uniform or parabolic)",
                                    "A built-in profile: uniform (phi = 1) or parabolic (phi = 6 s (1 - s)).",
@@ -354,7 +355,7 @@ class Inflow final : public FluidBoundary {
   BoundaryFunction fn_;
   Index lanes_ = 1;
   double t0_ = 0;
-  bool points_ = false;              // "hold": "points" (else "layer")
+  bool points_ = true;               // "hold": "points" (else "layer")
   std::vector<char> lane_point_;     // per lane: it has a fixed point ("points"; empty before the first step's end)
   std::vector<char> fixed_;          // per particle: held at its place (a lane's point) over the step
   std::vector<Vec2> held_velocity_;  // per particle: its inflow velocity over the step (zero if not held)

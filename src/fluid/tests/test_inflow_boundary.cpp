@@ -9,9 +9,10 @@
 //  - A bad table is refused in one line naming the JSON path of the bad value.
 //  - A uniform inflow between walls of particles injects nothing on the wall particles at its ends (the end lanes
 //    are left to them), and injects at its ends when no wall particle is there.
-//  - Held points ("hold": "points"): after the first step one particle sits at each lane's point that has an inflow,
-//    held there (its position does not move over a step) at the profile's velocity, and nothing else is held; the
-//    new particles enter half a spacing or more in front of the points, at the same rate as with the held layer.
+//  - Held points ("hold": "points", the default): after the first step one particle sits at each lane's point that
+//    has an inflow, held there (its position does not move over a step) at the profile's velocity, and nothing else
+//    is held; the new particles enter half a spacing or more in front of the points, at the same rate as with the
+//    held layer ("hold": "layer").
 #include <gtest/gtest.h>
 
 #include "fluid_boundary.hpp"
@@ -146,9 +147,9 @@ TEST(InflowBoundary, ATableBeyondItsPointsKeepsItsEndValues) {
 }
 
 TEST(InflowBoundary, HeldPointsStayAtTheLanesAndTheNewParticlesEnterInFrontOfThem) {
-  Json points = inflow_with("parabolic");
-  points["hold"] = "points";
-  auto inflow = make(points), layer = make(inflow_with("parabolic"));
+  Json with_layer = inflow_with("parabolic");
+  with_layer["hold"] = "layer";
+  auto inflow = make(inflow_with("parabolic")), layer = make(with_layer);
   const ParticleCloud cloud = drive(*inflow, 100);
   drive(*layer, 100);
   // The parabola is zero at the segment's ends: lanes 1 .. N - 1 have points.

@@ -170,6 +170,12 @@ int FluidBoundaries::taker(const Vec2& x) const {
   return -1;
 }
 
+int FluidBoundaries::outlet_strip(const Vec2& x) const {
+  for (size_t b = 0; b < list_.size(); ++b)
+    if (list_[b]->in_outlet_strip(x)) return static_cast<int>(b);
+  return -1;
+}
+
 void FluidBoundaries::clear_free_surface(std::vector<std::uint8_t>& free) const {
   for (const BoundaryConstraint& k : all_)
     if (list_[index(k)]->holds_pressure() && static_cast<size_t>(k.i) < free.size()) free[static_cast<size_t>(k.i)] = 0;

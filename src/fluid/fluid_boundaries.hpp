@@ -84,6 +84,8 @@ class FluidBoundaries {
   bool open() const;
   /// The outflow that takes a fluid particle at x (its index), or -1 (none does).
   int taker(const Vec2& x) const;
+  /// The outflow in whose strip x lies (FluidBoundary::in_outlet_strip; its index), or -1.
+  int outlet_strip(const Vec2& x) const;
   /// Boundary b took `particles` particles and `area` of the mesh.
   void left(int b, long particles, double area) { list_[static_cast<size_t>(b)]->left(particles, area); }
   /// The particles held by a boundary that keeps their pressure unknown are not free surface (`free`, per

@@ -190,6 +190,13 @@ class FluidBoundary {
     (void)particles;
     (void)area;
   }
+  /// An outflow: whether x lies in its strip (within two spacings of its line on the fluid's side, or beyond it).
+  /// What a remesh changes of the mesh's area there is the outflow's: the elements it took with a particle reach
+  /// up to the particles behind it, and the next remesh fills part of that ragged end again (RemeshPipeline).
+  virtual bool in_outlet_strip(const Vec2& x) const {
+    (void)x;
+    return false;
+  }
   /// An outflow: a particle on the mesh's boundary at x takes p = 0 exactly, whatever the free surface's condition
   /// (a weak one leaves a confined flow's pressure level floating). None by default.
   virtual bool zero_pressure(const Vec2& x) const {

@@ -394,6 +394,7 @@ void FluidModel::build_particles(Params b) {
                           "outflow's removals do not have: use \"surface\" (the default with open boundaries), "
                           "\"source\" or \"none\"");
     remesh_.set_open_boundaries([this](const Vec2& x) { return boundaries_.taker(x); },
+                                [this](const Vec2& x) { return boundaries_.outlet_strip(x); },
                                 [this](int k, long n, double area) { boundaries_.left(k, n, area); },
                                 boundaries_.fluid_regions());
     remesh_.set_open_faces([this](const Vec2& x) { return boundaries_.at_open_face(x); });

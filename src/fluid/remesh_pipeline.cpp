@@ -86,6 +86,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
   const double area0 = mesh_.area(cloud_.x()), ke0 = energy.kinetic(), pe0 = energy.potential();
+  const std::vector<double> strip0 = outlet_strip_areas();
   t_remesh_ = t_new;
   if (s_.detection == meshing::DomainDetection::Alpha) {
     remesh_now();
@@ -119,6 +120,19 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   if (owe) volume.owe_remesh_change(before, present);
   const double area1 = mesh_.area(cloud_.x());
   remesh_dA_ = area1 - area0;
+  // What the remesh changed in an outflow's strip (it fills part of the ragged end the outflow's elements left)
+  // comes back from what that outflow took.
+  if (strip_) {
+    const std::vector<double> strip1 = outlet_strip_areas();
+    const auto at = [](const std::vector<double>& a, size_t k) { return k < a.size() ? a[k] : 0.0; };
+    for (size_t k = 0; k < std::max(strip0.size(), strip1.size()); ++k) {
+      const double back = at(strip1, k) - at(strip0, k);
+      if (back == 0.0) continue;
+      volume.add_left(-back);
+      left_(static_cast<int>(k), 0, -back);
+    }
+    volume.rebase();
+  }
   remesh_dKE_ = energy.kinetic() - ke0;
   (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
   remesh_ke_total_ += remesh_dKE_;
@@ -404,6 +418,19 @@ bool RemeshPipeline::drop_outside_domain(double t_new, VolumeCorrection& volume)
       if (drop[i]) volume.add_left(cloud_.owed()[i]);
   volume.rebase();
   return drop_particles(drop);
+}
+
+std::vector<double> RemeshPipeline::outlet_strip_areas() const {
+  std::vector<double> area;
+  if (!strip_) return area;
+  for (Index e = 0; e < mesh_.num_elements(); ++e) {
+    const auto& t = mesh_.tri[e];
+    const int k = strip_((cloud_.pos(t[0]) + cloud_.pos(t[1]) + cloud_.pos(t[2])) / 3.0);
+    if (k < 0) continue;
+    if (area.size() <= static_cast<size_t>(k)) area.resize(static_cast<size_t>(k) + 1, 0.0);
+    area[static_cast<size_t>(k)] += mesh_.element_area(cloud_.x(), e);
+  }
+  return area;
 }
 
 bool RemeshPipeline::drop_particles(const std::vector<char>& drop) {

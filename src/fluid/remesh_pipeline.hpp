@@ -53,11 +53,13 @@ class RemeshPipeline {
   }
 
   /// Open boundaries (fluid_boundary.hpp): `taker` names the outflow (its index) a fluid particle at a position has
-  /// left through, or -1, and `left` receives what each outflow took: particles and area (drop_outside_domain);
+  /// left through, or -1, `strip` the outflow in whose strip a point lies, or -1, and `left` receives what each
+  /// outflow took: particles and area (drop_outside_domain, less what the remesh fills again in its strip);
   /// `regions` are triangles the advected and level-set detections count as fluid (an inflow's strip).
-  void set_open_boundaries(std::function<int(const Vec2&)> taker, std::function<void(int, long, double)> left,
-                           std::vector<std::array<Vec2, 3>> regions) {
+  void set_open_boundaries(std::function<int(const Vec2&)> taker, std::function<int(const Vec2&)> strip,
+                           std::function<void(int, long, double)> left, std::vector<std::array<Vec2, 3>> regions) {
     taker_ = std::move(taker);
+    strip_ = std::move(strip);
     left_ = std::move(left);
     open_regions_ = std::move(regions);
   }
@@ -121,6 +123,8 @@ class RemeshPipeline {
   /// Removes the fluid particles outside the domain box and those an outflow takes (their share of the mesh's area
   /// leaves `volume`'s reference); throws SolverError when none is left (t_new in the message).
   bool drop_outside_domain(double t_new, VolumeCorrection& volume);
+  /// The mesh's area in each outflow's strip (indexed by the boundary's index; empty without outflows).
+  std::vector<double> outlet_strip_areas() const;
 
   /// Remeshing's effect in the last step (log.csv remesh_dA, remesh_dKE).
   double area_change() const { return remesh_dA_; }
@@ -205,6 +209,7 @@ class RemeshPipeline {
   Vec2 walls_lo_ = Vec2::Constant(1.0), walls_hi_ = Vec2::Constant(-1.0);    // moving walls' box (follow_walls)
   std::vector<std::array<Vec2, 3>> region_triangles_;  // the fluid regions' elements (the initial domain)
   std::function<int(const Vec2&)> taker_;              // open boundaries (set_open_boundaries)
+  std::function<int(const Vec2&)> strip_;
   std::function<void(int, long, double)> left_;
   std::vector<std::array<Vec2, 3>> open_regions_;
   std::function<bool(const Vec2&)> at_open_face_;          // set_open_faces

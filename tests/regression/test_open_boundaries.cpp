@@ -68,7 +68,7 @@ double mean_drop(const Csv& p, double t0) {
 
 void expect_poiseuille(const std::string& scheme, double drop_tolerance, double area_tolerance, double flux_tolerance,
                        const std::string& extra_inflow = "") {
-  const RunResult r = run_case_text(fresh_dir("channel_" + scheme + (extra_inflow.empty() ? "" : "_points")),
+  const RunResult r = run_case_text(fresh_dir("channel_" + scheme + (extra_inflow.empty() ? "" : "_layer")),
                                     channel(scheme, 2.0, "", extra_inflow));
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const Csv p = read_csv(r.out_dir / "probes.csv");
@@ -105,8 +105,8 @@ TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithTheFractional
   expect_poiseuille("fractional_step", 0.05, 0.03, 0.06);
 }
 
-TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithHeldPoints) {
-  expect_poiseuille("fractional_step", 0.05, 0.03, 0.06, R"(, "hold": "points")");
+TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithAHeldLayer) {
+  expect_poiseuille("fractional_step", 0.05, 0.03, 0.06, R"(, "hold": "layer")");
 }
 
 /// The relative standard deviation of the flow rate near the inlet over 0.5-1.5 s of the channel's fractional step
@@ -135,6 +135,24 @@ TEST(OpenBoundaries, HeldPointsKeepTheFlowRateNearTheInletSteadyWhereAHeldLayerJ
   const double layer = inlet_flow_jitter("layer"), points = inlet_flow_jitter("points");
   EXPECT_GT(layer, 0.0);
   EXPECT_LT(points, 0.2 * layer) << "layer " << layer << ", points " << points;
+}
+
+TEST(OpenBoundaries, AnUnstructuredChannelKeepsItsWaterBalanceThroughTheOutlet) {
+  // Particles on an unstructured mesh are closer than the injected lattice's spacing; as they leave, the elements the
+  // outflow takes with them reach further back, and the next remesh fills part of that ragged end again. Counted
+  // as the outflow's (what the mesh lost through it), the balance (A(T) - A(0)) - (inflow - outflow) is 0.4 % of the
+  // inflow over 2 s (walls of particles); counted as what the outflow's elements took, it was 5 %.
+  std::string text = channel("fractional_step", 2.0, R"(, "particles": "unstructured")");
+  const std::string constraints = R"("wall_model": "constraints")";
+  text.replace(text.find(constraints), constraints.size(), R"("wall_model": "particles")");
+  const RunResult r = run_case_text(fresh_dir("channel_unstructured"), text);
+  ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+  const auto area = summary_of(r)["bodies"][0]["fluid_area"];
+  const double in = area["entered_domain"].get<double>(), left = area["left_domain"].get<double>();
+  const double balance = area["final"].get<double>() - area["initial"].get<double>() - (in - left);
+  EXPECT_LT(std::abs(balance), 0.01 * in) << "entered " << in << ", left " << left;
+  // The outlet's account is the summary's.
+  EXPECT_NEAR(summary_of(r)["bodies"][0]["boundaries"]["outlet"]["area_left"].get<double>(), left, 1e-12);
 }
 
 TEST(OpenBoundaries, AChannelFlowKeepsThePoiseuillePressureDropWithTheMonolithicScheme) {
@@ -203,10 +221,10 @@ TEST(OpenBoundaries, AChannelRunRestartsBitForBit) {
   EXPECT_EQ(summary_of(part)["bodies"][0]["boundaries"], summary_of(full)["bodies"][0]["boundaries"]);
 }
 
-TEST(OpenBoundaries, AChannelWithHeldPointsRestartsBitForBit) {
+TEST(OpenBoundaries, AChannelWithAHeldLayerRestartsBitForBit) {
   const auto [full, stopped, part] =
-      run_and_restart(channel("fractional_step", 0.3, "", R"(, "hold": "points")"),
-                      "--quiet --threads 1 --set output.checkpoint.every_steps=10", 17, "channel_points");
+      run_and_restart(channel("fractional_step", 0.3, "", R"(, "hold": "layer")"),
+                      "--quiet --threads 1 --set output.checkpoint.every_steps=10", 17, "channel_layer");
   ASSERT_EQ(full.exit_code, 0) << full.stderr_text;
   ASSERT_EQ(stopped.exit_code, 0) << stopped.stderr_text;
   ASSERT_EQ(part.exit_code, 0) << part.stderr_text;

@@ -3,7 +3,7 @@ velocity profile at mid-channel (x = 0.25 m), the pressure drop between x = 0.1 
 x = 0.25 m, over the last two seconds of the run (after the start-up); the velocities and the flow rate at the end.
 Records: drop_mean (Pa, exact 18) and drop_std, discharge (over the exact U H), center (the centre-line velocity over
 1.5 U), profile_rms (RMS of the profile's error over 1.5 U at the nine points y = 0.01 ... 0.09 m), area_drift (the
-largest |A / A0 - 1|).
+largest |A / A0 - 1|), balance (the water balance: ((A(T) - A(0)) - (inflow - outflow)) over the inflow, summary.json).
 Usage: /usr/bin/python3 cases/channel_poiseuille/plot.py OUTDIR (the picture is named after OUTDIR's last part)"""
 import math
 import os
@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, save, water_balance
 
 out = out_dir_from_argv("out/channel_poiseuille")
 tag = os.path.basename(os.path.normpath(out))
@@ -43,6 +43,7 @@ record("discharge", discharge)
 record("center", center)
 record("profile_rms", rms)
 record("area_drift", area_drift)
+record("balance", water_balance(out))
 print("%s: pressure drop %.2f Pa (exact %.2f, %+.1f %%), std %.2f Pa; flow rate %.4f of U H; centre-line %.4f of 1.5 U; "
       "profile RMS %.4f of 1.5 U; largest area drift %.2f %%"
       % (tag, drop_mean, DROP, 100 * (drop_mean / DROP - 1), drop_std, discharge, center, rms, 100 * area_drift))

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from claims_record import record  # noqa: E402
-from lagfsi_post import last_period_stats, read_csv, save  # noqa: E402
+from lagfsi_post import last_period_stats, read_csv, save, water_balance  # noqa: E402
 
 
 def reference(case_dir, test):
@@ -60,7 +60,7 @@ def cfd_forces(out, case_dir, test, window, q_in, lift_span):
     t0, mean, std = window_stats(t, window)
     values = {"drag": mean(drag), "lift": mean(lift), "drag_std": std(drag), "lift_std": std(lift),
               "drag_cylinder": mean(p["drag_cylinder"]), "lift_cylinder": mean(p["lift_cylinder"]),
-              "discharge": mean(p["discharge"]) / q_in}
+              "discharge": mean(p["discharge"]) / q_in, "balance": water_balance(out)}
     for k, v in values.items():
         record(k, v)
     print("%s: drag %.3f N/m (reference %.2f, %+.2f %%, std %.2f), lift %.3f N/m (reference %.3f, %+.1f %%, std "
@@ -154,6 +154,7 @@ def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
         values[name + "_mean"], values[name + "_amplitude"] = s["mean"], s["amplitude"]
         values[name + "_raw_amplitude"] = phase_average_of(t, v, f, window)["amplitude"]
     values["lift_noise"] = math.sqrt(sum((lift[k] - smoothed["lift"][k]) ** 2 for k in late) / len(late))
+    values["balance"] = water_balance(out)
     for k, v in values.items():
         record(k, v)
     periods = int(window * f)
@@ -251,6 +252,7 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     values["iterations"] = sum(p["fsi_iterations"][k] for k in steps) / max(1, len(steps))
     values["iterations_window"] = sum(p["fsi_iterations"][k] for k in late) / len(late)
     values["iterations_max"] = max(p["fsi_iterations"])
+    values["balance"] = water_balance(out)
     for k, v in values.items():
         record(k, v)
 

@@ -15,7 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, save, water_balance
 from turek_hron import reference, total_forces, window_stats
 
 out = out_dir_from_argv("out/turek_hron_fsi1")
@@ -35,7 +35,8 @@ steps = [k for k in range(len(t)) if p["fsi_iterations"][k] > 0]
 values = {"drag": mean(drag), "lift": mean(lift), "ux_A": mean(ux), "uy_A": mean(uy),
           "drag_std": std(drag), "lift_std": std(lift), "uy_std": std(uy),
           "drag_cylinder": mean(p["drag_cylinder"]), "discharge": mean(p["discharge"]) / Q_IN,
-          "iterations": sum(p["fsi_iterations"][k] for k in steps) / max(1, len(steps))}
+          "iterations": sum(p["fsi_iterations"][k] for k in steps) / max(1, len(steps)),
+          "balance": water_balance(out)}
 for k, v in values.items():
     record(k, v)
 

@@ -94,7 +94,8 @@ std::vector<KeyDecl> scheme_keys(const std::string& type, std::vector<KeyDecl> o
       {"volume_correction", "none",
        "How the area the remeshing adds or removes is put back: surface, source, particle (advected or level-set "
        "detection, no inflow or outflow) or none; default: surface with the alpha detection, "
-       "particle with the monolithic scheme and remeshing (surface with an inflow or outflow), none otherwise.",
+       "particle with the monolithic scheme and remeshing (surface with an inflow or outflow), source with an inflow "
+       "or outflow otherwise (none behind an inflow that holds a layer), none otherwise.",
        kDerived},
       {"split_edge_factor", 1.6,
        "Advected and level-set detection: free-surface edges longer than this times h are split (0: off, else "

@@ -110,10 +110,12 @@ TEST(ConfinedFlow, AnInflowIntoWaterWithNoWayOutIsAnErrorNamingTheInflow) {
 }
 
 TEST(ConfinedFlow, AnIncompressibleChannelTakesItsLevelFromTheOutflow) {
-  const std::vector<std::string> sets = {"analysis.end_time=0.5"};
+  // Without a volume correction: the source the channel takes by default acts on each run's own area error.
+  const std::vector<std::string> sets = {"analysis.end_time=0.5", "bodies.0.scheme.volume_correction=none"};
   const RunResult k = run_case_file("cases/channel_poiseuille/case.json", "confined_channel", sets);
-  const RunResult i = run_case_file("cases/channel_poiseuille/case.json", "confined_channel_incompressible",
-                                    {"analysis.end_time=0.5", "bodies.0.scheme.bulk_modulus=0"});
+  const RunResult i = run_case_file(
+      "cases/channel_poiseuille/case.json", "confined_channel_incompressible",
+      {"analysis.end_time=0.5", "bodies.0.scheme.volume_correction=none", "bodies.0.scheme.bulk_modulus=0"});
   ASSERT_EQ(k.exit_code, 0) << k.stderr_text;
   ASSERT_EQ(i.exit_code, 0) << i.stderr_text;
   const Csv pk = read_csv(k.out_dir / "probes.csv"), pi = read_csv(i.out_dir / "probes.csv");

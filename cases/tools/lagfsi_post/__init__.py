@@ -33,6 +33,15 @@ def particle_steps(out_dir):
     return sum(read_csv(os.path.join(out_dir, "log.csv"))["nodes"])
 
 
+def water_balance(out_dir, body=0):
+    """A run's water balance from its summary.json: ((A(T) - A(0)) - (inflow - outflow)) over the inflow, for a fluid
+    body with open boundaries (what the steps and the remeshing made or lost of the water)."""
+    with open(os.path.join(out_dir, "summary.json")) as f:
+        a = json.load(f)["bodies"][body]["fluid_area"]
+    entered = a["entered_domain"]
+    return (a["final"] - a["initial"] - (entered - a["left_domain"])) / entered
+
+
 def out_dir_from_argv(default):
     return sys.argv[1] if len(sys.argv) > 1 else default
 

@@ -219,8 +219,13 @@ class Inflow final : public FluidBoundary {
     // Each lane's distance travelled since its last particle entered; a lane that has travelled a spacing gets
     // the next one, where it would be had it entered at that instant (the injected area is the profile's flux).
     const double swept = integral(t) - integral(t0_);
-    const std::vector<char> open = open_lanes(cloud);
-    if (points_) place_lane_points(cloud, t, open);
+    std::vector<Index> near = near_inlet(cloud);
+    const std::vector<char> open = open_lanes(cloud, near);
+    if (points_) {
+      const Index before = cloud.n();
+      place_lane_points(cloud, t, open, near);
+      for (Index i = before; i < cloud.n(); ++i) near.push_back(i);
+    }
     const double offset = points_ ? 0.5 * h_ : 0.0;
     const auto nl = static_cast<size_t>(lanes_ + 1);
     if (phase_.size() != nl) phase_.assign(nl, 0.0);
@@ -233,7 +238,7 @@ class Inflow final : public FluidBoundary {
       phase_[k] += u_.dot(seg_.normal) * profile(s) * swept;
       if (phase_[k] < h_ * (1 - 1e-9)) continue;
       phase_[k] = std::max(0.0, phase_[k] - h_);
-      added.push_back(entering(cloud, lane_position(k) + seg_.normal * (phase_[k] + offset), s, t));
+      added.push_back(entering(cloud, near, lane_position(k) + seg_.normal * (phase_[k] + offset), s, t));
       area += (k == 0 || k + 1 == nl ? 0.5 : 1.0) * width * h_;
     }
     if (!added.empty()) cloud.append(added);
@@ -274,34 +279,50 @@ class Inflow final : public FluidBoundary {
   }
   /// Per lane: whether it carries water in, its inflow velocity positive and, at an end of the segment, no wall's or
   /// structure's particle there.
-  std::vector<char> open_lanes(const ParticleCloud& cloud) const {
+  std::vector<char> open_lanes(const ParticleCloud& cloud, const std::vector<Index>& near) const {
     const auto nl = static_cast<size_t>(lanes_ + 1);
     std::vector<char> open(nl, 0);
     for (size_t k = 0; k < nl; ++k)
       open[k] = u_.dot(seg_.normal) * profile(static_cast<double>(k) / static_cast<double>(lanes_)) > 0 &&
-                !((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, lane_position(k)));
+                !((k == 0 || k + 1 == nl) && boundary_particle_near(cloud, near, lane_position(k)));
     return open;
+  }
+  /// The particles within reach of the inlet's searches, in one pass: within [-2h, 4h) of the segment's line along
+  /// its normal and within two spacings of its extent (a new particle enters at most 1.5 h in front of the line and
+  /// takes the pressure of its nearest fluid neighbour within 2 h; the end lanes look for a wall's particle within
+  /// h/2; the lane points for a fluid particle within h/2). The searches cost O(lanes x particles near the inlet),
+  /// not O(lanes x particles).
+  std::vector<Index> near_inlet(const ParticleCloud& cloud) const {
+    std::vector<Index> near;
+    for (Index i = 0; i < cloud.n(); ++i) {
+      const Vec2 q = cloud.pos(i) - seg_.a;
+      const double d = q.dot(seg_.normal), along = q.dot(seg_.tangent);
+      if (d >= -2 * h_ && d < 4 * h_ && along >= -2 * h_ && along <= seg_.length + 2 * h_) near.push_back(i);
+    }
+    return near;
   }
   /// A new fluid particle at x (lane coordinate s) with the inflow's velocity and acceleration at time t and the
   /// pressure of its nearest fluid neighbour.
-  ParticleCloud::Particle entering(const ParticleCloud& cloud, const Vec2& x, double s, double t) const {
+  ParticleCloud::Particle entering(const ParticleCloud& cloud, const std::vector<Index>& near, const Vec2& x, double s,
+                                   double t) const {
     ParticleCloud::Particle q;
     q.kind = ParticleKind::Fluid;
     q.h = h_;
     q.x = q.X0 = x;
     q.v = u_ * (profile(s) * value(t));
     q.a = u_ * (profile(s) * rate(t));
-    q.p = nearest_pressure(cloud, x);
+    q.p = nearest_pressure(cloud, near, x);
     return q;
   }
   /// "points": every open lane has a fluid particle at its point with the profile's velocity: the nearest fluid
   /// particle within half a spacing moved there (a remesh may have merged the lane's particle away, or the region's
   /// particles start on the segment), or a new one.
-  void place_lane_points(ParticleCloud& cloud, double t, const std::vector<char>& open) {
+  void place_lane_points(ParticleCloud& cloud, double t, const std::vector<char>& open,
+                         const std::vector<Index>& inlet) {
     lane_point_ = open;
     std::vector<ParticleCloud::Particle> added;
-    std::vector<Index> near;  // the fluid particles within half a spacing of the segment's line (one pass)
-    for (Index i = 0; i < cloud.n(); ++i)
+    std::vector<Index> near;  // the fluid particles within half a spacing of the segment's line
+    for (Index i : inlet)
       if (cloud.is_fluid(i) && std::abs((cloud.pos(i) - seg_.a).dot(seg_.normal)) < 0.5 * h_) near.push_back(i);
     for (size_t k = 0; k < open.size(); ++k) {
       if (!open[k]) continue;
@@ -315,7 +336,7 @@ class Inflow final : public FluidBoundary {
           nearest = i;
         }
       if (nearest < 0) {
-        added.push_back(entering(cloud, at, s, t));
+        added.push_back(entering(cloud, inlet, at, s, t));
         continue;
       }
       cloud.x().segment<2>(2 * nearest) = at;
@@ -326,15 +347,15 @@ class Inflow final : public FluidBoundary {
   }
 
   /// Whether a wall's or a structure's particle lies within half a spacing of x.
-  bool boundary_particle_near(const ParticleCloud& cloud, const Vec2& x) const {
-    for (Index i = 0; i < cloud.n(); ++i)
+  bool boundary_particle_near(const ParticleCloud& cloud, const std::vector<Index>& near, const Vec2& x) const {
+    for (Index i : near)
       if (!cloud.is_fluid(i) && (cloud.pos(i) - x).squaredNorm() < 0.25 * h_ * h_) return true;
     return false;
   }
   /// The pressure of the fluid particle nearest to x within two spacings (0 without one).
-  double nearest_pressure(const ParticleCloud& cloud, const Vec2& x) const {
+  double nearest_pressure(const ParticleCloud& cloud, const std::vector<Index>& near, const Vec2& x) const {
     double best = 4 * h_ * h_, p = 0.0;
-    for (Index i = 0; i < cloud.n(); ++i) {
+    for (Index i : near) {
       const double d2 = (cloud.pos(i) - x).squaredNorm();
       if (cloud.is_fluid(i) && d2 < best) {
         best = d2;

@@ -392,8 +392,8 @@ void FluidModel::build_particles(Params b) {
     if (volume_.type() == VolumeCorrection::Type::particle)
       b.at("scheme").fail("volume_correction",
                           "\"particle\" keeps each particle's own area, which an inflow's new layers and an "
-                          "outflow's removals do not have: use \"surface\" (the default with open boundaries), "
-                          "\"source\" or \"none\"");
+                          "outflow's removals do not have: use \"surface\" or \"source\" (the "
+                          "defaults with open boundaries) or \"none\"");
     remesh_.set_open_boundaries([this](const Vec2& x) { return boundaries_.taker(x); },
                                 [this](const Vec2& x) { return boundaries_.outlet_strip(x); },
                                 [this](int k, long n, double area) { boundaries_.left(k, n, area); },

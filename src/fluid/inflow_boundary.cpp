@@ -8,14 +8,13 @@
 // so U is the mean velocity and the flux through the segment is U.n L f(t) whatever the profile. The segment is
 // divided into N = L / h lanes, one at each s_k = k / N, k = 0..N (the spacing of a structured region that starts at
 // the segment). What the inflow holds ("hold"):
-//  - "points" (the default): one fluid particle fixed at each lane's point of the segment, with the velocity u(s_k, t)
-//  (a
-//    Dirichlet condition at fixed points, as an Eulerian inlet's nodes), and any other particle that comes within
-//    h/4 of the segment moved with the profile: the mesh's inlet is the line of the points, and the discrete flux
-//    through it, the trapezoidal rule of u on the lanes, is the same at every step whatever the triangles behind
-//    it. The first step, before the points exist, holds the layer.
-//  - "layer": every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in
-//    [0, 1]) follows u over the step in both components (a Dirichlet condition on its motion, as a moving lid's).
+//  - "points" (the default): one fluid particle fixed at each lane's point of the segment, with the velocity
+//    u(s_k, t) (a Dirichlet condition at fixed points, as an Eulerian inlet's nodes), and any other particle that
+//    comes within h/4 of the segment moved with the profile: the mesh's inlet is the line of the points, and the
+//    discrete flux through it, the trapezoidal rule of u on the lanes, is the same at every step whatever the
+//    triangles behind it. The first step, before the points exist, holds the layer.
+//  - "layer": every fluid particle in the inlet layer (depth d = (x - a).n in [-h/2, h), s in [0, 1]) follows u
+//    over the step in both components (a Dirichlet condition on its motion, as a moving lid's).
 //    The linear interpolant of a curved profile on the layer's triangles is not divergence-free, and those
 //    triangles change every step: the flux into the flow jitters (by about 0.1 % in Turek & Hron's channel), and
 //    every jitter is a pressure kick on the whole confined column of water.

@@ -228,7 +228,7 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   // the classic PFEM's (src/fluid/fluid_input.cpp). Walls as constraints with a Robin free surface, or with an
   // inflow or outflow, make generalized-alpha the analysis' default integrator (fluid_preferred_integrator); any
   // other case, wall particles with a Robin surface included, gets Newmark. An inflow or outflow takes p = 0 on the
-  // free surface and the surface correction.
+  // free surface and the surface correction (the source correction with the fractional step).
   struct Expected {
     std::string detection, wall_model, wall_friction, free_surface_pressure, volume_correction;
     double contact_gap, relaxation_time;
@@ -286,6 +286,16 @@ TEST(CaseDefaults, FluidDefaultsFollowTheSchemeAndTheDetection) {
   open["wall_model"] = "particles";
   resolved("defaults_open_wall_particles", open,
            {"advected", "particles", "held", "dirichlet", "surface", 0.3, 0.1, true});
+  // The fractional step with the advected domain and open boundaries takes the source correction, but not behind an
+  // inflow that holds a layer (its jitter would kick the confined water).
+  json open_fractional = open;
+  open_fractional["scheme"] = {{"type", "fractional_step"}};
+  open_fractional["domain_detection"] = "advected";
+  resolved("defaults_open_fractional", open_fractional,
+           {"advected", "particles", "held", "", "source", 0.3, 0.1, true});
+  open_fractional["boundaries"][0]["hold"] = "layer";
+  resolved("defaults_open_fractional_layer", open_fractional,
+           {"advected", "particles", "held", "", "none", 0.3, 0.1, true});
   // An integrator the case names is kept.
   json c = case_of({mono});
   c["analysis"]["integrator"] = {{"type", "newmark"}};

@@ -31,7 +31,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from claims_record import record
-from lagfsi_post import read_csv, out_dir_from_argv, save
+from lagfsi_post import read_csv, out_dir_from_argv, save, water_balance
 
 out = out_dir_from_argv("out/open_channel_flap")
 tag = os.path.basename(os.path.normpath(out))
@@ -64,6 +64,7 @@ def mean(col, ks=win):
 fa = s["bodies"][0]["fluid_area"]
 a0, a1, entered, left = fa["initial"], fa["final"], fa["entered_domain"], fa["left_domain"]
 balance = (a1 - a0 - (entered - left)) / a0
+balance_inflow = water_balance(out)  # the same over the inflow
 tip = mean("tip_ux")
 tip_std = math.sqrt(sum((p["tip_ux"][k] - tip) ** 2 for k in win) / len(win))
 tip_halves = (mean("tip_ux", half2) - mean("tip_ux", half)) / tip
@@ -98,7 +99,7 @@ hw = 0.03
 for _ in range(50):
     hw = (Q / ((0.611 + 0.08 * hw / crest) * 2 / 3 * math.sqrt(2 * G))) ** (2 / 3)
 record("balance", balance)
-record("balance_inflow", balance * a0 / entered)
+record("balance_inflow", balance_inflow)
 record("tip_ux", tip)
 record("tip_std", tip_std)
 record("tip_halves", tip_halves)
@@ -121,7 +122,7 @@ if len(sys.argv) > 2:
     record("tip_ratio_solid", tip / tip_solid)
     print("  flap alone under that load (case_solid.json): tip %.3f mm, FSI / solid %.3f" % (1e3 * tip_solid,
                                                                                            tip / tip_solid))
-print("%s: balance %.2e of A0 (%.2e of the inflow)" % (tag, balance, balance * a0 / entered))
+print("%s: balance %.2e of A0 (%.2e of the inflow)" % (tag, balance, balance_inflow))
 print("  tip %.3f mm (std %.3f mm, halves %+.2f %%), force %.2f N/m (pressure probes %.2f, ratio %.3f); "
       "Euler-Bernoulli %.3f mm (ratio %.3f; under the probes' load %.3f mm, ratio %.3f)"
       % (1e3 * tip, 1e3 * tip_std, 100 * tip_halves, force, force_p, force_p / force, 1e3 * tip_eb, tip / tip_eb,

@@ -61,6 +61,13 @@ std::string with_walls_of_particles(std::string text) {
   return text;
 }
 
+/// The fractional step's channel without a volume correction (the default with open boundaries is the source).
+std::string without_volume_correction(std::string text) {
+  const std::string scheme = R"("scheme": {"type": "fractional_step")";
+  text.replace(text.find(scheme), scheme.size(), scheme + R"(, "volume_correction": "none")");
+  return text;
+}
+
 /// A field of the run's summary.json fluid_area block.
 double area_of(const RunResult& r, const char* key) {
   return summary_of(r)["bodies"][0]["fluid_area"][key].get<double>();
@@ -160,10 +167,8 @@ TEST(OpenBoundaries, AnUnstructuredChannelKeepsItsWaterBalanceThroughTheOutlet) 
   // as the outflow's (what the mesh lost through it), the balance (A(T) - A(0)) - (inflow - outflow) is 0.4 % of the
   // inflow over 2 s (walls of particles); counted as what the outflow's elements took, it was 5 %. Without a volume
   // correction: the default source would return the area to whatever reference the outlet's account makes.
-  std::string text = channel("fractional_step", 2.0, R"(, "particles": "unstructured")");
-  text = with_walls_of_particles(text);
-  const std::string scheme = R"("scheme": {"type": "fractional_step")";
-  text.replace(text.find(scheme), scheme.size(), scheme + R"(, "volume_correction": "none")");
+  const std::string text = without_volume_correction(
+      with_walls_of_particles(channel("fractional_step", 2.0, R"(, "particles": "unstructured")")));
   const RunResult r = run_case_text(fresh_dir("channel_unstructured"), text);
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const double in = area_of(r, "entered_domain"), left = area_of(r, "left_domain");
@@ -177,11 +182,8 @@ TEST(OpenBoundaries, TheSourceCorrectionReturnsTheAreaTheStepsMakeThroughTheOutl
   // inflow over 5 s in this channel with walls of particles. The source correction, the default with open
   // boundaries, returns it: the balance is then 0.0002 % of the inflow.
   const std::string text = with_walls_of_particles(channel("fractional_step", 5.0));
-  std::string none = text;
-  const std::string scheme = R"("scheme": {"type": "fractional_step")";
-  none.replace(none.find(scheme), scheme.size(), scheme + R"(, "volume_correction": "none")");
   const RunResult d = run_case_text(fresh_dir("channel_source"), text);
-  const RunResult n = run_case_text(fresh_dir("channel_no_correction"), none);
+  const RunResult n = run_case_text(fresh_dir("channel_no_correction"), without_volume_correction(text));
   ASSERT_EQ(d.exit_code, 0) << d.stderr_text;
   ASSERT_EQ(n.exit_code, 0) << n.stderr_text;
   const double in = area_of(d, "entered_domain");

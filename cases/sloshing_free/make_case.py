@@ -12,10 +12,10 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
 from lagfsi_post import write_generated_case
 
-L, d, h = 1.0, 0.5, 0.03   # h: mesher size bound (mean edge about 0.7 h)
+L, d, h = 1.0, 0.5, 0.02   # h: the particle spacing
 a = 0.01 * d
 T1 = 2 * math.pi / math.sqrt(9.81 * math.pi / L * math.tanh(math.pi / L * d))
-n = int(round(L / (0.7 * h)))
+n = int(round(L / h))
 top = [[round(L * i / n, 10), round(d + a * math.cos(math.pi * i / n), 10)] for i in range(n, -1, -1)]
 case = {
     "name": "sloshing_free",

@@ -162,13 +162,14 @@ TEST(OpenBoundaries, HeldPointsKeepTheFlowRateNearTheInletSteadyWhereAHeldLayerJ
 }
 
 TEST(OpenBoundaries, AnUnstructuredChannelKeepsItsWaterBalanceThroughTheOutlet) {
-  // Particles on an unstructured mesh are closer than the injected lattice's spacing; as they leave, the elements the
-  // outflow takes with them reach further back, and the next remesh fills part of that ragged end again. Counted
-  // as the outflow's (what the mesh lost through it), the balance (A(T) - A(0)) - (inflow - outflow) is 0.4 % of the
-  // inflow over 2 s (walls of particles); counted as what the outflow's elements took, it was 5 %. Without a volume
-  // correction: the default source would return the area to whatever reference the outlet's account makes.
+  // As particles leave, the elements the outflow takes with them reach back into the channel, and the next remesh
+  // fills part of that ragged end again (more so on an unstructured mesh). Counted as the outflow's (what the mesh
+  // lost through it), the balance (A(T) - A(0)) - (inflow - outflow) is 0.3 % of the inflow over 4 s (walls of
+  // particles); counted as what the outflow's elements took, it was 5 %. Over 2 s the area's wobble without a
+  // correction (0.5 % of the channel's) is 2 % of the inflow. Without a volume correction: the default source
+  // would return the area to whatever reference the outlet's account makes.
   const std::string text = without_volume_correction(
-      with_walls_of_particles(channel("fractional_step", 2.0, R"(, "particles": "unstructured")")));
+      with_walls_of_particles(channel("fractional_step", 4.0, R"(, "particles": "unstructured")")));
   const RunResult r = run_case_text(fresh_dir("channel_unstructured"), text);
   ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
   const double in = area_of(r, "entered_domain"), left = area_of(r, "left_domain");

@@ -8,11 +8,33 @@ namespace lagfsi {
 
 ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn)
     : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
+  std::vector<Index> all(static_cast<size_t>(ne_));
+  for (Index e = 0; e < ne_; ++e) all[static_cast<size_t>(e)] = e;
+  build(conn, npe, num_nodes, dpn, all);
+}
+
+ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn,
+                               const std::vector<char>& keep)
+    : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
+  if (keep.size() != static_cast<size_t>(ne_))
+    throw std::invalid_argument("ElementPattern: one keep flag per element");
+  std::vector<Index> kept;
+  slot_.assign(static_cast<size_t>(ne_), -1);
+  for (Index e = 0; e < ne_; ++e)
+    if (keep[static_cast<size_t>(e)]) {
+      slot_[static_cast<size_t>(e)] = static_cast<Index>(kept.size());
+      kept.push_back(e);
+    }
+  build(conn, npe, num_nodes, dpn, kept);
+}
+
+void ElementPattern::build(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn,
+                           const std::vector<Index>& elements) {
   // Node adjacency in compressed rows (each node is its own neighbour, also when it is in no element):
   // count, fill, then sort and deduplicate each row in place.
   std::vector<int> start(num_nodes + 1, 0);
   for (Index n = 0; n < num_nodes; ++n) start[n + 1] = 1;
-  for (Index e = 0; e < ne_; ++e) {
+  for (Index e : elements) {
     const Index* c = conn.data() + static_cast<size_t>(e) * npe;
     for (int a = 0; a < npe; ++a) start[c[a] + 1] += npe;
   }
@@ -20,7 +42,7 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
   std::vector<Index> adj(start[num_nodes]);
   std::vector<int> fill(start.begin(), start.end() - 1);
   for (Index n = 0; n < num_nodes; ++n) adj[fill[n]++] = n;
-  for (Index e = 0; e < ne_; ++e) {
+  for (Index e : elements) {
     const Index* c = conn.data() + static_cast<size_t>(e) * npe;
     for (int a = 0; a < npe; ++a)
       for (int b = 0; b < npe; ++b) adj[fill[c[a]]++] = c[b];
@@ -53,11 +75,11 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
   // Scatter: column dpn n + c holds, for each neighbour of node n in order, its dpn rows; so the entry of row
   // dpn m + d is at outer[dpn n + c] + dpn k + d, k the place of m among n's neighbours (one search per node
   // pair, not per dof pair).
-  scatter_.resize(static_cast<size_t>(ne_) * m_ * m_);
+  scatter_.resize(elements.size() * m_ * m_);
   const int* op = pattern_.outerIndexPtr();
-  for (Index e = 0; e < ne_; ++e) {
-    const Index* c = conn.data() + static_cast<size_t>(e) * npe;
-    int* sc = scatter_.data() + static_cast<size_t>(e) * m_ * m_;
+  for (size_t k = 0; k < elements.size(); ++k) {
+    const Index* c = conn.data() + static_cast<size_t>(elements[k]) * npe;
+    int* sc = scatter_.data() + k * m_ * m_;
     for (int a = 0; a < npe; ++a) {
       const Index* row = adj.data() + start[c[a]];
       for (int b = 0; b < npe; ++b) {
@@ -72,21 +94,21 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
 
   // Greedy colouring with a bit mask of the colours used at each node.
   std::vector<std::uint64_t> used(num_nodes, 0);
-  std::vector<int> color(ne_);
+  std::vector<int> color(elements.size());
   int ncolors = 0;
-  for (Index e = 0; e < ne_; ++e) {
-    const Index* c = conn.data() + static_cast<size_t>(e) * npe;
+  for (size_t kk = 0; kk < elements.size(); ++kk) {
+    const Index* c = conn.data() + static_cast<size_t>(elements[kk]) * npe;
     std::uint64_t forbidden = 0;
     for (int a = 0; a < npe; ++a) forbidden |= used[c[a]];
     int k = 0;
     while (k < 64 && ((forbidden >> k) & 1u)) ++k;
     if (k == 64) throw std::runtime_error("element colouring needs more than 64 colours (degenerate mesh?)");
-    color[e] = k;
+    color[kk] = k;
     ncolors = std::max(ncolors, k + 1);
     for (int a = 0; a < npe; ++a) used[c[a]] |= (std::uint64_t(1) << k);
   }
   colors_.assign(ncolors, {});
-  for (Index e = 0; e < ne_; ++e) colors_[color[e]].push_back(e);
+  for (size_t k = 0; k < elements.size(); ++k) colors_[color[k]].push_back(elements[k]);
 }
 
 }  // namespace lagfsi

@@ -12,6 +12,7 @@
 #include "ghosts.hpp"
 #include "volume_correction.hpp"
 
+#include <lagfsi/assembly.hpp>
 #include <lagfsi/fluid/fluid_element.hpp>
 #include <lagfsi/model.hpp>
 #include <lagfsi/mpi_run.hpp>
@@ -44,6 +45,15 @@ class ProcessRows {
   /// The element of particles t is this process's to assemble: one of them has its rows here (every element
   /// unless split).
   bool mine(const std::array<Index, 3>& t) const { return !split_ || own(t[0]) || own(t[1]) || own(t[2]); }
+  /// The matrix pattern of the elements `tri` (connectivity `conn`, np particles, dpn unknowns each) that this
+  /// process assembles: the whole mesh's unless split.
+  ElementPattern pattern(const std::vector<std::array<Index, 3>>& tri, const std::vector<Index>& conn, Index np,
+                         int dpn) const {
+    if (!split_) return ElementPattern(conn, 3, np, dpn);
+    std::vector<char> keep(tri.size());
+    for (size_t e = 0; e < tri.size(); ++e) keep[e] = mine(tri[e]) ? 1 : 0;
+    return ElementPattern(conn, 3, np, dpn, keep);
+  }
   /// A per-particle array (`per` values a particle) summed by each process over its elements, made whole on every
   /// process: each particle's entries kept where its rows are, zeroed elsewhere, then combined.
   void combine(Vec& a, int per) const {

@@ -83,10 +83,11 @@ class FractionalStep final : public FluidScheme {
       : FluidScheme(f), s_(s), solver_(make_linear_solver(s.solver)), viscous_solver_(make_linear_solver(viscous(s))) {}
   void begin_step() override {
     const Index np = f_.cloud.n();
-    poisson_pattern_ = ElementPattern(f_.mesh.conn, 3, np, 1);
     // Over several processes with a distributed solver, each assembles the elements with a particle in its rows
-    // (mpi_run.hpp) and the particles' forces are combined over the processes.
+    // (mpi_run.hpp), on the pattern of those elements alone, and the particles' forces are combined over the
+    // processes.
     rows_.set(s_.solver.distributed, np);
+    poisson_pattern_ = rows_.pattern(f_.mesh.tri, f_.mesh.conn, np, 1);
     poisson_ = poisson_pattern_.pattern();
     if (viscous_implicit()) viscous_ = poisson_;
     // A new mesh: new matrices. Re-solves of the step (a coupling pass) keep the factorizations, which

@@ -72,10 +72,10 @@ class PspgScheme final : public FluidScheme {
   bool wall_frames() const override { return true; }
   void begin_step() override {
     if (s_.free_surface == FreeSurfacePressure::robin) robin_edges_ = f_.mesh.free_surface_edges(f_.cloud.kind());
-    pattern_ = ElementPattern(f_.mesh.conn, 3, f_.cloud.n(), 3);
     // Over several processes with a distributed solver each computes the elements with a particle in its rows
-    // (mpi_run.hpp); the particles' rows are whole blocks of 3.
+    // (mpi_run.hpp), on the pattern of those elements alone; the particles' rows are whole blocks of 3.
     rows_.set(s_.solver.distributed, f_.cloud.n());
+    pattern_ = rows_.pattern(f_.mesh.tri, f_.mesh.conn, f_.cloud.n(), 3);
     J_ = pattern_.pattern();
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);
     // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep

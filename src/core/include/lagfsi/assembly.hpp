@@ -17,12 +17,20 @@ class ElementPattern {
   /// conn: npe node indices per element; num_nodes: nodes of the mesh (nodes in no element get a
   /// diagonal entry so that the matrix stays square and can carry a Dirichlet 1 on them).
   ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node);
+  /// Only the elements e with keep[e] != 0 (keep has one entry per element of conn): the pattern has their
+  /// entries alone (and the diagonal), and only they have a scatter map and a colour. An MPI process that fills
+  /// its own rows builds the pattern of the elements it assembles, not the whole mesh's.
+  ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node,
+                 const std::vector<char>& keep);
 
   const SparseMatrix& pattern() const { return pattern_; }
   int local_size() const { return m_; }
   Index num_elements() const { return ne_; }
-  /// Value indices of element e's local entries, column-major (entry (i, j) at [j * m + i]).
-  const int* scatter(Index e) const { return scatter_.data() + static_cast<size_t>(e) * m_ * m_; }
+  /// Value indices of element e's local entries, column-major (entry (i, j) at [j * m + i]); e must be kept.
+  const int* scatter(Index e) const {
+    const size_t k = slot_.empty() ? static_cast<size_t>(e) : static_cast<size_t>(slot_[static_cast<size_t>(e)]);
+    return scatter_.data() + k * m_ * m_;
+  }
   /// Element colours (lists of elements).
   const std::vector<std::vector<Index>>& colors() const { return colors_; }
 
@@ -47,8 +55,10 @@ class ElementPattern {
   }
 
  private:
+  void build(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn, const std::vector<Index>& elements);
   int m_ = 0;
   Index ne_ = 0;
+  std::vector<Index> slot_;  // with `keep`: each element's place among the kept ones (-1: left out); else empty
   SparseMatrix pattern_;
   std::vector<int> scatter_;
   std::vector<std::vector<Index>> colors_;

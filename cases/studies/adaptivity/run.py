@@ -17,7 +17,7 @@ Each run's error is measured against the finest uniform run of its flow (the ref
   - flexible_tank (monolithic fluid, T10 plate, IQN-IMVJ, 1 s): the tip displacement's RMS difference over its peak;
   - elastic_gate_antoci (fractional step with the advected detection, which the adaptive size needs, for all its
     runs; 0.4 s): the tip displacement's RMS difference over its peak.
-The calm wave: the remeshed standing wave of sloshing_free/case_advected.json (10 periods, h = 0.03 m), uniform (h and
+The calm wave: the remeshed standing wave of sloshing_free/case_advected.json (10 periods, h = 0.02 m), uniform (h and
 1.5 h) and graded (gradation 0.25 and 0.1, max_size 4 h; gradation 0.25 with max_size 2 h): the wave's energy (kinetic +
 potential above the flat surface of the same area) kept at the end, against the particle count.
 The gate's step sequence: the elastic gate at h0/sqrt 2 under fixed steps from 1/2 to 2 times its own and under the
@@ -177,10 +177,10 @@ S.table("gate_step_sequence.csv", sequences, ["sequence", "exit_code", "steps", 
 
 # The calm wave: what a coarse moving bulk costs a standing wave's energy.
 T1 = 1.18182  # its linear period
-CALM = [("uniform h", {}), ("uniform 1.5 h", {"bodies.0.spacing": 0.045}),
+CALM = [("uniform h", {}), ("uniform 1.5 h", {"bodies.0.spacing": 0.03}),
         ("graded, gradation 0.25", {"bodies.0.size_field": "adaptive"}),
         ("graded, gradation 0.1", {"bodies.0.size_field": {"type": "adaptive", "gradation": 0.1}}),
-        ("graded, max_size 2 h", {"bodies.0.size_field": {"type": "adaptive", "max_size": 0.06}})]
+        ("graded, max_size 2 h", {"bodies.0.size_field": {"type": "adaptive", "max_size": 0.04}})]
 if S.quick:
     CALM = CALM[::2][:2]
 calm = []

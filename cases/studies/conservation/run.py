@@ -10,7 +10,7 @@ Robin pressure condition ("free_surface_pressure": "robin"; the sloshing cases' 
 "dirichlet"), and "advected_constraints_robin_particle" that with each particle keeping its own share of the area
 ("volume_correction": "particle", relaxation 0.02 s: a local source, not a global correction; the water's drift counts
 the drops in flight, water_drift_max_pct). Flows, each at the case's own resolution, monolithic scheme:
-  - sloshing_free/case_remesh.json (the first mode of a 1 m tank, h = 0.03, 10 periods): largest area drift, the
+  - sloshing_free/case_remesh.json (the first mode of a 1 m tank, h = 0.02, 10 periods): largest area drift, the
     wave's energy (kinetic + potential above the flat surface of the same area, plus viscous dissipation) at the end
     against the start, and the largest kinetic energy against the wave's energy (it is 1 for an exact solution);
   - sloshing_forced/case.json (small-amplitude shaking, h = 0.02, 6 s): the RMS error of the wall elevations

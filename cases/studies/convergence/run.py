@@ -72,9 +72,9 @@ T1 = 2 * math.pi / math.sqrt(g * math.pi / Ls * math.tanh(math.pi / Ls * d))
 
 
 def sloshing_case(h):
-    """The case of cases/sloshing_free/make_case.py at mesher size h, 3 periods, dt = T1/200."""
+    """The case of cases/sloshing_free/make_case.py at spacing h, 3 periods, dt = T1/200."""
     a = 0.01 * d
-    n = int(round(Ls / (0.7 * h)))
+    n = int(round(Ls / h))
     top = [[round(Ls * i / n, 10), round(d + a * math.cos(math.pi * i / n), 10)] for i in range(n, -1, -1)]
     return {
         "name": "sloshing_free_h%g" % h,

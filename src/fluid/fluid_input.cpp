@@ -69,7 +69,7 @@ const KeyTable kFluidKeys(
      {"regions", nullptr, "The fluid's initial regions: geometries (see geometry (type rectangle) and others)."},
      {"particles", "structured",
       "Particles of the regions: structured (a square lattice of spacing h; rectangles only) or unstructured (the "
-      "nodes of a Delaunay mesh whose outline is split at h and whose density is a lattice's of spacing h)."},
+      "nodes of a Delaunay mesh, its outline split at h, about as dense as a lattice of spacing h)."},
      {"walls", Json::array(), "Rigid walls (see /bodies/*/walls/* (fluid body))."},
      {"boundaries", Json::array(),
       "Boundary conditions on segments of the fluid's boundary, each chosen by its type (see "
@@ -402,9 +402,9 @@ void FluidModel::build_particles(Params b) {
   }
   const Index n_wall = static_cast<Index>(pts.size());
 
-  // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay
-  // mesh with as many nodes as that lattice (unstructured); in PFEM mode, fluid particles closer than h/2 to a wall particle are
-  // dropped (the wall particle stands for them).
+  // Fluid regions: particles on a square lattice of spacing h (structured) or the nodes of a Delaunay mesh about
+  // as dense as that lattice (unstructured); in PFEM mode, fluid particles closer than h/2 to a wall particle
+  // are dropped (the wall particle stands for them).
   Params regions = b.at("regions");
   if (regions.size() == 0) regions.fail("at least one fluid region is needed");
   const std::string layout = b.choice("particles", {"structured", "unstructured"});
@@ -464,9 +464,9 @@ void FluidModel::build_particles(Params b) {
     if (local_size) {
       mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"), size.mesher_size(local_size));
     } else if (layout == "unstructured") {
-      // The mesher's size bounds the longest edge (the edges are then mostly shorter): a bound of 1.5 h gives as
-      // many particles as a lattice of spacing h, the density an inflow injects (the bound h itself gave 2.45
-      // times as many). The outline stays split at h.
+      // The mesher's size bounds an element's longest edge, and most edges are shorter: a bound of 1.5 h gives
+      // about the particles of a lattice of spacing h, the density an inflow injects (a bound of h gives more
+      // than twice as many). The outline stays split at h.
       constexpr double kUniformMesherScale = 1.5;
       mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"),
                         [h](const Vec2&) { return kUniformMesherScale * h; });

@@ -16,8 +16,7 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
 ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn,
                                const std::vector<char>& keep)
     : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
-  if (keep.size() != static_cast<size_t>(ne_))
-    throw std::invalid_argument("ElementPattern: one keep flag per element");
+  if (keep.size() != static_cast<size_t>(ne_)) throw std::invalid_argument("ElementPattern: one keep flag per element");
   std::vector<Index> kept;
   slot_.assign(static_cast<size_t>(ne_), -1);
   for (Index e = 0; e < ne_; ++e)

@@ -14,12 +14,14 @@ using namespace lagfsi::testing;
 /// The particles of a 1 x 0.5 m rectangle of spacing 0.02 m laid out as `layout`, one step after the start.
 double particles_of(const std::string& layout) {
   const std::string text = R"({
-    "name": "region_)" + layout + R"(",
+    "name": "region_)" + layout +
+                           R"(",
     "analysis": {"type": "dynamic", "dt": 1e-3, "end_time": 1e-3},
     "gravity": [0.0, 0.0],
     "bodies": [{
       "name": "water", "type": "fluid", "density": 1000.0, "viscosity": 1e-3, "spacing": 0.02,
-      "particles": ")" + layout + R"(",
+      "particles": ")" + layout +
+                           R"(",
       "regions": [{"type": "rectangle", "origin": [0, 0], "size": [1.0, 0.5]}],
       "scheme": {"type": "fractional_step"}
     }],

@@ -458,21 +458,16 @@ void FluidModel::build_particles(Params b) {
           {"pattern", "crossed"}};
     }
     const SizeField& size = remesh_.size_field();
-    // An adaptive field: the size at the distance from the region's outline (SizeField::initial_size).
-    std::function<double(const Vec2&)> local_size;
-    if (size.adaptive()) local_size = size.initial_size(geometry_loops(g, h));
-    if (local_size) {
-      mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"), size.mesher_size(local_size));
+    // An adaptive field: the size at the distance from the region's outline (SizeField::initial_size). The mesher
+    // takes a bound on the longest edge (SizeField::mesher_size, uniform_mesher_size); the outline stays split at h.
+    std::function<double(const Vec2&)> local_size, mesher_bound;
+    if (size.adaptive()) {
+      local_size = size.initial_size(geometry_loops(g, h));
+      mesher_bound = size.mesher_size(local_size);
     } else if (layout == "unstructured") {
-      // The mesher's size bounds an element's longest edge, and most edges are shorter: a bound of 1.5 h gives
-      // about the particles of a lattice of spacing h, the density an inflow injects (a bound of h gives more
-      // than twice as many). The outline stays split at h.
-      constexpr double kUniformMesherScale = 1.5;
-      mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"),
-                        [h](const Vec2&) { return kUniformMesherScale * h; });
-    } else {
-      mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"));
+      mesher_bound = size.uniform_mesher_size();
     }
+    mesh = build_mesh(g, Params(mesh_params, b.file(), g.path() + "/(mesh)"), mesher_bound);
     for (size_t e = 0; e + 2 < mesh.conn.size(); e += 3)
       remesh_.add_region_triangle(
           {mesh.nodes[mesh.conn[e]], mesh.nodes[mesh.conn[e + 1]], mesh.nodes[mesh.conn[e + 2]]});

@@ -115,6 +115,11 @@ std::function<double(const Vec2&)> SizeField::initial_size(std::vector<std::vect
   };
 }
 
+std::function<double(const Vec2&)> SizeField::uniform_mesher_size() const {
+  constexpr double kUniformMesherScale = 1.5;
+  return [h = h_min_](const Vec2&) { return kUniformMesherScale * h; };
+}
+
 std::function<double(const Vec2&)> SizeField::mesher_size(std::function<double(const Vec2&)> size) const {
   constexpr double kMesherScale = 1.35;
   return [this, size = std::move(size)](const Vec2& x) { return std::max(h_min_, kMesherScale * size(x)); };

@@ -65,6 +65,10 @@ class SizeField {
   /// longest edge, and the edges are then mostly shorter (median about 0.7 of the bound), so kMesherScale times the
   /// size, which gives edges about the size, where the management's coarsening leaves them.
   std::function<double(const Vec2&)> mesher_size(std::function<double(const Vec2&)> size) const;
+  /// The mesher's bound for a uniform unstructured region of spacing h_min: 1.5 h_min, which gives about the
+  /// particles of a lattice of spacing h_min, the density an inflow injects (a bound of h_min gives more than twice
+  /// as many). Larger than mesher_size's scale: no management coarsens a uniform region towards its size.
+  std::function<double(const Vec2&)> uniform_mesher_size() const;
 
   /// The target sizes h[i] of the particles at `pts` on the mesh `tri`: `source[i]` marks the features'
   /// particles (size h_min, or a box's where it is smaller); a particle no element uses is a source too.

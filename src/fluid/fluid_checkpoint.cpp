@@ -52,7 +52,7 @@ void VolumeCorrection::serialize(StateArchive& ar) {
   ar.io(area_ref_, area_remesh_, area_end_, c_vol_, area_initial_, area_left_, area_entered_, correction_energy_,
         change_in_steps_);
   // The step's starting shares are not kept: set_remeshed makes them, at the next step.
-  ar.io(in_flight_, water_drift_max_, returned_through_bulk_);
+  ar.io(in_flight_, water_drift_max_, returned_through_bulk_, error_filtered_);
 }
 
 void FluidEnergy::serialize(StateArchive& ar) {

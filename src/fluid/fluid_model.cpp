@@ -182,7 +182,7 @@ void FluidModel::predict(double t_new, double dt) {
     for (const auto& k : boundaries_.constraints()) held[2 * k.i + k.c] = 1;
     volume_.return_owed_by_moves(step_.fixed, held);
   }
-  volume_.set_remeshed(mesh_.area(cloud_.x()));
+  volume_.set_remeshed(mesh_.area(cloud_.x()), dt);
   if (!by_moves) volume_.hand_owed_inward(step_.fixed);
   volume_.return_unpayable_through_bulk(step_.fixed);
   // A new mesh: new matrices (the scheme's patterns; its integrator starts the step).

@@ -93,18 +93,28 @@ void VolumeCorrection::restore_area(const std::vector<char>& still) {
   }
 }
 
-void VolumeCorrection::set_remeshed(double area) {
+void VolumeCorrection::set_remeshed(double area, double dt) {
   area_remesh_ = area;
-  // Volume correction "source": a uniform source in the continuity equation, div v = -(A - A_ref)/(A_ref T),
-  // that closes the area error of remeshing (alpha shape, inserted/removed particles) over the relaxation
-  // time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with dt;
-  // then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
+  // Volume correction "source": a uniform source in the continuity equation, div v = -e_f/(A_ref T), that
+  // closes the area error of remeshing e = A - A_ref (alpha shape, inserted/removed particles) over the
+  // relaxation time T. The pressure it needs scales like rho L^2 (error)/T^2, so T must stay long compared with
+  // dt; then it cannot keep up with a splash (and contracting thin regions lets the alpha shape close more
   // elements): the alpha shape's default is the "surface" correction (restore_area) instead.
-  c_vol_ = type_ == Type::source && area_ref_ > 0 ? (area_remesh_ - area_ref_) / (area_ref_ * relax_time_) : 0.0;
+  // e jumps from step to step by a fraction of an element wherever particles enter, leave or are merged (an
+  // outlet's ragged end), and in a confined flow every change of the source from one step to the next moves the
+  // whole column of water within the step: a pressure of order rho L (dc A / H) / dt. The source therefore acts on
+  // e low-pass filtered, de_f/dt = (e - e_f)/tau with tau = T/2: the drift is still returned in full (a constant
+  // e_f = e in the steady state), the loop de/dt = -e_f/T, de_f/dt = (e - e_f)/tau has the damping ratio
+  // sqrt(T/tau)/2 = 0.71, and a change of e reaches the source over tau, not within one step.
+  const double e = area_remesh_ - area_ref_;
+  const double tau = 0.5 * relax_time_;
+  error_filtered_step_ = error_filtered_ + std::min(1.0, dt / tau) * (e - error_filtered_);
+  c_vol_ = type_ == Type::source && area_ref_ > 0 ? error_filtered_step_ / (area_ref_ * relax_time_) : 0.0;
   if (type_ == Type::particle) nodal_start_ = mesh_.nodal_areas(cloud_.x(), cloud_.n());
 }
 
 void VolumeCorrection::set_end(double area) {
+  error_filtered_ = error_filtered_step_;
   change_in_steps_ += area - area_remesh_;
   area_end_ = area;
   if (type_ != Type::particle || nodal_start_.size() != static_cast<size_t>(cloud_.n())) return;

@@ -26,7 +26,10 @@ class VolumeCorrection {
   Type type() const { return type_; }
 
   /// The initial mesh's area: the reference, initial, remeshed and end-of-step areas (initialize).
-  void start(double area) { area_ref_ = area_remesh_ = area_end_ = area_initial_ = area; }
+  void start(double area) {
+    area_ref_ = area_remesh_ = area_end_ = area_initial_ = area;
+    error_filtered_ = error_filtered_step_ = 0;
+  }
   /// Fluid dropped outside the domain box: `share` of the last mesh's area left with it (added up by
   /// drop_outside_domain, then rebase()).
   void add_left(double share) { area_left_ += share; }
@@ -43,9 +46,10 @@ class VolumeCorrection {
   /// that the area after remeshing equals the reference area again. Particles marked in `still` (per particle, may
   /// be empty) stay: the faces of inflows and outflows, which are boundaries of the water, not free surface.
   void restore_area(const std::vector<char>& still = {});
-  /// The step's mesh after remeshing has area `area`: the "source" coefficient c_vol of the step; with
-  /// "particle", the particles' shares of the area at the step's start.
-  void set_remeshed(double area);
+  /// The step's mesh after remeshing has area `area`, the step is `dt` long: the "source" coefficient c_vol of
+  /// the step; with "particle", the particles' shares of the area at the step's start. A retry of the step
+  /// (a smaller dt) calls it again from the same state: the source's filter moves on only at set_end.
+  void set_remeshed(double area, double dt);
   /// The mesh's area at the end of the step; what the step changed since the remeshing (the solve's discrete
   /// incompressibility, the wall put-backs) is added up; with "particle", what it changed at each particle
   /// is owed to it.
@@ -109,6 +113,9 @@ class VolumeCorrection {
   Type type_ = Type::surface;
   double relax_time_ = 0.1;  // s: the "source" correction closes an area error over this time
   double area_ref_ = 0, area_remesh_ = 0, area_end_ = 0, c_vol_ = 0;
+  // "source": the area error after remeshing, low-pass filtered over relax_time_ / 2 (set_remeshed): the value of
+  // the last finished step, and the one the step under way will commit (set_end).
+  double error_filtered_ = 0, error_filtered_step_ = 0;
   double area_initial_ = 0, area_left_ = 0;  // initial mesh area; area of the fluid dropped outside the box
   double area_entered_ = 0;                  // area of the fluid an inflow added
   double correction_energy_ = 0;

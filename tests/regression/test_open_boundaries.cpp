@@ -98,10 +98,11 @@ void expect_poiseuille(const std::string& scheme, double drop_tolerance, double 
   const Csv p = read_csv(r.out_dir / "probes.csv");
   EXPECT_NEAR(mean_drop(p, 1.0), kDropExact, drop_tolerance * kDropExact) << scheme;
   // The inflow's particles carry its peak velocity, 1.5 U; once the impulsive start has passed (the first step's
-  // potential flow turns the parabola round the inlet's corners at up to 5.6 U), nothing in the channel runs
-  // faster.
+  // potential flow turns the parabola round the inlet's corners at up to 5.6 U, and leaves an area error that the
+  // source correction returns through the outlet over its relaxation time and its filter's, 0.1 + 0.05 s, the
+  // outlet running up to 8 % faster until about 0.7 s), nothing in the channel runs faster.
   for (size_t k = 0; k < p["time"].size(); ++k) {
-    if (p["time"][k] >= 0.5) {
+    if (p["time"][k] >= 0.8) {
       EXPECT_LE(p["max_speed"][k], 1.5 * 0.05 * 1.05) << scheme;
     }
   }

@@ -4,7 +4,8 @@
 // re-triangulation of the same points (an edge flip), which moves area between neighbours, owes nothing, and the
 // area of a gap the remesh closes is owed back by the particles around it. The area is conserved exactly:
 // mesh + owed is the same before and after. A particle asked to give more than its share keeps a debt of its
-// share and the bulk takes the rest (return_unpayable_through_bulk).
+// share and the bulk takes the rest (return_unpayable_through_bulk). "volume_correction": "source" takes the area error
+// through a low-pass filter that a retried step does not advance.
 #include <gtest/gtest.h>
 
 #include "fluid_scene.hpp"
@@ -69,7 +70,7 @@ TEST(ParticleVolumes, AStepOwesEachParticleWhatItsShareLost) {
   s.mesh.tri = {{0, 1, 3}, {0, 3, 2}};
   s.mesh.connected = {1, 1, 1, 1};
   s.volume.start(s.mesh.area(s.cloud.x()));
-  s.volume.set_remeshed(s.mesh.area(s.cloud.x()));
+  s.volume.set_remeshed(s.mesh.area(s.cloud.x()), 1e-3);
   s.cloud.x()[7] = 0.9 * kH;  // particle 3 moves down: element 0-1-3 loses 0.05 h^2, 0-3-2 keeps its area
   s.volume.set_end(s.mesh.area(s.cloud.x()));
   const Vec& owed = s.cloud.owed();
@@ -106,7 +107,7 @@ TEST(ParticleVolumes, ADebtBeyondAParticlesShareIsReturnedThroughTheBulk) {
   s.mesh.free = {1, 1, 1, 1, 0};
   const std::vector<double> share = s.mesh.nodal_areas(s.cloud.x(), 5);
   s.cloud.owed() << -3 * share[0], -0.5 * share[1], 0, 0, 1e-8;
-  s.volume.set_remeshed(s.mesh.area(s.cloud.x()));  // the step's starting shares
+  s.volume.set_remeshed(s.mesh.area(s.cloud.x()), 1e-3);  // the step's starting shares
   const double owed_before = s.cloud.owed().sum();
   s.volume.return_unpayable_through_bulk(std::vector<char>(15, 0));
   const Vec& owed = s.cloud.owed();
@@ -115,6 +116,26 @@ TEST(ParticleVolumes, ADebtBeyondAParticlesShareIsReturnedThroughTheBulk) {
   EXPECT_NEAR(owed[4], 1e-8 - 2 * share[0], 1e-20);
   EXPECT_NEAR(owed.sum(), owed_before, 1e-20);
   EXPECT_NEAR(s.volume.summary()["returned_through_bulk"].get<double>(), 2 * share[0], 1e-20);
+}
+
+TEST(SourceCorrection, TheSourceTakesTheAreaErrorThroughAFilterThatARetryDoesNotAdvance) {
+  // "source", T = 0.1 s (filter time T/2 = 0.05 s): the mesh's area after remeshing jumps by e above the reference.
+  // The first step of 0.01 s takes a fifth of e into the source, a retry of that step with 0.005 s a tenth (from
+  // the same filter state), and once steps have gone on, the whole error: c_vol = e / (A_ref T).
+  Scene s({{0, 0}, {kH, 0}, {kH, kH}, {0, kH}});
+  s.mesh.tri = {{0, 1, 2}, {0, 2, 3}};
+  const double a = s.mesh.area(s.cloud.x()), e = 1e-3 * a;
+  s.volume.configure(VolumeCorrection::Type::source, 0.1);
+  s.volume.start(a);
+  s.volume.set_remeshed(a + e, 0.01);
+  EXPECT_NEAR(s.volume.c_vol(), 0.2 * e / (a * 0.1), 1e-12 * e / a);
+  s.volume.set_remeshed(a + e, 0.005);  // a retry with half the step
+  EXPECT_NEAR(s.volume.c_vol(), 0.1 * e / (a * 0.1), 1e-12 * e / a);
+  for (int k = 0; k < 400; ++k) {
+    s.volume.set_remeshed(a + e, 0.01);
+    s.volume.set_end(a + e);
+  }
+  EXPECT_NEAR(s.volume.c_vol(), e / (a * 0.1), 1e-6 * e / a);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from claims_record import record  # noqa: E402
-from lagfsi_post import last_period_stats, read_csv, save, water_balance  # noqa: E402
+from lagfsi_post import last_period_stats, read_csv, save, upward_crossings, water_balance  # noqa: E402
 
 
 def reference(case_dir, test):
@@ -191,12 +191,26 @@ def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
     return values
 
 
+def period_amplitudes(t, clock, v):
+    """(max - min)/2 of the series v over each whole period of the series `clock` (between its consecutive upward
+    mid-level crossings, upward_crossings), all at the times t."""
+    ups = upward_crossings(t, clock)
+    out = []
+    for a, b in zip(ups[:-1], ups[1:]):
+        seg = [vv for tt, vv in zip(t, v) if a <= tt <= b]
+        out.append(0.5 * (max(seg) - min(seg)))
+    return out
+
+
 def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     """The flag's periodic oscillation in the run in `out` against reference/turek_hron_2006_<test>.csv of `case_dir`,
     as mean = (max + min)/2 and amplitude = (max - min)/2 over a period and the frequency, in the last `window` s of
     the run (the last half of a shorter one).
     The tip's displacements by the benchmark's convention (last_period_stats): the extremes of the last full period,
-    the frequency from the spacing of the mid-level's upward crossings in the window.
+    the frequency from the spacing of the mid-level's upward crossings in the window. The remeshing's noise makes
+    each period's amplitude a sample (FSI2 at h = 0.01 m: 73-83 mm from one period of u_y(A) to the next), so the
+    amplitudes are also given per period of u_y(A) over the window (period_amplitudes): their mean (the estimate of
+    the periodic state's amplitude that the targets use) and their standard deviation.
     The forces (drag and lift: the cylinder's wall force and the coupling's interface force added) are noisy step by
     step (the remeshing's insertions and removals), so their extremes are those of their phase average: the whole
     periods of u_y(A) that end the window (its frequency f from its crossings) folded onto one, the phase t f mod 1
@@ -206,6 +220,8 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     its mid-level twice in the window (a short run's start-up), every mean and amplitude is (max + min)/2 and
     (max - min)/2 over the window and the tip's frequencies are 0.
     Records: ux_A_mean, ux_A_amplitude, ux_A_frequency, the same for uy_A, drag and lift (m, N/m, Hz),
+    ux_A_amplitude_periods and ux_A_amplitude_spread (the per-period amplitudes' mean and standard deviation; the same
+    for uy_A), periods_window (their number),
     drag_raw_amplitude, lift_raw_amplitude, iterations (coupling passes per step, mean over the run),
     iterations_window (over the window), iterations_max; prints them and draws comparison_<OUTDIR's last part>.png."""
     tag, ref, p, t, dt, drag, lift = periodic_run(out, case_dir, test)
@@ -249,6 +265,14 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
             values["%s_%s" % (name, key)] = s[key]
     for name in ("drag", "lift"):
         values["%s_raw_amplitude" % name] = raw[name]["amplitude"]
+    periods = {name: period_amplitudes(tw, [series["uy_A"][k] for k in late], [series[name][k] for k in late])
+               for name in ("ux_A", "uy_A")}
+    for name, a in periods.items():
+        n = max(1, len(a))
+        mean = sum(a) / n
+        values["%s_amplitude_periods" % name] = mean
+        values["%s_amplitude_spread" % name] = (sum((x - mean) ** 2 for x in a) / n) ** 0.5
+    values["periods_window"] = len(periods["uy_A"])
     values["iterations"] = sum(p["fsi_iterations"][k] for k in steps) / max(1, len(steps))
     values["iterations_window"] = sum(p["fsi_iterations"][k] for k in late) / len(late)
     values["iterations_max"] = max(p["fsi_iterations"])
@@ -270,6 +294,12 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
                  err(name, "frequency"), unit, s["periods"], t0, t[-1]))
     print("  raw (unsmoothed) amplitudes: drag %.2f N/m, lift %.2f N/m" % (values["drag_raw_amplitude"],
                                                                           values["lift_raw_amplitude"]))
+    for name in ("ux_A", "uy_A"):
+        print("  %s amplitude per period of uy_A, %d periods: mean %.3f mm (reference %.3f, %+.1f %%), standard "
+              "deviation %.3f mm" % (name, values["periods_window"], 1e3 * values["%s_amplitude_periods" % name],
+                                     1e3 * ref[name]["amplitude"],
+                                     100 * (values["%s_amplitude_periods" % name] / ref[name]["amplitude"] - 1),
+                                     1e3 * values["%s_amplitude_spread" % name]))
 
     fig, axes = plt.subplots(5, 1, figsize=(12, 13), sharex=True)
     for ax, name, scale, unit in ((axes[0], "ux_A", 1e3, "mm"), (axes[1], "uy_A", 1e3, "mm"),

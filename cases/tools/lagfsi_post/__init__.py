@@ -46,12 +46,11 @@ def out_dir_from_argv(default):
     return sys.argv[1] if len(sys.argv) > 1 else default
 
 
-def last_period_stats(t, u):
-    """Turek & Hron's convention for a periodic signal: mean = (max + min)/2 and amplitude = (max - min)/2
-    over the last full period; frequency from the mean spacing of the upward crossings of the mid-level
-    (linear interpolation between samples), which is robust to high-frequency ripple."""
+def upward_crossings(t, u):
+    """The times at which u crosses its mid-level (max + min)/2 upwards (linear interpolation between samples), each
+    only after u went a tenth of its range below the mid-level (hysteresis against high-frequency ripple)."""
     mid = 0.5 * (max(u) + min(u))
-    band = 0.1 * (max(u) - min(u))  # hysteresis against ripple
+    band = 0.1 * (max(u) - min(u))
     ups, armed = [], False
     for i in range(1, len(u)):
         if u[i] < mid - band:
@@ -59,6 +58,14 @@ def last_period_stats(t, u):
         if armed and u[i - 1] < mid <= u[i]:
             ups.append(t[i - 1] + (mid - u[i - 1]) / (u[i] - u[i - 1]) * (t[i] - t[i - 1]))
             armed = False
+    return ups
+
+
+def last_period_stats(t, u):
+    """Turek & Hron's convention for a periodic signal: mean = (max + min)/2 and amplitude = (max - min)/2
+    over the last full period; frequency from the mean spacing of the upward crossings of the mid-level
+    (upward_crossings), which is robust to high-frequency ripple."""
+    ups = upward_crossings(t, u)
     if len(ups) < 2:
         return None
     seg = [uu for tt, uu in zip(t, u) if ups[-2] <= tt <= ups[-1]]

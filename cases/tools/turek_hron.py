@@ -208,9 +208,9 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     the run (the last half of a shorter one).
     The tip's displacements by the benchmark's convention (last_period_stats): the extremes of the last full period,
     the frequency from the spacing of the mid-level's upward crossings in the window. The remeshing's noise makes
-    each period's amplitude a sample (FSI2 at h = 0.01 m: 73-83 mm from one period of u_y(A) to the next), so the
-    amplitudes are also given per period of u_y(A) over the window (period_amplitudes): their mean (the estimate of
-    the periodic state's amplitude that the targets use) and their standard deviation.
+    each period's amplitude a sample that varies by a few per cent from one period to the next, so the amplitudes
+    are also given per period of u_y(A) over the window (period_amplitudes): their mean (the estimate of the periodic
+    state's amplitude that the targets use) and their standard deviation.
     The forces (drag and lift: the cylinder's wall force and the coupling's interface force added) are noisy step by
     step (the remeshing's insertions and removals), so their extremes are those of their phase average: the whole
     periods of u_y(A) that end the window (its frequency f from its crossings) folded onto one, the phase t f mod 1

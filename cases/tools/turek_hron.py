@@ -191,10 +191,9 @@ def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
     return values
 
 
-def period_amplitudes(t, clock, v):
-    """(max - min)/2 of the series v over each whole period of the series `clock` (between its consecutive upward
-    mid-level crossings, upward_crossings), all at the times t."""
-    ups = upward_crossings(t, clock)
+def period_amplitudes(t, ups, v):
+    """(max - min)/2 of the series v (at the times t) over each whole period between consecutive times of `ups` (a
+    clock's upward mid-level crossings, upward_crossings)."""
     out = []
     for a, b in zip(ups[:-1], ups[1:]):
         seg = [vv for tt, vv in zip(t, v) if a <= tt <= b]
@@ -265,8 +264,8 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
             values["%s_%s" % (name, key)] = s[key]
     for name in ("drag", "lift"):
         values["%s_raw_amplitude" % name] = raw[name]["amplitude"]
-    periods = {name: period_amplitudes(tw, [series["uy_A"][k] for k in late], [series[name][k] for k in late])
-               for name in ("ux_A", "uy_A")}
+    ups = upward_crossings(tw, [series["uy_A"][k] for k in late])
+    periods = {name: period_amplitudes(tw, ups, [series[name][k] for k in late]) for name in ("ux_A", "uy_A")}
     for name, a in periods.items():
         n = max(1, len(a))
         mean = sum(a) / n

@@ -180,8 +180,11 @@ IterationReport PspgScheme::iterate() {
   // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
   // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
   // pressure corrections of a few particles from ever reaching tol * p_scale).
+  // The pressure scale is also the iterate's own: a channel started from rest without gravity has no scale before
+  // its first step but the pressure that accelerates its water (rho L dU/dt).
   const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
-  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * step.p_scale) || stalled) {
+  const double p_scale = std::max(step.p_scale, f_.cloud.p().cwiseAbs().maxCoeff());
+  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * p_scale) || stalled) {
     rep.converged = true;
     return rep;
   }

@@ -100,7 +100,8 @@ void FluidModel::initialize() {
   // Pressure scale of the convergence test: hydrostatic, initial and dynamic (rho v^2: a flow without gravity).
   double v2 = 0;
   for (Index i = 0; i < np; ++i) v2 = std::max(v2, s.v.segment<2>(2 * i).squaredNorm());
-  step_.p_scale = std::max({c_.rho * c_.gravity.norm() * (ymax - ymin), p.cwiseAbs().maxCoeff(), c_.rho * v2, 1e-12});
+  step_.p_scale =
+      std::max({c_.rho * c_.gravity.norm() * (ymax - ymin), p.cwiseAbs().maxCoeff(), c_.rho * v2, kNoPressureScale});
   // Initial acceleration from the momentum equation with the lumped mass, the initial pressure (zero on
   // the free surface, as the solver will impose) and the initial velocity. An inconsistent a0 excites the
   // period-2 pressure oscillation of the trapezoidal rule on this index-2 system (a hydrostatic column

@@ -68,6 +68,10 @@ class ProcessRows {
   std::pair<Index, Index> own_{0, 0};
 };
 
+/// The floor of FluidStep::p_scale (Pa): at it, the state gave no pressure scale (water at rest, no gravity, no
+/// initial pressure).
+inline constexpr double kNoPressureScale = 1e-12;
+
 /// The step's data shared by the model and its scheme.
 struct FluidStep {
   double t_new = 0, dt = 0;

@@ -180,10 +180,11 @@ IterationReport PspgScheme::iterate() {
   // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
   // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
   // pressure corrections of a few particles from ever reaching tol * p_scale).
-  // The pressure scale is also the iterate's own: a channel started from rest without gravity has no scale before
-  // its first step but the pressure that accelerates its water (rho L dU/dt).
+  // Water at rest without gravity and without an initial pressure (a channel started from rest by a ramped
+  // inflow) has no pressure scale before its first step: the iterate's own pressure, the one that accelerates the
+  // water (rho L dU/dt), is the scale then.
   const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
-  const double p_scale = std::max(step.p_scale, f_.cloud.p().cwiseAbs().maxCoeff());
+  const double p_scale = step.p_scale > kNoPressureScale ? step.p_scale : f_.cloud.p().cwiseAbs().maxCoeff();
   if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * p_scale) || stalled) {
     rep.converged = true;
     return rep;

@@ -139,6 +139,13 @@ class PspgScheme final : public FluidScheme {
   ThreadScatter scatter_;  // the element loop's per-thread sums
   int iter_in_step_ = 0;   // iterations of the step (all coupling passes)
   double last_dx_ = 0, last_dp_ = 0, prev_dx_ = 0;
+
+  /// The pressure scale of the Newton test: the step's. Water at rest without gravity and without an initial
+  /// pressure (a channel started from rest by a ramped inflow) has none before its first step: the iterate's own
+  /// pressure, the one that accelerates the water (rho L dU/dt), is the scale then.
+  double pressure_scale() const {
+    return f_.step.p_scale > kNoPressureScale ? f_.step.p_scale : f_.cloud.p().cwiseAbs().maxCoeff();
+  }
 };
 
 IterationReport PspgScheme::iterate() {
@@ -180,12 +187,8 @@ IterationReport PspgScheme::iterate() {
   // residual is at round-off (1e-10 of the force scale) and the corrections stopped decreasing (the
   // frozen-geometry tangent converges linearly, and in the scaled pressure unknowns round-off keeps the
   // pressure corrections of a few particles from ever reaching tol * p_scale).
-  // Water at rest without gravity and without an initial pressure (a channel started from rest by a ramped
-  // inflow) has no pressure scale before its first step: the iterate's own pressure, the one that accelerates the
-  // water (rho L dU/dt), is the scale then.
   const bool stalled = last_dx_ > 0.5 * prev_dx_ && rep.residual <= 1e-10 * rep.residual_ref && last_dx_ <= 1e-3 * h;
-  const double p_scale = step.p_scale > kNoPressureScale ? step.p_scale : f_.cloud.p().cwiseAbs().maxCoeff();
-  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * p_scale) || stalled) {
+  if ((last_dx_ <= s_.tol * h && last_dp_ <= s_.tol * pressure_scale()) || stalled) {
     rep.converged = true;
     return rep;
   }
@@ -404,7 +407,7 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
     for (Index i = 0; i < np; ++i)
       if (std::abs(d[3 * i]) + std::abs(d[3 * i + 1]) > std::abs(d[3 * worst]) + std::abs(d[3 * worst + 1])) worst = i;
     std::fprintf(stderr, "  t=%.6g res=%.3e ref=%.3e dx=%.3e (h %.3e) dp=%.3e (p %.3e) worst %d kind %d free %d\n",
-                 step.t_new, rep.residual, rep.residual_ref, last_dx_, h, last_dp_, step.p_scale, worst,
+                 step.t_new, rep.residual, rep.residual_ref, last_dx_, h, last_dp_, pressure_scale(), worst,
                  int(f_.cloud.kind()[worst]), int(f_.mesh.free[worst]));
   }
 }

@@ -6,6 +6,8 @@
 /// Every CGAL type stays in this translation unit.
 #include <lagfsi/meshing/remesh.hpp>
 
+#include <lagfsi/meshing/partition.hpp>
+
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_data_structure_2.h>
@@ -30,7 +32,7 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_2;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;       // info: particle index
-using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;  // info: 1 if the face is kept
+using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;  // info: FaceFlag bits
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
 
@@ -65,18 +67,22 @@ double check_points(const std::vector<Vec2>& points, const char* where) {
   return tol * tol;
 }
 
-/// Called when the triangulation has fewer vertices than points: CGAL merged exact duplicates.
-[[noreturn]] void throw_merged_duplicates(const DT& dt, const std::vector<Vec2>& points, const char* where) {
-  const std::size_t n = points.size();
-  std::vector<std::uint8_t> kept(n, 0);
+/// Called when the triangulation has fewer vertices than the points inserted (`ids`, or all of `points`): CGAL
+/// merged exact duplicates.
+[[noreturn]] void throw_merged_duplicates(const DT& dt, const std::vector<Vec2>& points, const std::vector<Index>* ids,
+                                          const char* where) {
+  std::vector<std::uint8_t> kept(points.size(), 0);
   for (auto v : dt.finite_vertex_handles()) kept[static_cast<std::size_t>(v->info())] = 1;
+  const std::size_t m = ids != nullptr ? ids->size() : points.size();
+  const auto id = [&](std::size_t k) { return ids != nullptr ? static_cast<std::size_t>((*ids)[k]) : k; };
   std::size_t first = 0;
-  while (first < n && kept[first]) ++first;
+  while (first < m && kept[id(first)]) ++first;
+  const std::size_t lost = id(first);
   std::size_t twin = 0;
-  while (twin < n && !(kept[twin] && points[twin] == points[first])) ++twin;
+  while (twin < m && !(kept[id(twin)] && points[id(twin)] == points[lost])) ++twin;
   std::ostringstream s;
-  s << (n - dt.number_of_vertices()) << " duplicate point(s), e.g. point " << first << " equals point " << twin
-    << " at " << point_str(points[first]);
+  s << (m - dt.number_of_vertices()) << " duplicate point(s), e.g. point " << lost << " equals point "
+    << (twin < m ? id(twin) : lost) << " at " << point_str(points[lost]);
   fail(where, s.str());
 }
 
@@ -87,16 +93,42 @@ double check_points(const std::vector<Vec2>& points, const char* where) {
   fail(where, s.str());
 }
 
-/// One range insertion of (point, index) pairs (CGAL sorts them spatially), then the exact-duplicate
-/// check. Near duplicates are checked by the callers on the faces (or edges in dimension 1).
-void build(DT& dt, const std::vector<Vec2>& points, const char* where) {
+/// One range insertion of (point, index) pairs (CGAL sorts them spatially): all of `points`, or those of `ids`
+/// (each vertex keeps its index in `points`); then the exact-duplicate check. Near duplicates are checked by the
+/// callers on the faces (or edges in dimension 1).
+void build(DT& dt, const std::vector<Vec2>& points, const char* where, const std::vector<Index>* ids = nullptr) {
   std::vector<std::pair<Point, Index>> input;
-  input.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    input.emplace_back(Point(points[i].x(), points[i].y()), static_cast<Index>(i));
+  const std::size_t m = ids != nullptr ? ids->size() : points.size();
+  input.reserve(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const Index i = ids != nullptr ? (*ids)[k] : static_cast<Index>(k);
+    const Vec2& p = points[static_cast<std::size_t>(i)];
+    input.emplace_back(Point(p.x(), p.y()), i);
+  }
   dt.insert(input.begin(), input.end());
-  if (dt.number_of_vertices() < points.size()) throw_merged_duplicates(dt, points, where);
+  if (dt.number_of_vertices() < m) throw_merged_duplicates(dt, points, ids, where);
 }
+
+/// Which faces and edges a call reports: all of them (remesh), or one part's (remesh_part: a face whose centroid
+/// lies in the part's box, an edge whose lower particle is the part's).
+struct Reported {
+  const SpacePartition* partition = nullptr;
+  int part = 0;
+  const std::vector<Vec2>* points = nullptr;
+  bool face(Index a, Index b, Index c) const {
+    if (partition == nullptr) return true;
+    std::array<Index, 3> t{a, b, c};
+    std::sort(t.begin(), t.end());  // the same centroid, to the bit, in every part
+    const auto at = [&](Index i) { return (*points)[static_cast<std::size_t>(i)]; };
+    return partition->part_of((at(t[0]) + at(t[1]) + at(t[2])) * (1.0 / 3.0)) == part;
+  }
+  bool edge(Index a, Index b) const {
+    return partition == nullptr || partition->owner()[static_cast<std::size_t>(std::min(a, b))] == part;
+  }
+};
+
+/// Face flags (the faces' info): kept by the domain detection, and reported by this call.
+constexpr std::uint8_t kKept = 1, kReported = 2;
 
 /// Dimension < 2: no faces; check the edges (dimension 1) for near duplicates.
 void check_edges_1d(const DT& dt, const std::vector<Vec2>& points, double tol2, const char* where) {
@@ -148,7 +180,8 @@ std::vector<DT::Vertex_handle> vertex_handles(const DT& dt, std::size_t n) {
 /// within a step) is left out. The triangulation is no longer Delaunay at the flipped edges, which is what a
 /// constrained Delaunay triangulation with those constraints would give locally (Leyssens et al. 2024 keep the old
 /// boundary the same way).
-void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t n, int& restored, int& lost) {
+void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t n, const Reported& reported,
+                            int& restored, int& lost) {
   const std::vector<DT::Vertex_handle> vh = vertex_handles(dt, n);
   for (const auto& [a, b] : previous.boundary_edges()) {
     if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
@@ -156,17 +189,18 @@ void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t 
     if (va == DT::Vertex_handle() || vb == DT::Vertex_handle() || dt.is_edge(va, vb)) continue;
     DT::Face_handle hit;
     int opp = -1;
+    const int counted = reported.edge(a, b) ? 1 : 0;
     if (!single_crossing(dt, va, vb, hit, opp)) {
-      ++lost;  // more than one edge crosses (a, b), or it leaves the convex hull
+      lost += counted;  // more than one edge crosses (a, b), or it leaves the convex hull
       continue;
     }
     const Index c = hit->vertex(DT::ccw(opp))->info(), d = hit->vertex(DT::cw(opp))->info();
     if (previous.is_boundary_edge(c, d)) {
-      ++lost;  // two old boundary edges cross: keep the one the Delaunay triangulation has
+      lost += counted;  // two old boundary edges cross: keep the one the Delaunay triangulation has
       continue;
     }
     dt.flip(hit, opp);
-    ++restored;
+    restored += counted;
   }
 }
 
@@ -176,7 +210,7 @@ void restore_boundary_edges(DT& dt, const PreviousDomain& previous, std::size_t 
 /// edge and removes a new one, so the passes end; a later pass may restore an edge that an earlier flip
 /// made crossable once.
 int keep_previous_edges(DT& dt, const PreviousDomain& previous, std::size_t n, const std::vector<Vec2>& points,
-                        double tol) {
+                        double tol, const Reported& reported) {
   const std::vector<DT::Vertex_handle> vh = vertex_handles(dt, n);
   const double limit = std::numbers::pi + tol;
   const auto angle = [&](Index apex, Index p, Index q) {
@@ -186,7 +220,7 @@ int keep_previous_edges(DT& dt, const PreviousDomain& previous, std::size_t n, c
   };
   int kept = 0;
   for (int pass = 0; pass < 8; ++pass) {
-    int flips = 0;
+    int flips = 0, counted = 0;
     for (const auto& [a, b] : previous.edges()) {
       if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n) continue;
       if (previous.is_boundary_edge(a, b)) continue;  // restore_boundary_edges' business
@@ -200,8 +234,9 @@ int keep_previous_edges(DT& dt, const PreviousDomain& previous, std::size_t n, c
       if (angle(c, a, b) + angle(d, a, b) > limit) continue;
       dt.flip(hit, opp);
       ++flips;
+      counted += reported.edge(a, b) ? 1 : 0;
     }
-    kept += flips;
+    kept += counted;
     if (flips == 0) break;
   }
   return kept;
@@ -358,7 +393,7 @@ Verdict detect(const RemeshInput& in, const FaceGeometry& g) {
 /// Pass 1: each finite face is kept (info 1, appended to result.triangles) or not (info 0); the kept area
 /// (twice it, Neumaier-compensated) and the counts of result. An element failing both the alpha test and the
 /// wall/ghost-only test counts as removed by the alpha test.
-void keep_faces(const RemeshInput& in, DT& dt, RemeshResult& result) {
+void keep_faces(const RemeshInput& in, DT& dt, const Reported& reported, RemeshResult& result) {
   result.triangles.reserve(dt.number_of_faces());
   std::uint8_t* connected = result.connected.data();
   double area2 = 0.0, area2_comp = 0.0;  // twice the kept area, Neumaier-compensated sum
@@ -366,27 +401,33 @@ void keep_faces(const RemeshInput& in, DT& dt, RemeshResult& result) {
   for (auto f : dt.finite_face_handles()) {
     const FaceGeometry g = face_geometry(in, f);
     const Index a = g.a, b = g.b, c = g.c;
+    // Another part's face is classified too (its flag is read by the free-surface pass) but not reported.
+    const bool mine = reported.face(a, b, c);
     f->info() = 0;
-    if (g.walls == 3 && g.cr > 1e-12 * std::max({g.lab2, g.lac2, g.lbc2})) result.boundary_only.push_back({a, b, c});
+    if (mine && g.walls == 3 && g.cr > 1e-12 * std::max({g.lab2, g.lac2, g.lbc2}))
+      result.boundary_only.push_back({a, b, c});
     const Verdict verdict = detect(in, g);
     if (verdict == Verdict::RemovedAlpha) {
-      ++removed_alpha;
+      removed_alpha += mine;
       continue;
     }
     if (verdict == Verdict::Separated) {
-      ++separated;
-      result.separated.push_back({a, b, c});
+      if (mine) {
+        ++separated;
+        result.separated.push_back({a, b, c});
+      }
       continue;
     }
-    if (verdict == Verdict::AddedOutside) {
+    if (verdict == Verdict::AddedOutside && mine) {
       ++added;
       result.added_elements.push_back(static_cast<Index>(result.triangles.size()));
     }
     if (g.walls == 3) {
-      ++removed_boundary;
+      removed_boundary += mine;
       continue;
     }
-    f->info() = 1;
+    f->info() = mine ? kKept | kReported : kKept;
+    if (!mine) continue;
     result.triangles.push_back({a, b, c});
     connected[a] = connected[b] = connected[c] = 1;
     const double cr = g.cr;
@@ -403,18 +444,43 @@ void keep_faces(const RemeshInput& in, DT& dt, RemeshResult& result) {
 
 /// Pass 2: an edge of a kept face is used by exactly one kept element iff the face across it (possibly
 /// infinite) is not kept; its fluid particles are free surface. Every face's flag has been set (keep_faces,
-/// and the infinite faces cleared before).
+/// and the infinite faces cleared before). Only the reported faces mark their particles.
 void mark_free_surface(const RemeshInput& in, const DT& dt, RemeshResult& result) {
   std::uint8_t* fs = result.free_surface.data();
   for (auto f : dt.all_face_handles()) {
-    if (!f->info()) continue;
+    if (!(f->info() & kReported)) continue;
     for (int i = 0; i < 3; ++i) {
-      if (f->neighbor(i)->info()) continue;
+      if (f->neighbor(i)->info() & kKept) continue;
       const Index p = f->vertex(DT::ccw(i))->info(), q = f->vertex(DT::cw(i))->info();
       if (in.kind[static_cast<std::size_t>(p)] == ParticleKind::Fluid) fs[p] = 1;
       if (in.kind[static_cast<std::size_t>(q)] == ParticleKind::Fluid) fs[q] = 1;
     }
   }
+}
+
+/// The stages after the triangulation: the previous domain's edges flipped back in, the domain detection on every
+/// face and the free surface; the faces and counts of `reported` into result.
+void triangulated(const RemeshInput& in, DT& dt, const Reported& reported, RemeshResult& result) {
+  const std::size_t n = in.points.size();
+  if (dt.dimension() < 2) {
+    check_edges_1d(dt, in.points, in.tol2, in.where);
+    return;
+  }
+  // The previous domain's boundary edges, and with keep_edges_angle its interior ones, flipped back in.
+  if (in.previous != nullptr) {
+    restore_boundary_edges(dt, *in.previous, n, reported, result.restored_edges, result.lost_edges);
+    if (in.settings.keep_edges_angle > 0 && !in.previous->edges().empty())
+      result.kept_edges = keep_previous_edges(dt, *in.previous, n, in.points, in.settings.keep_edges_angle, reported);
+  }
+  // The free-surface pass reads the flag of every neighbour, including the infinite faces.
+  {
+    auto fc = dt.incident_faces(dt.infinite_vertex());
+    const auto done = fc;
+    do fc->info() = 0;
+    while (++fc != done);
+  }
+  keep_faces(in, dt, reported, result);
+  mark_free_surface(in, dt, result);
 }
 
 }  // namespace
@@ -431,25 +497,36 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
 
   DT dt;
   build(dt, points, in.where);
-  if (dt.dimension() < 2) {
-    check_edges_1d(dt, points, in.tol2, in.where);
-    return result;
-  }
-  // The previous domain's boundary edges, and with keep_edges_angle its interior ones, flipped back in.
-  if (in.previous != nullptr) {
-    restore_boundary_edges(dt, *in.previous, n, result.restored_edges, result.lost_edges);
-    if (settings.keep_edges_angle > 0 && !in.previous->edges().empty())
-      result.kept_edges = keep_previous_edges(dt, *in.previous, n, points, settings.keep_edges_angle);
-  }
-  // The free-surface pass reads the flag of every neighbour, including the infinite faces.
-  {
-    auto fc = dt.incident_faces(dt.infinite_vertex());
-    const auto done = fc;
-    do fc->info() = 0;
-    while (++fc != done);
-  }
-  keep_faces(in, dt, result);
-  mark_free_surface(in, dt, result);
+  triangulated(in, dt, Reported{}, result);
+  return result;
+}
+
+RemeshResult remesh_part(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                         const std::vector<double>& h, const RemeshSettings& settings, const SpacePartition& partition,
+                         int part, double halo) {
+  RemeshInput in{.points = points, .kind = kind, .h = h, .settings = settings, .where = "remesh_part"};
+  check_remesh_input(in);
+  if (settings.detection == DomainDetection::LevelSet && in.previous != nullptr)
+    fail(in.where, "the level-set detection adds elements of any size: it is not divided into parts");
+  if (partition.owner().size() != points.size())
+    fail(in.where, "the partition was made for " + std::to_string(partition.owner().size()) + " points, not " +
+                       std::to_string(points.size()));
+  if (part < 0 || part >= partition.parts()) fail(in.where, "part " + std::to_string(part) + " out of range");
+  if (!(std::isfinite(halo) && halo > 0)) fail(in.where, "halo must be finite and > 0");
+  const std::size_t n = points.size();
+  RemeshResult result;
+  result.free_surface.assign(n, 0);
+  result.connected.assign(n, 0);
+  if (n < 3) return result;
+  std::vector<Index> local;
+  for (std::size_t i = 0; i < n; ++i)
+    if (partition.owner()[i] == part) local.push_back(static_cast<Index>(i));
+  const std::vector<Index> ghosts = partition.ghosts(points, part, halo);
+  local.insert(local.end(), ghosts.begin(), ghosts.end());
+  if (local.size() < 3) return result;
+  DT dt;
+  build(dt, points, in.where, &local);
+  triangulated(in, dt, Reported{&partition, part, &points}, result);
   return result;
 }
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 namespace lagfsi::mpi_run {
@@ -83,6 +84,46 @@ LinearSolverSettings distribute(LinearSolverSettings s) {
   if (s.type == "auto") s.type = "petsc";
   if (s.type == "petsc" || s.type == "mumps") s.distributed = s.gather = true;
   return s;
+}
+
+std::vector<Index> gather_all(const std::vector<Index>& mine) {
+  if (my_size <= 1) return mine;
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<size_t>(my_size)), offsets(static_cast<size_t>(my_size), 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  long long total = 0;
+  for (int r = 0; r < my_size; ++r) {
+    offsets[static_cast<size_t>(r)] = static_cast<int>(total);
+    total += counts[static_cast<size_t>(r)];
+  }
+  std::vector<Index> all(static_cast<size_t>(total));
+  MPI_Allgatherv(mine.data(), count, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT, MPI_COMM_WORLD);
+  return all;
+}
+
+void or_flags(std::uint8_t* flags, Index n) {
+  if (my_size <= 1 || n <= 0) return;
+  MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_UINT8_T, MPI_MAX, MPI_COMM_WORLD);
+}
+
+long long sum(long long value) {
+  if (my_size <= 1) return value;
+  long long r = 0;
+  MPI_Allreduce(&value, &r, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  return r;
+}
+
+std::string first_failure(const std::string& message) {
+  if (my_size <= 1) return message;
+  const int mine = message.empty() ? my_size : my_rank;
+  int first = my_size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == my_size) return {};
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  std::string text = my_rank == first ? message : std::string(static_cast<size_t>(length), ' ');
+  MPI_Bcast(text.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  return "process " + std::to_string(first) + ": " + text;
 }
 
 }  // namespace lagfsi::mpi_run

@@ -168,7 +168,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     settings.keep_edges_angle = s_.keep_edges_angle;
   }
   try {
-    r = meshing::remesh(pts, kind, cloud_.h(), settings);
+    r = remesh_over_processes(pts, kind, cloud_.h(), settings);
   } catch (const std::exception& e) {
     throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
   }

@@ -19,6 +19,7 @@
 #include "volume_correction.hpp"
 
 #include <lagfsi/meshing/previous_domain.hpp>
+#include <lagfsi/meshing/remesh.hpp>
 
 #include <array>
 #include <cstdint>
@@ -27,6 +28,15 @@
 #include <vector>
 
 namespace lagfsi::fluid {
+
+/// meshing::remesh() in a run over MPI processes (mpi_run.hpp): each process remeshes its part of a space partition of
+/// the particles with a ghost layer (meshing::remesh_part) and the shares are gathered in rank order, so that every
+/// process holds the same mesh: the serial one's elements in another order (the removed and separated faces' counts
+/// can differ by faces too large for a part to see whole). With one process, and with the level-set detection (which
+/// keeps elements of any size), remesh() itself. A failure on any process throws on every process with its message
+/// (divided_remesh.cpp).
+meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
+                                            const std::vector<double>& h, const meshing::RemeshSettings& settings);
 
 class RemeshPipeline {
  public:

@@ -5,8 +5,8 @@ Runs `lagfsi run cases/dam_break_tank/case.json` with the spacing h = 0.0073 sqr
 count N and dt scaled with h (as tests/bench/bench_scaling.py), the monolithic scheme with the PETSc solver
 (FGMRES + Schur field split), one thread per process, a few steps from rest: serially (no launcher), under
 `mpirun -np 1` and under `mpirun -np P` for each P given. The processes hold every particle (replicated data,
-src/core/include/lagfsi/mpi_run.hpp); the linear solves and the element assembly are divided among them, the
-remeshing and the particle management are not. Per run, from process 0's log.csv over the steps after the first
+src/core/include/lagfsi/mpi_run.hpp); the linear solves, the element assembly and the remeshing's triangulation and
+domain detection are divided among them, the particle management is not. Per run, from process 0's log.csv over the steps after the first
 `--warmup`: microseconds per particle-step in all and by phase (remesh, assembly with the combination of the
 residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
 the same size (wall time per step, measured in this one invocation).

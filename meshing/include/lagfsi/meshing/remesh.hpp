@@ -91,6 +91,26 @@ struct RemeshResult {
 RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
                     const std::vector<double>& h, const RemeshSettings& settings);
 
+class SpacePartition;
+
+/// One part's share of remesh() over a SpacePartition of `points` (partition.hpp), for a run divided among
+/// processes: the part triangulates its own particles and those within `halo` of its box (its ghosts), classifies
+/// every face as remesh() does, and reports the kept faces whose centroid (computed from the vertices in increasing
+/// index order, the same bits in every part) lies in its box, with their counts and lists (added_elements indexes
+/// the share's triangles), the free-surface and connected flags their edges and particles give, their area, and the
+/// restored, lost and kept edges whose lower particle is the part's. Over the parts the shares together are remesh()'s
+/// result (each kept element once; the flags or-ed, the counts summed) when every kept face's circumdisc lies within
+/// the halo of its centroid's box: with the alpha test or the advected detection every kept face has a circumradius
+/// R <= max(alpha, separation_alpha) h_e and its centroid is within R of its circumcentre, so a halo of
+/// 2 max(alpha, separation_alpha) max h_i suffices for the Delaunay faces (a face whose circumdisc lies where the part
+/// holds every particle of the cloud is Delaunay in both or in neither); the previous edges flipped back in are local
+/// to their quadrilaterals, for which the caller adds a margin. The level-set detection keeps faces of any size
+/// outside the previous domain and is refused (std::invalid_argument), as are a partition of other points, a part
+/// out of range and a halo that is not positive.
+RemeshResult remesh_part(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
+                         const std::vector<double>& h, const RemeshSettings& settings, const SpacePartition& partition,
+                         int part, double halo);
+
 /// The plain Delaunay triangulation of `points` (no alpha test, no removal), counter-clockwise, with the
 /// same construction, validation and duplicate check as remesh(); dimension < 2 (all points collinear)
 /// gives no triangles. For diagnostics, tests and timing the triangulation alone.

@@ -1,25 +1,30 @@
 #pragma once
 /// @file mpi_run.hpp
-/// A run over MPI processes (`mpirun -n P lagfsi run CASE.json`): replicated data, distributed solves.
+/// A run over MPI processes (`mpirun -n P lagfsi run CASE.json`): replicated data, divided remeshing and assembly,
+/// distributed solves.
 ///
-/// Every process builds the same case and holds every particle, node and element; each step's remeshing, assembly
-/// and particle management are the same computation on each (the same input, the same operations, the same
-/// results bit for bit). The fluid's linear systems are PETSc matrices over all the processes, each process
-/// filling and solving the rows PETSc gives it (LinearSolverSettings::distributed), and the solution is summed
-/// over the processes (each entry comes from one process, the others add zeros: every process receives the same
-/// bits), so that the processes stay identical. Process 0 alone writes the output folder and prints (the others
-/// run quiet), but for the models that write a piece each (PhysicsModel::writes_pieces: the fluid's parallel VTK). The
-/// fluid's schemes also divide their element assembly: each process computes the elements with a particle in its rows,
-/// and the per-particle sums (the residual, the fractional step's forces) are combined over the processes
-/// (pspg_scheme.cpp, fractional_step.cpp). The domain decomposition of the particles and the remeshing (each process
-/// meshing its own part with a ghost layer) is not done.
+/// Every process builds the same case and holds every particle, node and element; each step's particle management is
+/// the same computation on each (the same input, the same operations, the same results bit for bit). The fluid's linear
+/// systems are PETSc matrices over all the processes, each process filling and solving the rows PETSc gives it
+/// (LinearSolverSettings::distributed), and the solution is summed over the processes (each entry comes from one
+/// process, the others add zeros: every process receives the same bits), so that the processes stay identical. Process
+/// 0 alone writes the output folder and prints (the others run quiet), but for the models that write a piece each
+/// (PhysicsModel::writes_pieces: the fluid's parallel VTK). The fluid's schemes also divide their element assembly:
+/// each process computes the elements with a particle in its rows, and the per-particle sums (the residual, the
+/// fractional step's forces) are combined over the processes (pspg_scheme.cpp, fractional_step.cpp). The remeshing's
+/// triangulation and domain detection are divided too: each process meshes the particles of its part of space with a
+/// ghost layer, and the shares are gathered (meshing::remesh_part; remesh_pipeline.cpp). The particles themselves are
+/// not divided: every process holds them all and manages them the same way.
 ///
 /// MPI starts (through PETSc, which owns it) only when an MPI launcher started the program (its environment
 /// variables say so); a program run without one never starts MPI.
 #include <lagfsi/linear_solver.hpp>
 #include <lagfsi/types.hpp>
 
+#include <cstdint>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace lagfsi::mpi_run {
 
@@ -54,5 +59,14 @@ void abort_all(int code);
 /// gathered, "auto" becoming "petsc" (a direct type stays on each process, which then solves the whole system);
 /// unchanged with one process.
 LinearSolverSettings distribute(LinearSolverSettings s);
+/// Every process's `mine` one after the other in rank order, on every process (`mine` itself with one process).
+std::vector<Index> gather_all(const std::vector<Index>& mine);
+/// Flags set (non-zero) on any process, set on every process, in place.
+void or_flags(std::uint8_t* flags, Index n);
+/// The sum over the processes of `value` (the same on every process).
+long long sum(long long value);
+/// A failure some processes saw: the message of the lowest process whose `message` is not empty, on every process,
+/// prefixed by that process's rank when there are several; empty when none failed. Every process must call it.
+std::string first_failure(const std::string& message);
 
 }  // namespace lagfsi::mpi_run

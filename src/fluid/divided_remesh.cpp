@@ -1,0 +1,86 @@
+// The remeshing divided among the processes of an MPI run (remesh_pipeline.hpp, remesh_over_processes): each process
+// triangulates the particles of its part of space and a ghost layer and classifies the faces (meshing::remesh_part);
+// the shares are gathered in rank order, the same on every process.
+#include "remesh_pipeline.hpp"
+
+#include <lagfsi/meshing/partition.hpp>
+#include <lagfsi/mpi_run.hpp>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagfsi::fluid {
+
+namespace {
+
+/// Triangles as 3 indices each, and back.
+std::vector<Index> flatten(const std::vector<std::array<Index, 3>>& t) {
+  std::vector<Index> f;
+  f.reserve(3 * t.size());
+  for (const auto& e : t) f.insert(f.end(), e.begin(), e.end());
+  return f;
+}
+
+std::vector<std::array<Index, 3>> triangles(const std::vector<Index>& f) {
+  std::vector<std::array<Index, 3>> t(f.size() / 3);
+  for (size_t e = 0; e < t.size(); ++e) t[e] = {f[3 * e], f[3 * e + 1], f[3 * e + 2]};
+  return t;
+}
+
+int summed(int value) { return static_cast<int>(mpi_run::sum(value)); }
+
+}  // namespace
+
+meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
+                                            const std::vector<double>& h, const meshing::RemeshSettings& settings) {
+  const bool level_set = settings.detection == meshing::DomainDetection::LevelSet && settings.previous != nullptr &&
+                         !settings.previous->empty();
+  if (mpi_run::size() <= 1 || level_set) return meshing::remesh(pts, kind, h, settings);
+  // The halo: a kept element's circumradius is at most R = max(alpha, separation_alpha) h_e, and its circumdisc lies
+  // within 2 R of its centroid (meshing::remesh_part); two spacings more for the previous mesh's edges flipped back in.
+  const double h_max = h.empty() ? 0.0 : *std::max_element(h.begin(), h.end());
+  const bool advected = settings.previous != nullptr && !settings.previous->empty();
+  const double reach = std::max(settings.alpha, advected ? settings.separation_alpha : 0.0) * h_max;
+  const double halo = 2.0 * reach + 2.0 * h_max;
+  meshing::RemeshResult mine;
+  std::string failure;
+  try {
+    const meshing::SpacePartition partition(pts, mpi_run::size());
+    mine = meshing::remesh_part(pts, kind, h, settings, partition, mpi_run::rank(), halo);
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  if (const std::string first = mpi_run::first_failure(failure); !first.empty()) throw std::invalid_argument(first);
+
+  meshing::RemeshResult r;
+  // The elements added outside the previous domain: their indices in the gathered list (the processes before
+  // this one contributed theirs first).
+  const std::vector<Index> counts = mpi_run::gather_all({static_cast<Index>(mine.triangles.size())});
+  Index offset = 0;
+  for (int k = 0; k < mpi_run::rank(); ++k) offset += counts[static_cast<size_t>(k)];
+  for (Index& e : mine.added_elements) e += offset;
+  r.added_elements = mpi_run::gather_all(mine.added_elements);
+  r.triangles = triangles(mpi_run::gather_all(flatten(mine.triangles)));
+  r.separated = triangles(mpi_run::gather_all(flatten(mine.separated)));
+  r.boundary_only = triangles(mpi_run::gather_all(flatten(mine.boundary_only)));
+  r.free_surface = std::move(mine.free_surface);
+  r.connected = std::move(mine.connected);
+  mpi_run::or_flags(r.free_surface.data(), static_cast<Index>(r.free_surface.size()));
+  mpi_run::or_flags(r.connected.data(), static_cast<Index>(r.connected.size()));
+  double area = mine.area;
+  mpi_run::sum_in_rank_order(&area, 1);
+  r.area = area;
+  r.removed_alpha = summed(mine.removed_alpha);
+  r.removed_boundary_only = summed(mine.removed_boundary_only);
+  r.added_outside = summed(mine.added_outside);
+  r.separated_inside = summed(mine.separated_inside);
+  r.restored_edges = summed(mine.restored_edges);
+  r.lost_edges = summed(mine.lost_edges);
+  r.kept_edges = summed(mine.kept_edges);
+  return r;
+}
+
+}  // namespace lagfsi::fluid

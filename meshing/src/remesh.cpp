@@ -503,7 +503,7 @@ RemeshResult remesh(const std::vector<Vec2>& points, const std::vector<ParticleK
 
 RemeshResult remesh_part(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
                          const std::vector<double>& h, const RemeshSettings& settings, const SpacePartition& partition,
-                         int part, double halo) {
+                         int part, double halo, Index* ghost_count) {
   RemeshInput in{.points = points, .kind = kind, .h = h, .settings = settings, .where = "remesh_part"};
   check_remesh_input(in);
   if (settings.detection == DomainDetection::LevelSet && in.previous != nullptr)
@@ -522,6 +522,7 @@ RemeshResult remesh_part(const std::vector<Vec2>& points, const std::vector<Part
   for (std::size_t i = 0; i < n; ++i)
     if (partition.owner()[i] == part) local.push_back(static_cast<Index>(i));
   const std::vector<Index> ghosts = partition.ghosts(points, part, halo);
+  if (ghost_count != nullptr) *ghost_count = static_cast<Index>(ghosts.size());
   local.insert(local.end(), ghosts.begin(), ghosts.end());
   if (local.size() < 3) return result;
   DT dt;

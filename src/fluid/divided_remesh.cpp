@@ -5,6 +5,7 @@
 
 #include <lagfsi/meshing/partition.hpp>
 #include <lagfsi/mpi_run.hpp>
+#include <lagfsi/stopwatch.hpp>
 
 #include <algorithm>
 #include <array>
@@ -35,7 +36,8 @@ int summed(int value) { return static_cast<int>(mpi_run::sum(value)); }
 }  // namespace
 
 meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
-                                            const std::vector<double>& h, const meshing::RemeshSettings& settings) {
+                                            const std::vector<double>& h, const meshing::RemeshSettings& settings,
+                                            DividedRemeshStats* stats) {
   const bool level_set = settings.detection == meshing::DomainDetection::LevelSet && settings.previous != nullptr &&
                          !settings.previous->empty();
   if (mpi_run::size() <= 1 || level_set) return meshing::remesh(pts, kind, h, settings);
@@ -47,12 +49,15 @@ meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const 
   const double halo = 2.0 * reach + 2.0 * h_max;
   meshing::RemeshResult mine;
   std::string failure;
+  Index ghosts = 0;
+  const auto t0 = SteadyClock::now();
   try {
     const meshing::SpacePartition partition(pts, mpi_run::size());
-    mine = meshing::remesh_part(pts, kind, h, settings, partition, mpi_run::rank(), halo);
+    mine = meshing::remesh_part(pts, kind, h, settings, partition, mpi_run::rank(), halo, &ghosts);
   } catch (const std::exception& e) {
     failure = e.what();
   }
+  const auto t1 = SteadyClock::now();
   if (const std::string first = mpi_run::first_failure(failure); !first.empty()) throw std::invalid_argument(first);
 
   meshing::RemeshResult r;
@@ -80,7 +85,32 @@ meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const 
   r.restored_edges = summed(mine.restored_edges);
   r.lost_edges = summed(mine.lost_edges);
   r.kept_edges = summed(mine.kept_edges);
+  if (stats != nullptr) {
+    const long long received =
+        static_cast<long long>(3 * (r.triangles.size() + r.separated.size() + r.boundary_only.size()) +
+                               r.added_elements.size()) -
+        static_cast<long long>(3 * (mine.triangles.size() + mine.separated.size() + mine.boundary_only.size()) +
+                               mine.added_elements.size());
+    ++stats->remeshes;
+    stats->ghosts += static_cast<double>(mpi_run::sum(ghosts));
+    stats->particles += static_cast<double>(pts.size());
+    stats->gathered_indices += static_cast<double>(received);
+    stats->part_seconds += std::chrono::duration<double>(t1 - t0).count();
+    stats->gather_seconds += seconds_since(t1);
+  }
   return r;
+}
+
+Json DividedRemeshStats::summary(int processes) const {
+  if (remeshes == 0) return Json::object();
+  const double n = static_cast<double>(remeshes);
+  return {{"processes", processes},
+          {"remeshes", remeshes},
+          {"ghosts_per_process", ghosts / (n * processes)},
+          {"ghost_share", particles > 0 ? ghosts / particles : 0.0},
+          {"gathered_mb_per_remesh", 4.0 * gathered_indices / n / 1e6},
+          {"part_seconds", part_seconds},
+          {"gather_seconds", gather_seconds}};
 }
 
 }  // namespace lagfsi::fluid

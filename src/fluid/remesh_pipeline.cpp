@@ -1,6 +1,8 @@
 // The PFEM remeshing of a step and its filters (remesh_pipeline.hpp).
 #include "remesh_pipeline.hpp"
 
+#include <lagfsi/mpi_run.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -168,7 +170,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     settings.keep_edges_angle = s_.keep_edges_angle;
   }
   try {
-    r = remesh_over_processes(pts, kind, cloud_.h(), settings);
+    r = remesh_over_processes(pts, kind, cloud_.h(), settings, &divided_);
   } catch (const std::exception& e) {
     throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
   }
@@ -469,6 +471,7 @@ Json RemeshPipeline::summary() const {
             {"elements_separated", separated_},
             {"area_of_added_minus_separated_elements", area_excess_}};
   if (size_.adaptive()) j["particles_coarsened"] = coarsened_;
+  if (divided_.remeshes > 0) j["divided"] = divided_.summary(mpi_run::size());
   return j;
 }
 

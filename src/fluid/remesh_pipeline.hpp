@@ -29,14 +29,29 @@
 
 namespace lagfsi::fluid {
 
+/// What the remeshings divided among MPI processes cost (remesh_over_processes), since this process started (a
+/// restart counts from it): the ghost layer's size against the particles, the indices every process receives, and
+/// this process's time triangulating its part and gathering the others'.
+struct DividedRemeshStats {
+  long remeshes = 0;
+  double ghosts = 0;            ///< summed over the remeshes and the processes
+  double particles = 0;         ///< summed over the remeshes (each particle once)
+  double gathered_indices = 0;  ///< summed over the remeshes: the indices each process receives from the others
+  double part_seconds = 0;      ///< this process: partition, triangulation and classification of its part
+  double gather_seconds = 0;    ///< this process: gathering the shares (waiting for the slowest part included)
+  /// summary.json's "divided_remeshing" of a fluid body (empty without divided remeshings).
+  Json summary(int processes) const;
+};
+
 /// meshing::remesh() in a run over MPI processes (mpi_run.hpp): each process remeshes its part of a space partition of
 /// the particles with a ghost layer (meshing::remesh_part) and the shares are gathered in rank order, so that every
 /// process holds the same mesh: the serial one's elements in another order (the removed and separated faces' counts
 /// can differ by faces too large for a part to see whole). With one process, and with the level-set detection (which
 /// keeps elements of any size), remesh() itself. A failure on any process throws on every process with its message
-/// (divided_remesh.cpp).
+/// (divided_remesh.cpp). `stats` (optional) adds the remeshing's cost.
 meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
-                                            const std::vector<double>& h, const meshing::RemeshSettings& settings);
+                                            const std::vector<double>& h, const meshing::RemeshSettings& settings,
+                                            DividedRemeshStats* stats = nullptr);
 
 class RemeshPipeline {
  public:
@@ -235,6 +250,7 @@ class RemeshPipeline {
   // Remeshing's effect per step (log.csv) and over the run (summary.json).
   double remesh_dA_ = 0, remesh_dKE_ = 0;
   double remesh_area_added_ = 0, remesh_area_removed_ = 0, remesh_ke_total_ = 0, remesh_pe_total_ = 0;
+  DividedRemeshStats divided_;  // not checkpointed: this process's since it started
   long merged_ = 0, merged_meeting_ = 0, split_ = 0, inserted_ = 0, added_outside_ = 0, separated_ = 0,
        wall_removed_ = 0, kept_edges_ = 0, coarsened_ = 0;
   double area_excess_ = 0;  // area of the elements added outside the advected domain, less those torn off

@@ -9,7 +9,8 @@ src/core/include/lagfsi/mpi_run.hpp); the linear solves, the element assembly an
 domain detection are divided among them, the particle management is not. Per run, from process 0's log.csv over the steps after the first
 `--warmup`: microseconds per particle-step in all and by phase (remesh, assembly with the combination of the
 residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
-the same size (wall time per step, measured in this one invocation).
+the same size (wall time per step, measured in this one invocation); from summary.json, the divided remeshing's
+ghost share and the mesh data each process receives a remesh.
 
 usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
            [--steps 6] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
@@ -33,7 +34,7 @@ CASE = os.path.join(REPO, "cases", "dam_break_tank", "case.json")
 H0, N0, DT = 0.0073, 861, 1e-3
 PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
 COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
-           "setup", "solve", "rest", "peak_mb", "speedup"]
+           "setup", "solve", "rest", "peak_mb", "speedup", "ghost_share", "gathered_mb"]
 
 
 def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
@@ -65,6 +66,10 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     for name, col in PHASES:
         r[name] = sum(float(r_[col]) for r_ in steady) * scale
     r["rest"] = r["us_per_particle_step"] - sum(r[name] for name, _ in PHASES)
+    # The divided remeshing (summary.json): the ghosts over the particles, and what each process receives a remesh.
+    divided = s["bodies"][0]["remeshing"].get("divided", {})
+    r["ghost_share"] = divided.get("ghost_share", float("nan"))
+    r["gathered_mb"] = divided.get("gathered_mb_per_remesh", float("nan"))
     return r
 
 
@@ -73,13 +78,17 @@ def markdown(rows, commit, machine, scheme, command):
     lines = [f"Measured at {commit} on {machine} (`{command}`): the dam break's first steps, the "
              f"{what} with the PETSc solver, one thread per process; µs per particle-step over the steps "
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
-             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation).", "",
+             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); ghosts: "
+             "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
+             "each process receives of the others' shares of the mesh a remesh.", "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
-             "| peak MB | speed-up |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| peak MB | speed-up | ghosts | gathered MB |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
-                     f"{r['solve']:.2f} | {r['rest']:.2f} | {r['peak_mb']:.0f} | {r['speedup']:.2f} |")
+                     f"{r['solve']:.2f} | {r['rest']:.2f} | {r['peak_mb']:.0f} | {r['speedup']:.2f} | "
+                     + ("– | – |" if r["ghost_share"] != r["ghost_share"] else
+                        f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |"))
     return "\n".join(lines) + "\n"
 
 

@@ -6,7 +6,8 @@ Checks, on the first 0.1 s of the case with the PETSc solver:
   - one process under mpirun gives the serial run's probes bit for bit;
   - two and three processes give the serial mesh at every step (log.csv: the same step sizes, nodes and elements)
     and probes within the Krylov tolerance of the serial run's (relative to each column's largest value);
-  - process 0 alone writes the CSV files and summary.json (which says how many processes ran); the fluid's series
+  - process 0 alone writes the CSV files and summary.json (which says how many processes ran, and that the remeshing
+    was divided among them with a ghost layer); the fluid's series
     is parallel VTK: every step a .pvtu whose pieces (one per process) hold together the serial run's elements and
     particles;
   - bad input stops every process with one message and exit code 2.
@@ -83,8 +84,13 @@ for n in (2, 3):
             break
     import json
     with open(os.path.join(out, "summary.json")) as f:
-        if json.load(f).get("mpi_processes") != n:
-            failures.append("%d processes: summary.json does not say mpi_processes = %d" % (n, n))
+        summary = json.load(f)
+    if summary.get("mpi_processes") != n:
+        failures.append("%d processes: summary.json does not say mpi_processes = %d" % (n, n))
+    # The remeshing divided among the processes: a ghost layer, some but not all of the particles, per process.
+    divided = summary["bodies"][0]["remeshing"].get("divided", {})
+    if divided.get("processes") != n or not 0 < divided.get("ghost_share", 0) < n - 1:
+        failures.append("%d processes: summary.json's divided remeshing %s" % (n, divided))
 
 # Bad input: every process stops, one message (mpirun's own report aside), exit code 2.
 p = subprocess.run(MPI + ["2", exe, "run", case, "-o", os.path.join(work, "bad"), "--set", "analysis.dt=-1"],

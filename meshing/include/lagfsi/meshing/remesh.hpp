@@ -106,10 +106,10 @@ class SpacePartition;
 /// holds every particle of the cloud is Delaunay in both or in neither); the previous edges flipped back in are local
 /// to their quadrilaterals, for which the caller adds a margin. The level-set detection keeps faces of any size
 /// outside the previous domain and is refused (std::invalid_argument), as are a partition of other points, a part
-/// out of range and a halo that is not positive.
+/// out of range and a halo that is not positive. `ghost_count` (optional) receives the number of ghosts it used.
 RemeshResult remesh_part(const std::vector<Vec2>& points, const std::vector<ParticleKind>& kind,
                          const std::vector<double>& h, const RemeshSettings& settings, const SpacePartition& partition,
-                         int part, double halo);
+                         int part, double halo, Index* ghost_count = nullptr);
 
 /// The plain Delaunay triangulation of `points` (no alpha test, no removal), counter-clockwise, with the
 /// same construction, validation and duplicate check as remesh(); dimension < 2 (all points collinear)

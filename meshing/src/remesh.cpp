@@ -32,7 +32,7 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = K::Point_2;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;       // info: particle index
-using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;  // info: FaceFlag bits
+using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, K>;  // info: kKept, kReported bits
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
 
@@ -390,8 +390,9 @@ Verdict detect(const RemeshInput& in, const FaceGeometry& g) {
   return accept_contact(in, g, centroid) ? Verdict::AddedOutside : Verdict::RemovedAlpha;
 }
 
-/// Pass 1: each finite face is kept (info 1, appended to result.triangles) or not (info 0); the kept area
-/// (twice it, Neumaier-compensated) and the counts of result. An element failing both the alpha test and the
+/// Pass 1: each finite face is kept (info kKept; with kReported too when it is this call's, then appended to
+/// result.triangles) or not (info 0); the reported kept area (twice it, Neumaier-compensated) and the counts of
+/// result. An element failing both the alpha test and the
 /// wall/ghost-only test counts as removed by the alpha test.
 void keep_faces(const RemeshInput& in, DT& dt, const Reported& reported, RemeshResult& result) {
   result.triangles.reserve(dt.number_of_faces());

@@ -36,7 +36,7 @@ struct DividedRemeshStats {
   long remeshes = 0;
   double ghosts = 0;            ///< summed over the remeshes and the processes
   double particles = 0;         ///< summed over the remeshes (each particle once)
-  double gathered_indices = 0;  ///< summed over the remeshes: the indices each process receives from the others
+  double gathered_indices = 0;  ///< summed over the remeshes: the indices this process receives from the others
   double part_seconds = 0;      ///< this process: partition, triangulation and classification of its part
   double gather_seconds = 0;    ///< this process: gathering the shares (waiting for the slowest part included)
   /// summary.json's "divided_remeshing" of a fluid body (empty without divided remeshings).

@@ -10,7 +10,7 @@ domain detection are divided among them, the particle management is not. Per run
 `--warmup`: microseconds per particle-step in all and by phase (remesh, assembly with the combination of the
 residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
 the same size (wall time per step, measured in this one invocation); from summary.json, the divided remeshing's
-ghost share and the mesh data each process receives a remesh.
+ghost share and the mesh data process 0 receives a remesh.
 
 usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
            [--steps 6] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
@@ -80,7 +80,7 @@ def markdown(rows, commit, machine, scheme, command):
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
              "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); ghosts: "
              "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
-             "each process receives of the others' shares of the mesh a remesh.", "",
+             "process 0 receives of the others' shares of the mesh a remesh.", "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
              "| peak MB | speed-up | ghosts | gathered MB |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:

@@ -66,7 +66,7 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     for name, col in PHASES:
         r[name] = sum(float(r_[col]) for r_ in steady) * scale
     r["rest"] = r["us_per_particle_step"] - sum(r[name] for name, _ in PHASES)
-    # The divided remeshing (summary.json): the ghosts over the particles, and what each process receives a remesh.
+    # The divided remeshing (summary.json): the ghosts over the particles, and what process 0 receives a remesh.
     divided = s["bodies"][0]["remeshing"].get("divided", {})
     r["ghost_share"] = divided.get("ghost_share", float("nan"))
     r["gathered_mb"] = divided.get("gathered_mb_per_remesh", float("nan"))

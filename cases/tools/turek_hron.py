@@ -10,7 +10,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from claims_record import record  # noqa: E402
-from lagfsi_post import last_period_stats, read_csv, save, upward_crossings, water_balance  # noqa: E402
+from lagfsi_post import (last_period_stats, period_amplitudes, read_csv, save, upward_crossings,  # noqa: E402
+                         water_balance)
 
 
 def reference(case_dir, test):
@@ -191,16 +192,6 @@ def cfd_oscillation(out, case_dir, test, window, smooth, band=(1.0, 10.0)):
     return values
 
 
-def period_amplitudes(t, ups, v):
-    """(max - min)/2 of the series v (at the times t) over each whole period between consecutive times of `ups` (a
-    clock's upward mid-level crossings, upward_crossings)."""
-    out = []
-    for a, b in zip(ups[:-1], ups[1:]):
-        seg = [vv for tt, vv in zip(t, v) if a <= tt <= b]
-        out.append(0.5 * (max(seg) - min(seg)))
-    return out
-
-
 def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     """The flag's periodic oscillation in the run in `out` against reference/turek_hron_2006_<test>.csv of `case_dir`,
     as mean = (max + min)/2 and amplitude = (max - min)/2 over a period and the frequency, in the last `window` s of
@@ -265,7 +256,7 @@ def fsi_oscillation(out, case_dir, test, window, smooth, band=(0.5, 10.0)):
     for name in ("drag", "lift"):
         values["%s_raw_amplitude" % name] = raw[name]["amplitude"]
     ups = upward_crossings(tw, [series["uy_A"][k] for k in late])
-    periods = {name: period_amplitudes(tw, ups, [series[name][k] for k in late]) for name in ("ux_A", "uy_A")}
+    periods = {name: period_amplitudes(tw, [series[name][k] for k in late], ups) for name in ("ux_A", "uy_A")}
     for name, a in periods.items():
         n = max(1, len(a))
         mean = sum(a) / n

@@ -61,6 +61,17 @@ def upward_crossings(t, u):
     return ups
 
 
+def period_samples(t, u, start, end):
+    """The samples of u (at the times t) over one period, start <= t <= end."""
+    return [uu for tt, uu in zip(t, u) if start <= tt <= end]
+
+
+def period_amplitudes(t, u, ups):
+    """(max - min)/2 of u (at the times t) over each whole period between consecutive times of `ups` (a clock's
+    upward mid-level crossings, upward_crossings)."""
+    return [0.5 * (max(seg) - min(seg)) for seg in (period_samples(t, u, a, b) for a, b in zip(ups[:-1], ups[1:]))]
+
+
 def last_period_stats(t, u):
     """Turek & Hron's convention for a periodic signal: mean = (max + min)/2 and amplitude = (max - min)/2
     over the last full period; frequency from the mean spacing of the upward crossings of the mid-level
@@ -68,7 +79,7 @@ def last_period_stats(t, u):
     ups = upward_crossings(t, u)
     if len(ups) < 2:
         return None
-    seg = [uu for tt, uu in zip(t, u) if ups[-2] <= tt <= ups[-1]]
+    seg = period_samples(t, u, ups[-2], ups[-1])
     umax, umin = max(seg), min(seg)
     period = (ups[-1] - ups[0]) / (len(ups) - 1)
     return {"mean": 0.5 * (umax + umin), "amplitude": 0.5 * (umax - umin), "frequency": 1.0 / period,

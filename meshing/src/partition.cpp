@@ -97,6 +97,17 @@ std::vector<Index> SpacePartition::ghosts(const std::vector<Vec2>& points, int p
   return g;
 }
 
+std::vector<Index> SpacePartition::local(const std::vector<Vec2>& points, int part, double halo,
+                                         Index* ghost_count) const {
+  std::vector<Index> ids;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (owner_[i] == part) ids.push_back(static_cast<Index>(i));
+  const std::vector<Index> g = ghosts(points, part, halo);
+  if (ghost_count != nullptr) *ghost_count = static_cast<Index>(g.size());
+  ids.insert(ids.end(), g.begin(), g.end());
+  return ids;
+}
+
 std::pair<Vec2, double> circumcircle(const std::vector<Vec2>& points, std::array<Index, 3> t) {
   std::sort(t.begin(), t.end());
   const Vec2 a = points[static_cast<size_t>(t[0])];
@@ -111,12 +122,7 @@ std::pair<Vec2, double> circumcircle(const std::vector<Vec2>& points, std::array
 std::vector<std::array<Index, 3>> part_delaunay(const std::vector<Vec2>& points, const SpacePartition& partition,
                                                 int part, double halo, Index* ghost_count) {
   // The part's points, then its ghosts; the local triangulation in global indices.
-  std::vector<Index> local;
-  for (size_t i = 0; i < points.size(); ++i)
-    if (partition.owner()[i] == part) local.push_back(static_cast<Index>(i));
-  const std::vector<Index> g = partition.ghosts(points, part, halo);
-  if (ghost_count != nullptr) *ghost_count = static_cast<Index>(g.size());
-  local.insert(local.end(), g.begin(), g.end());
+  const std::vector<Index> local = partition.local(points, part, halo, ghost_count);
   std::vector<Vec2> pts;
   pts.reserve(local.size());
   for (Index i : local) pts.push_back(points[static_cast<size_t>(i)]);

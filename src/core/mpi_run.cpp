@@ -106,13 +106,6 @@ void or_flags(std::uint8_t* flags, Index n) {
   MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_UINT8_T, MPI_MAX, MPI_COMM_WORLD);
 }
 
-long long sum(long long value) {
-  if (my_size <= 1) return value;
-  long long r = 0;
-  MPI_Allreduce(&value, &r, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return r;
-}
-
 std::string first_failure(const std::string& message) {
   if (my_size <= 1) return message;
   const int mine = message.empty() ? my_size : my_rank;

@@ -31,21 +31,18 @@ std::vector<std::array<Index, 3>> triangles(const std::vector<Index>& f) {
   return t;
 }
 
-int summed(int value) { return static_cast<int>(mpi_run::sum(value)); }
-
 }  // namespace
 
 meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
                                             const std::vector<double>& h, const meshing::RemeshSettings& settings,
                                             DividedRemeshStats* stats) {
-  const bool level_set = settings.detection == meshing::DomainDetection::LevelSet && settings.previous != nullptr &&
-                         !settings.previous->empty();
+  const bool previous = settings.previous != nullptr && !settings.previous->empty();
+  const bool level_set = previous && settings.detection == meshing::DomainDetection::LevelSet;
   if (mpi_run::size() <= 1 || level_set) return meshing::remesh(pts, kind, h, settings);
   // The halo: a kept element's circumradius is at most R = max(alpha, separation_alpha) h_e, and its circumdisc lies
   // within 2 R of its centroid (meshing::remesh_part); two spacings more for the previous mesh's edges flipped back in.
   const double h_max = h.empty() ? 0.0 : *std::max_element(h.begin(), h.end());
-  const bool advected = settings.previous != nullptr && !settings.previous->empty();
-  const double reach = std::max(settings.alpha, advected ? settings.separation_alpha : 0.0) * h_max;
+  const double reach = std::max(settings.alpha, previous ? settings.separation_alpha : 0.0) * h_max;
   const double halo = 2.0 * reach + 2.0 * h_max;
   meshing::RemeshResult mine;
   std::string failure;
@@ -75,16 +72,25 @@ meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const 
   r.connected = std::move(mine.connected);
   mpi_run::or_flags(r.free_surface.data(), static_cast<Index>(r.free_surface.size()));
   mpi_run::or_flags(r.connected.data(), static_cast<Index>(r.connected.size()));
-  double area = mine.area;
-  mpi_run::sum_in_rank_order(&area, 1);
-  r.area = area;
-  r.removed_alpha = summed(mine.removed_alpha);
-  r.removed_boundary_only = summed(mine.removed_boundary_only);
-  r.added_outside = summed(mine.added_outside);
-  r.separated_inside = summed(mine.separated_inside);
-  r.restored_edges = summed(mine.restored_edges);
-  r.lost_edges = summed(mine.lost_edges);
-  r.kept_edges = summed(mine.kept_edges);
+  // The area, the counts and the ghosts summed in one reduction (the counts exact in double).
+  double sums[] = {mine.area,
+                   static_cast<double>(mine.removed_alpha),
+                   static_cast<double>(mine.removed_boundary_only),
+                   static_cast<double>(mine.added_outside),
+                   static_cast<double>(mine.separated_inside),
+                   static_cast<double>(mine.restored_edges),
+                   static_cast<double>(mine.lost_edges),
+                   static_cast<double>(mine.kept_edges),
+                   static_cast<double>(ghosts)};
+  mpi_run::sum_in_rank_order(sums, 9);
+  r.area = sums[0];
+  r.removed_alpha = static_cast<int>(sums[1]);
+  r.removed_boundary_only = static_cast<int>(sums[2]);
+  r.added_outside = static_cast<int>(sums[3]);
+  r.separated_inside = static_cast<int>(sums[4]);
+  r.restored_edges = static_cast<int>(sums[5]);
+  r.lost_edges = static_cast<int>(sums[6]);
+  r.kept_edges = static_cast<int>(sums[7]);
   if (stats != nullptr) {
     const long long received =
         static_cast<long long>(3 * (r.triangles.size() + r.separated.size() + r.boundary_only.size()) +
@@ -92,7 +98,7 @@ meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const 
         static_cast<long long>(3 * (mine.triangles.size() + mine.separated.size() + mine.boundary_only.size()) +
                                mine.added_elements.size());
     ++stats->remeshes;
-    stats->ghosts += static_cast<double>(mpi_run::sum(ghosts));
+    stats->ghosts += sums[8];
     stats->particles += static_cast<double>(pts.size());
     stats->gathered_indices += static_cast<double>(received);
     stats->part_seconds += std::chrono::duration<double>(t1 - t0).count();

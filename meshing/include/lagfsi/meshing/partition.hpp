@@ -42,6 +42,9 @@ class SpacePartition {
   /// The points (of those given to the constructor, at their positions `points`) within `halo` of the part's box
   /// and not in the part: its ghosts.
   std::vector<Index> ghosts(const std::vector<Vec2>& points, int part, double halo) const;
+  /// The points a part triangulates: its own (in increasing index), then its ghosts; `ghost_count` (optional)
+  /// receives how many of them are ghosts.
+  std::vector<Index> local(const std::vector<Vec2>& points, int part, double halo, Index* ghost_count = nullptr) const;
 
  private:
   /// A cut: x[axis] < at goes to `low`, the rest to `high` (a negative child -1 - k is part k).

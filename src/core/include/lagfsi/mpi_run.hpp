@@ -63,8 +63,6 @@ LinearSolverSettings distribute(LinearSolverSettings s);
 std::vector<Index> gather_all(const std::vector<Index>& mine);
 /// Flags set (non-zero) on any process, set on every process, in place.
 void or_flags(std::uint8_t* flags, Index n);
-/// The sum over the processes of `value` (the same on every process).
-long long sum(long long value);
 /// A failure some processes saw: the message of the lowest process whose `message` is not empty, on every process,
 /// prefixed by that process's rank when there are several; empty when none failed. Every process must call it.
 std::string first_failure(const std::string& message);

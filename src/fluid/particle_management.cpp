@@ -242,20 +242,41 @@ void RemeshPipeline::merge_onto_walls(Management& m) {
   const std::vector<Vec2>& pts = m.pts;
   // Within r h_i of fluid particle i (h_i its size); the grids' cells r h_max.
   const double r = std::max(s_.close_fraction, 0.05), cell = std::max(r * cloud_.h_max(), 1e-300);
-  // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles, and the
-  // wall and ghost particles (none with walls as constraints but a structure's ghosts).
+  const auto fluid = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid; };
+  // A merge needs a particle on a wall in the pair, within r h_max of the other; and what a particle's search
+  // finds is decided by the particles within r h_max of it. So only the particles within 2 r h_max of a
+  // particle on a wall take part (the same merges as a pass over all of them, at the cost of the few near the
+  // walls): `near` marks them.
+  std::vector<char> near(static_cast<size_t>(np), 0);
+  std::size_t n_near = 0;
+  {
+    std::size_t n_walled = 0;
+    for (Index i = 0; i < np; ++i) n_walled += fluid(i) && m.walled(i) > 0;
+    PointGrid walled(2.0 * cell, n_walled);
+    for (Index i = 0; i < np; ++i)
+      if (fluid(i) && m.walled(i) > 0) walled.add(pts[i], i);
+    if (n_walled > 0)
+      for (Index i = 0; i < np; ++i)
+        if (fluid(i) && (m.walled(i) > 0 || walled.find(pts[i], 2.0 * cell, pts) >= 0)) {
+          near[static_cast<size_t>(i)] = 1;
+          ++n_near;
+        }
+  }
+  // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles near the
+  // walls, and the wall and ghost particles (none with walls as constraints but a structure's ghosts).
   const auto n_fluid =
       static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
-  PointGrid grid(cell, n_fluid), prescribed(cell, static_cast<std::size_t>(np) - n_fluid);
+  PointGrid grid(cell, n_near), prescribed(cell, static_cast<std::size_t>(np) - n_fluid);
   for (Index i = 0; i < np; ++i)
-    if (cloud_.kind(i) != ParticleKind::Fluid) prescribed.add(pts[i], i);
+    if (!fluid(i)) prescribed.add(pts[i], i);
   for (Index i = 0; i < np; ++i) {
-    if (cloud_.kind(i) != ParticleKind::Fluid) continue;
+    if (!fluid(i)) continue;
     const double ri = r * cloud_.h(i);
     if (const Index g = prescribed.find(pts[i], ri, pts); g >= 0) {
       leave_to_wall(m, i, g);
       continue;
     }
+    if (!near[static_cast<size_t>(i)]) continue;
     // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
     // particle; it was left beside it, and the triangulation failed on the duplicate point).
     const Index j = grid.find(pts[i], ri, pts);
@@ -321,7 +342,11 @@ void RemeshPipeline::merge_close_pairs(Management& m) {
   // triangulation joins it by a sliver whose particles pass each other within the step (cases/dam_break_obstacle:
   // two film particles running into each other, a sliver turned over at every step). Merged too, as the alpha
   // detection merges close pairs on the new mesh.
-  PointGrid untouched(std::max(s_.close_fraction * cloud_.h_max(), 1e-300), static_cast<std::size_t>(m.np));
+  // Cells of the smallest particle size (at least close_fraction h_max, as find() needs): about a particle per
+  // cell where the particles are finest, so that a search reads a few cache lines, not nine mostly empty slots of a
+  // table of a slot per particle (the same pairs whatever the cell: find() returns the largest id in reach).
+  const double cell = std::max({s_.close_fraction * cloud_.h_max(), cloud_.h_min(), 1e-300});
+  PointGrid untouched(cell, static_cast<std::size_t>(m.np));
   for (Index i = 0; i < m.np; ++i) {
     if (cloud_.kind(i) != ParticleKind::Fluid || m.touched[i]) continue;
     const Index j = untouched.find(m.pts[i], s_.close_fraction * cloud_.h(i), m.pts);

@@ -9,11 +9,14 @@ src/core/include/lagfsi/mpi_run.hpp); the linear solves, the element assembly an
 domain detection are divided among them, the particle management is not. Per run, from process 0's log.csv over the steps after the first
 `--warmup`: microseconds per particle-step in all and by phase (remesh, assembly with the combination of the
 residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
-the same size (wall time per step, measured in this one invocation); from summary.json, the divided remeshing's
-ghost share and the mesh data process 0 receives a remesh.
+the same size (wall time per step, measured in this one invocation), the Newton iterations a step and that speed-up
+per Newton iteration; from summary.json, the Krylov iterations a solve, the divided remeshing's ghost share and the
+mesh data process 0 receives a remesh; and the memory bandwidth of one process alone and of each of P at once (the
+STREAM triad of tests/bench/bench_bandwidth.cpp), which bounds what P processes gain on this machine's memory-bound
+phases.
 
 usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
-           [--steps 6] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
+           [--steps 8] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
            [--marker bench_mpi]
 --doc: rewrite the table between the markers <!-- MARKER begin --> and <!-- MARKER end --> of that file.
 Sizes past the 2 million nodes a mesh may have by default pass --max-nodes.
@@ -34,7 +37,8 @@ CASE = os.path.join(REPO, "cases", "dam_break_tank", "case.json")
 H0, N0, DT = 0.0073, 861, 1e-3
 PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
 COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
-           "setup", "solve", "rest", "peak_mb", "speedup", "ghost_share", "gathered_mb"]
+           "setup", "solve", "rest", "peak_mb", "speedup", "newton_per_step", "krylov_per_solve", "speedup_per_iteration",
+           "ghost_share", "gathered_mb"]
 
 
 def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
@@ -66,6 +70,11 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     for name, col in PHASES:
         r[name] = sum(float(r_[col]) for r_ in steady) * scale
     r["rest"] = r["us_per_particle_step"] - sum(r[name] for name, _ in PHASES)
+    # Newton iterations a step (the steps measured) and Krylov iterations a solve (the whole run): two runs whose
+    # Newton tests stop after different counts differ by whole iterations, which the speed-up per iteration removes.
+    r["newton_per_step"] = sum(float(r_["iterations"]) for r_ in steady) / len(steady)
+    newton = s["bodies"][0].get("linear_solvers", {}).get("newton", {})
+    r["krylov_per_solve"] = newton.get("iterations_per_solve", float("nan"))
     # The divided remeshing (summary.json): the ghosts over the particles, and what process 0 receives a remesh.
     divided = s["bodies"][0]["remeshing"].get("divided", {})
     r["ghost_share"] = divided.get("ghost_share", float("nan"))
@@ -73,29 +82,62 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     return r
 
 
-def markdown(rows, commit, machine, scheme, command):
+def bandwidth(build, processes):
+    """GB/s of one bench_bandwidth alone and of each of P copies run at once (the STREAM triad, bench_bandwidth.cpp):
+    {P: [GB/s of each copy]}, or {} without the program."""
+    exe = os.path.join(build, "tests", "bench_bandwidth")
+    if not os.path.exists(exe):
+        return {}
+    out = {}
+    for p in sorted({1, *processes}):
+        runs = [subprocess.Popen([exe], stdout=subprocess.PIPE, text=True) for _ in range(p)]
+        out[p] = [float(proc.communicate()[0].split()[0]) for proc in runs]
+    return out
+
+
+def bandwidth_sentence(measures):
+    """The bandwidth measured before and after the runs, in words."""
+    said = []
+    for when, bw in measures:
+        if 1 not in bw:
+            continue
+        one = bw[1][0]
+        parts = [f"{p} at once {sum(v) / len(v):.1f} GB/s each ({sum(v) / one:.2f} times one's in all)"
+                 for p, v in sorted(bw.items()) if p > 1]
+        said.append(f"{when}, one process alone {one:.1f} GB/s, " + ", ".join(parts))
+    if not said:
+        return ""
+    return (" Memory bandwidth (the STREAM triad of `tests/bench/bench_bandwidth.cpp`, in the same invocation): "
+            + "; ".join(said) + ".")
+
+
+def markdown(rows, commit, machine, scheme, command, bw):
     what = {"monolithic_pspg": "monolithic scheme", "fractional_step": "fractional step"}[scheme]
     lines = [f"Measured at {commit} on {machine} (`{command}`): the dam break's first steps, the "
              f"{what} with the PETSc solver, one thread per process; µs per particle-step over the steps "
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
-             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); ghosts: "
+             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); Newton: "
+             "iterations a step; Krylov: iterations a linear solve (the whole run); per iteration: the speed-up of the "
+             "time per Newton iteration (the runs' Newton tests may stop after different counts); ghosts: "
              "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
-             "process 0 receives of the others' shares of the mesh a remesh.", "",
+             "process 0 receives of the others' shares of the mesh a remesh." + bandwidth_sentence(bw), "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
-             "| peak MB | speed-up | ghosts | gathered MB |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
                      f"{r['solve']:.2f} | {r['rest']:.2f} | {r['peak_mb']:.0f} | {r['speedup']:.2f} | "
+                     f"{r['newton_per_step']:.2f} | {r['krylov_per_solve']:.2f} | {r['speedup_per_iteration']:.2f} | "
                      + ("– | – |" if r["ghost_share"] != r["ghost_share"] else
                         f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |"))
     return "\n".join(lines) + "\n"
 
 
-def publish(rows, doc, marker, scheme, command):
+def publish(rows, doc, marker, scheme, command, bw):
     commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
-    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}", scheme, command)
+    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}", scheme, command, bw)
     print(table)
     if doc:
         text = open(doc).read()
@@ -112,7 +154,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
     ap.add_argument("--sizes", nargs="+", type=float, default=[1e5, 1e6])
     ap.add_argument("--processes", nargs="+", type=int, default=[2])
-    ap.add_argument("--steps", type=int, default=6)
+    ap.add_argument("--steps", type=int, default=8)
     ap.add_argument("--warmup", type=int, default=2)
     ap.add_argument("--scheme", default="monolithic_pspg", choices=["monolithic_pspg", "fractional_step"])
     ap.add_argument("--doc")
@@ -122,6 +164,7 @@ def main():
     outdir = a.outdir or os.path.join(a.build, "bench_mpi")
     os.makedirs(outdir, exist_ok=True)
     rows = []
+    bw_before = bandwidth(a.build, a.processes)
     for n in a.sizes:
         size_rows = [run(exe, outdir, "serial", 1, n, a.steps, a.warmup, a.scheme),
                      run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup, a.scheme)]
@@ -131,6 +174,8 @@ def main():
         for r in size_rows:
             # Per step: the particle counts of the runs agree (the same mesh at every step).
             r["speedup"] = base["us_per_particle_step"] / r["us_per_particle_step"] if base else float("nan")
+            r["speedup_per_iteration"] = (r["speedup"] * r["newton_per_step"] / base["newton_per_step"] if base
+                                          else float("nan"))
             print(f"bench_mpi: {r['launch']} np {r['processes']} n {r['particles']}: "
                   f"{r['us_per_particle_step']:.2f} us/particle-step, speed-up {r['speedup']:.2f}", file=sys.stderr)
         rows += size_rows
@@ -141,7 +186,9 @@ def main():
     command = "tests/bench/bench_mpi.py --sizes " + " ".join(("%g" % n).replace("e+0", "e") for n in a.sizes)
     if a.scheme != "monolithic_pspg":
         command += " --scheme " + a.scheme
-    publish(rows, a.doc, a.marker, a.scheme, command)
+    bw = [("before the runs", bw_before), ("after them", bandwidth(a.build, a.processes))]
+    print("bench_mpi:" + bandwidth_sentence(bw), file=sys.stderr)
+    publish(rows, a.doc, a.marker, a.scheme, command, bw)
 
 
 if __name__ == "__main__":

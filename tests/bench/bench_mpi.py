@@ -19,6 +19,7 @@ usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes
            [--steps 8] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
            [--marker bench_mpi]
 --doc: rewrite the table between the markers <!-- MARKER begin --> and <!-- MARKER end --> of that file.
+--weak N ...: weak scaling instead, one process at N particles against P processes at P N (marker bench_mpi_weak).
 Sizes past the 2 million nodes a mesh may have by default pass --max-nodes.
 Run it on an otherwise idle machine: P processes need P free cores.
 OUTDIR (default BUILD/bench_mpi/) receives bench_mpi.csv and the runs' output folders.
@@ -148,6 +149,54 @@ def publish(rows, doc, marker, scheme, command, bw):
         open(doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
 
 
+def seconds_per_step(r):
+    return r["us_per_particle_step"] * r["particles"] / 1e6
+
+
+def weak(a, exe, outdir):
+    """Weak scaling: the one-process MPI run at N particles against P processes at P N (the same particles per
+    process); the efficiency is the one-process time per step (or per Newton iteration) over the P-process one."""
+    bw_before = bandwidth(a.build, a.processes)
+    rows = []
+    for n in a.weak:
+        pair = [run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup, a.scheme)]
+        pair += [run(exe, outdir, "mpirun", p, p * n, a.steps, a.warmup, a.scheme) for p in a.processes]
+        pair = [r for r in pair if r]
+        base = next((r for r in pair if r["processes"] == 1), None)
+        for r in pair:
+            r["efficiency"] = seconds_per_step(base) / seconds_per_step(r) if base else float("nan")
+            r["efficiency_per_iteration"] = (r["efficiency"] * r["newton_per_step"] / base["newton_per_step"] if base
+                                             else float("nan"))
+            print(f"bench_mpi: weak np {r['processes']} n {r['particles']}: {seconds_per_step(r):.3f} s a step, "
+                  f"efficiency {r['efficiency']:.2f}", file=sys.stderr)
+        rows += pair
+    bw = [("before the runs", bw_before), ("after them", bandwidth(a.build, a.processes))]
+    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    command = "tests/bench/bench_mpi.py --weak " + " ".join(("%g" % n).replace("e+0", "e") for n in a.weak)
+    lines = [f"Measured at {commit} on {os.cpu_count()} cores, {platform.machine()} (`{command}`): the same particles "
+             "per process, the dam break's first steps as in the table above; seconds a step over the steps after "
+             "the first two (process 0's log); efficiency: the one-process time a step (or a Newton iteration) over "
+             "this run's, 1 when the work per process stays the same." + bandwidth_sentence(bw), "",
+             "| processes | particles | s a step | Newton a step | remesh | assembly | set-up | solve (µs/particle-step) "
+             "| efficiency | per iteration | ghosts |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['processes']} | {r['particles']} | {seconds_per_step(r):.3f} | {r['newton_per_step']:.2f} | "
+                     f"{r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | {r['solve']:.2f} | "
+                     f"{r['efficiency']:.2f} | {r['efficiency_per_iteration']:.2f} | "
+                     + ("– |" if r["ghost_share"] != r["ghost_share"] else f"{100 * r['ghost_share']:.1f} % |"))
+    table = "\n".join(lines) + "\n"
+    print(table)
+    if a.doc:
+        text = open(a.doc).read()
+        marker = a.marker if a.marker != "bench_mpi" else "bench_mpi_weak"
+        begin, end = f"<!-- {marker} begin -->", f"<!-- {marker} end -->"
+        if begin not in text or end not in text:
+            sys.exit(f"bench_mpi: {a.doc} has no {begin} ... {end} markers")
+        head, rest = text.split(begin, 1)
+        open(a.doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("outdir", nargs="?")
@@ -159,10 +208,15 @@ def main():
     ap.add_argument("--scheme", default="monolithic_pspg", choices=["monolithic_pspg", "fractional_step"])
     ap.add_argument("--doc")
     ap.add_argument("--marker", default="bench_mpi")
+    ap.add_argument("--weak", nargs="+", type=float,
+                    help="weak scaling instead: one process at each N against P processes at P N")
     a = ap.parse_args()
     exe = os.path.join(a.build, "lagfsi")
     outdir = a.outdir or os.path.join(a.build, "bench_mpi")
     os.makedirs(outdir, exist_ok=True)
+    if a.weak:
+        weak(a, exe, outdir)
+        return
     rows = []
     bw_before = bandwidth(a.build, a.processes)
     for n in a.sizes:

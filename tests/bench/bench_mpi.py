@@ -74,8 +74,10 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     # Newton iterations a step (the steps measured) and Krylov iterations a solve (the whole run): two runs whose
     # Newton tests stop after different counts differ by whole iterations, which the speed-up per iteration removes.
     r["newton_per_step"] = sum(float(r_["iterations"]) for r_ in steady) / len(steady)
-    newton = s["bodies"][0].get("linear_solvers", {}).get("newton", {})
-    r["krylov_per_solve"] = newton.get("iterations_per_solve", float("nan"))
+    # The monolithic scheme's Newton solver, or the fractional step's pressure solver.
+    solvers = s["bodies"][0].get("linear_solvers", {})
+    solver = solvers.get("newton", solvers.get("pressure", {}))
+    r["krylov_per_solve"] = solver.get("iterations_per_solve", float("nan"))
     # The divided remeshing (summary.json): the ghosts over the particles, and what process 0 receives a remesh.
     divided = s["bodies"][0]["remeshing"].get("divided", {})
     r["ghost_share"] = divided.get("ghost_share", float("nan"))
@@ -118,7 +120,8 @@ def markdown(rows, commit, machine, scheme, command, bw):
              f"{what} with the PETSc solver, one thread per process; µs per particle-step over the steps "
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
              "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); Newton: "
-             "iterations a step; Krylov: iterations a linear solve (the whole run); per iteration: the speed-up of the "
+             "iterations a step; Krylov: iterations a linear solve (the whole run" +
+             ("; the pressure solve" if scheme == "fractional_step" else "") + "); per iteration: the speed-up of the "
              "time per Newton iteration (the runs' Newton tests may stop after different counts); ghosts: "
              "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
              "process 0 receives of the others' shares of the mesh a remesh." + bandwidth_sentence(bw), "",

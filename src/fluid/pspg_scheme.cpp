@@ -113,23 +113,16 @@ class PspgScheme final : public FluidScheme {
   PspgSettings s_;
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<LinearSolver> solver_;
-  /// fn(row, col, value) on each stored entry of J_ in this process's rows (all of them unless the assembly is
-  /// split: the other rows are other processes' to fill, and the distributed solver reads its own only).
+  /// fn(row, col, value) on each stored entry of J_. With the assembly split over processes these include rows of
+  /// other processes (this process's elements add to them too); the distributed solver reads only its own rows, so
+  /// what is done to the others does not matter, and no search for the own rows is needed.
   template <class Fn>
-  void for_own_entries(const Fn& fn) {
-    const Index lo = 3 * rows_.first(), hi = 3 * rows_.last();
+  void for_each_entry(const Fn& fn) {
     const int* outer = J_.outerIndexPtr();
     const int* inner = J_.innerIndexPtr();
     double* values = J_.valuePtr();
-    for (Index col = 0; col < J_.outerSize(); ++col) {
-      const int* first = inner + outer[col];
-      const int* last = inner + outer[col + 1];
-      if (rows_.split()) {  // each column's rows are sorted
-        first = std::lower_bound(first, last, lo);
-        last = std::lower_bound(first, last, hi);
-      }
-      for (const int* it = first; it != last; ++it) fn(*it, col, values[it - inner]);
-    }
+    for (Index col = 0; col < J_.outerSize(); ++col)
+      for (int k = outer[col]; k < outer[col + 1]; ++k) fn(inner[k], col, values[k]);
   }
   /// The message of an element that turned over within the step.
   std::string inverted_message(Index e, const Vec& x) const;
@@ -167,9 +160,7 @@ IterationReport PspgScheme::iterate() {
   f_.boundaries.set_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   Vec R = Vec::Zero(3 * np);
-  // Every stored entry, this process's rows and the others' (which its elements also add to and which the
-  // distributed solver does not read): one pass over the values instead of a search for this process's rows in
-  // each column.
+  // Every stored entry (for_each_entry: the other processes' rows do not matter).
   std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
   std::vector<char> has_mass(np, 0);
   double inertia2 = 0, gravity2 = 0, viscous2 = 0;
@@ -335,7 +326,7 @@ double PspgScheme::apply_dirichlet(Vec& R, double sp) {
   // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
   // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
-  for_own_entries([&](Index row, Index col, double& value) {
+  for_each_entry([&](Index row, Index col, double& value) {
     if (fixed[row] || fixed[col])
       value = row == col ? 1.0 : 0.0;
     else if (col % 3 == 2)

@@ -42,6 +42,7 @@ class ParticleCloud {
   double h(Index i) const { return hvec_[i]; }
   /// The largest particle size (0 without particles).
   double h_max() const { return hvec_.empty() ? 0.0 : *std::max_element(hvec_.begin(), hvec_.end()); }
+  /// The smallest particle size (0 without particles).
   double h_min() const { return hvec_.empty() ? 0.0 : *std::min_element(hvec_.begin(), hvec_.end()); }
   /// A particle's size (an adaptive size field's target, size_field.hpp).
   void set_h(Index i, double h) { hvec_[static_cast<size_t>(i)] = h; }

@@ -38,8 +38,6 @@ class ProcessRows {
     own_ = split_ ? mpi_run::owned_blocks(np) : std::pair<Index, Index>{0, np};
   }
   bool split() const { return split_; }
-  Index first() const { return own_.first; }
-  Index last() const { return own_.second; }
   /// Particle i's rows are this process's.
   bool own(Index i) const { return i >= own_.first && i < own_.second; }
   /// The element of particles t is this process's to assemble: one of them has its rows here (every element

@@ -252,12 +252,12 @@ void RemeshPipeline::merge_onto_walls(Management& m) {
   {
     std::size_t n_walled = 0;
     for (Index i = 0; i < np; ++i) n_walled += fluid(i) && m.walled(i) > 0;
-    PointGrid walled(2.0 * cell, n_walled);
+    PointGrid on_walls(2.0 * cell, n_walled);
     for (Index i = 0; i < np; ++i)
-      if (fluid(i) && m.walled(i) > 0) walled.add(pts[i], i);
+      if (fluid(i) && m.walled(i) > 0) on_walls.add(pts[i], i);
     if (n_walled > 0)
       for (Index i = 0; i < np; ++i)
-        if (fluid(i) && (m.walled(i) > 0 || walled.find(pts[i], 2.0 * cell, pts) >= 0)) {
+        if (fluid(i) && (m.walled(i) > 0 || on_walls.find(pts[i], 2.0 * cell, pts) >= 0)) {
           near[static_cast<size_t>(i)] = 1;
           ++n_near;
         }

@@ -138,18 +138,26 @@ def markdown(rows, commit, machine, scheme, command, bw):
     return "\n".join(lines) + "\n"
 
 
+def head_commit():
+    return subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                          text=True).stdout.strip()
+
+
+def rewrite(doc, marker, table):
+    """Puts `table` between the markers <!-- MARKER begin --> and <!-- MARKER end --> of `doc`."""
+    text = open(doc).read()
+    begin, end = f"<!-- {marker} begin -->", f"<!-- {marker} end -->"
+    if begin not in text or end not in text:
+        sys.exit(f"bench_mpi: {doc} has no {begin} ... {end} markers")
+    head, rest = text.split(begin, 1)
+    open(doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
+
+
 def publish(rows, doc, marker, scheme, command, bw):
-    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
-    table = markdown(rows, commit, f"{os.cpu_count()} cores, {platform.machine()}", scheme, command, bw)
+    table = markdown(rows, head_commit(), f"{os.cpu_count()} cores, {platform.machine()}", scheme, command, bw)
     print(table)
     if doc:
-        text = open(doc).read()
-        begin, end = f"<!-- {marker} begin -->", f"<!-- {marker} end -->"
-        if begin not in text or end not in text:
-            sys.exit(f"bench_mpi: {doc} has no {begin} ... {end} markers")
-        head, rest = text.split(begin, 1)
-        open(doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
+        rewrite(doc, marker, table)
 
 
 def seconds_per_step(r):
@@ -174,10 +182,8 @@ def weak(a, exe, outdir):
                   f"efficiency {r['efficiency']:.2f}", file=sys.stderr)
         rows += pair
     bw = [("before the runs", bw_before), ("after them", bandwidth(a.build, a.processes))]
-    commit = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
     command = "tests/bench/bench_mpi.py --weak " + " ".join(("%g" % n).replace("e+0", "e") for n in a.weak)
-    lines = [f"Measured at {commit} on {os.cpu_count()} cores, {platform.machine()} (`{command}`): the same particles "
+    lines = [f"Measured at {head_commit()} on {os.cpu_count()} cores, {platform.machine()} (`{command}`): the same particles "
              "per process, the dam break's first steps as in the table above; seconds a step over the steps after "
              "the first two (process 0's log); efficiency: the one-process time a step (or a Newton iteration) over "
              "this run's, 1 when the work per process stays the same." + bandwidth_sentence(bw), "",
@@ -191,13 +197,7 @@ def weak(a, exe, outdir):
     table = "\n".join(lines) + "\n"
     print(table)
     if a.doc:
-        text = open(a.doc).read()
-        marker = a.marker if a.marker != "bench_mpi" else "bench_mpi_weak"
-        begin, end = f"<!-- {marker} begin -->", f"<!-- {marker} end -->"
-        if begin not in text or end not in text:
-            sys.exit(f"bench_mpi: {a.doc} has no {begin} ... {end} markers")
-        head, rest = text.split(begin, 1)
-        open(a.doc, "w").write(head + begin + "\n" + table + end + rest.split(end, 1)[1])
+        rewrite(a.doc, a.marker if a.marker != "bench_mpi" else "bench_mpi_weak", table)
 
 
 def main():

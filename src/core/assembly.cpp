@@ -7,7 +7,7 @@
 namespace lagfsi {
 
 ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn)
-    : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
+    : m_(npe * dpn), npe_(npe), dpn_(dpn), ne_(static_cast<Index>(conn.size() / npe)) {
   std::vector<Index> all(static_cast<size_t>(ne_));
   for (Index e = 0; e < ne_; ++e) all[static_cast<size_t>(e)] = e;
   build(conn, npe, num_nodes, dpn, all);
@@ -15,7 +15,7 @@ ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index nu
 
 ElementPattern::ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dpn,
                                const std::vector<char>& keep)
-    : m_(npe * dpn), ne_(static_cast<Index>(conn.size() / npe)) {
+    : m_(npe * dpn), npe_(npe), dpn_(dpn), ne_(static_cast<Index>(conn.size() / npe)) {
   if (keep.size() != static_cast<size_t>(ne_)) throw std::invalid_argument("ElementPattern: one keep flag per element");
   std::vector<Index> kept;
   slot_.assign(static_cast<size_t>(ne_), -1);
@@ -71,23 +71,21 @@ void ElementPattern::build(const std::vector<Index>& conn, int npe, Index num_no
     }
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + nnz, 0.0);
 
-  // Scatter: column dpn n + c holds, for each neighbour of node n in order, its dpn rows; so the entry of row
-  // dpn m + d is at outer[dpn n + c] + dpn k + d, k the place of m among n's neighbours (one search per node
-  // pair, not per dof pair).
-  scatter_.resize(elements.size() * m_ * m_);
+  // Scatter (assembly.hpp): per node pair (a, b) the base outer[dpn c_a] + dpn k, k the place of c_b among c_a's
+  // neighbours, and per node the stride dpn (neighbours of c_a) between the columns of c_a's unknowns.
+  per_element_ = static_cast<size_t>(npe) * npe + (dpn > 1 ? npe : 0);
+  scatter_.resize(elements.size() * per_element_);
   const int* op = pattern_.outerIndexPtr();
   for (size_t k = 0; k < elements.size(); ++k) {
     const Index* c = conn.data() + static_cast<size_t>(elements[k]) * npe;
-    int* sc = scatter_.data() + k * m_ * m_;
+    int* sc = scatter_.data() + k * per_element_;
     for (int a = 0; a < npe; ++a) {
       const Index* row = adj.data() + start[c[a]];
       for (int b = 0; b < npe; ++b) {
-        const int k = static_cast<int>(std::lower_bound(row, row + count[c[a]], c[b]) - row);
-        for (int cj = 0; cj < dpn; ++cj) {
-          const int base = op[dpn * c[a] + cj] + dpn * k;
-          for (int ci = 0; ci < dpn; ++ci) sc[(a * dpn + cj) * m_ + b * dpn + ci] = base + ci;
-        }
+        const int place = static_cast<int>(std::lower_bound(row, row + count[c[a]], c[b]) - row);
+        sc[a * npe + b] = op[dpn * c[a]] + dpn * place;
       }
+      if (dpn > 1) sc[npe * npe + a] = dpn * count[c[a]];
     }
   }
 

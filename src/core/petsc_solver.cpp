@@ -173,8 +173,14 @@ class PetscSolver final : public LinearSolver {
   /// The rows [lo, hi) this process owns in a system of n rows: whole blocks of block_size rows (all rows on one
   /// process), as PETSc's default split gives them.
   std::pair<PetscInt, PetscInt> ownership(PetscInt n) const;
-  /// A new matrix, vectors and KSP for a new pattern (the rows of R, compressed row storage).
-  void create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R);
+  /// A new matrix, vectors and KSP for a new pattern of n rows: this process's rows [lo, hi) in compressed row
+  /// storage (row pointers from 0, column indices, and values or nullptr for zeros).
+  void create(PetscInt n, const PetscInt* rows, const PetscInt* cols, const double* vals);
+  /// A system on one process: A's rows written straight into the PETSc matrix, with no compressed-row copy of it
+  /// kept (the matrix's own pattern is the one the next setup compares with).
+  void setup_whole(const SparseMatrix& A);
+  /// A distributed system: this process's rows of A into the distributed matrix.
+  void setup_own_rows(const SparseMatrix& A);
   /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
   void set_rigid_body_modes(PetscInt lo, PetscInt hi);
   /// The values of R into the matrix (same pattern as at create).
@@ -195,7 +201,7 @@ class PetscSolver final : public LinearSolver {
   KSP ksp_ = nullptr;
   Mat mat_ = nullptr;
   ::Vec x_ = nullptr, b_ = nullptr;
-  std::vector<PetscInt> outer_, inner_;  // the pattern of the matrix (row pointers, column indices)
+  std::vector<PetscInt> outer_, inner_;  // a distributed matrix's pattern (row pointers, this process's columns)
   Vec coordinates_;                      // set_coordinates: the rigid-body near-null space's nodes
 };
 
@@ -210,9 +216,8 @@ std::pair<PetscInt, PetscInt> PetscSolver::ownership(PetscInt n) const {
   return {first_block * bs, (first_block + local_blocks) * bs};
 }
 
-void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
+void PetscSolver::create(PetscInt n, const PetscInt* rows, const PetscInt* cols, const double* vals) {
   destroy();
-  const auto n = static_cast<PetscInt>(R.rows());
   // The rows this process owns (all of them on one process), whole blocks of block_size rows.
   const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
   const auto [lo, hi] = ownership(n);
@@ -221,12 +226,8 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
   check(MatSetType(mat_, MATAIJ), "MatSetType");
   if (bs > 1) check(MatSetBlockSize(mat_, bs), "MatSetBlockSize");
   check(MatSetOptionsPrefix(mat_, prefix_.c_str()), "MatSetOptionsPrefix");
-  std::vector<PetscInt> rows(static_cast<size_t>(hi - lo + 1));
-  for (PetscInt r = lo; r <= hi; ++r) rows[static_cast<size_t>(r - lo)] = R.outerIndexPtr()[r] - R.outerIndexPtr()[lo];
-  const PetscInt* cols = R.innerIndexPtr() + R.outerIndexPtr()[lo];
-  const double* vals = R.valuePtr() + R.outerIndexPtr()[lo];
-  check(MatSeqAIJSetPreallocationCSR(mat_, rows.data(), cols, vals), "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(mat_, rows.data(), cols, vals), "MatMPIAIJSetPreallocationCSR");
+  check(MatSeqAIJSetPreallocationCSR(mat_, rows, cols, vals), "MatSeqAIJSetPreallocationCSR");
+  check(MatMPIAIJSetPreallocationCSR(mat_, rows, cols, vals), "MatMPIAIJSetPreallocationCSR");
   check(MatSetOption(mat_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   if (coordinates_.size() == n && bs == 2) set_rigid_body_modes(lo, hi);
   check(MatCreateVecs(mat_, &x_, &b_), "MatCreateVecs");
@@ -235,8 +236,6 @@ void PetscSolver::create(const Eigen::SparseMatrix<double, Eigen::RowMajor, Pets
   check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
   check(KSPSetTolerances(ksp_, s_.rtol, 1e-300, PETSC_DEFAULT, s_.max_iterations), "KSPSetTolerances");
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions (check the solver's options)");
-  outer_.assign(R.outerIndexPtr(), R.outerIndexPtr() + R.outerSize() + 1);
-  inner_.assign(R.innerIndexPtr(), R.innerIndexPtr() + R.nonZeros());
   ++symbolic_count_;
 }
 
@@ -267,33 +266,76 @@ void PetscSolver::fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscI
   check(MatAssemblyEnd(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
-void PetscSolver::do_setup(const SparseMatrix& A) {
-  if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
-  // The rows this process fills, in compressed row storage: a distributed system's own rows only (the others
-  // stay empty; the matrix's other rows may be another process's to assemble), every row otherwise.
-  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R;
-  if (s_.distributed) {
-    const auto n = static_cast<PetscInt>(A.rows());
-    const auto [lo, hi] = ownership(n);
-    std::vector<PetscInt> count(static_cast<size_t>(n) + 1, 0);
-    for (int col = 0; col < A.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-        if (it.row() >= lo && it.row() < hi) ++count[static_cast<size_t>(it.row()) + 1];
-    for (size_t r = 1; r < count.size(); ++r) count[r] += count[r - 1];
-    R.resize(n, n);
-    R.resizeNonZeros(count.back());
-    std::copy(count.begin(), count.end(), R.outerIndexPtr());
-    for (int col = 0; col < A.outerSize(); ++col)  // columns in increasing order: each row's stay sorted
-      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-        if (it.row() >= lo && it.row() < hi) {
-          const PetscInt at = count[static_cast<size_t>(it.row())]++;
-          R.innerIndexPtr()[at] = col;
-          R.valuePtr()[at] = it.value();
-        }
-  } else {
-    R = A;
-    R.makeCompressed();
+void PetscSolver::setup_whole(const SparseMatrix& A) {
+  if (!A.isCompressed()) {
+    SparseMatrix C = A;
+    C.makeCompressed();
+    setup_whole(C);
+    return;
   }
+  const auto n = static_cast<PetscInt>(A.rows());
+  const int* op = A.outerIndexPtr();
+  const int* ip = A.innerIndexPtr();
+  const double* vp = A.valuePtr();
+  const Index nnz = A.nonZeros();
+  // Row pointers of A's rows (A is stored by columns).
+  std::vector<PetscInt> rows(static_cast<size_t>(n) + 1, 0);
+  for (Index k = 0; k < nnz; ++k) ++rows[static_cast<size_t>(ip[k]) + 1];
+  for (size_t r = 1; r < rows.size(); ++r) rows[r] += rows[r - 1];
+  // next[r]: where row r's next entry goes; the columns come in increasing order, so each row's stay sorted.
+  std::vector<PetscInt> next;
+  auto each_entry = [&](const auto& fn) {
+    next.assign(rows.begin(), rows.end() - 1);
+    for (Index col = 0; col < A.outerSize(); ++col)
+      for (int k = op[col]; k < op[col + 1]; ++k) fn(next[static_cast<size_t>(ip[k])]++, static_cast<PetscInt>(col), k);
+  };
+  // The same pattern as the matrix's own (compared with PETSc's arrays, not with a copy of them).
+  bool same = false;
+  if (mat_) {
+    PetscInt nr = 0;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(mat_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done), "MatGetRowIJ");
+    same = done && nr == n && std::equal(rows.begin(), rows.end(), ia);
+    if (same) each_entry([&](PetscInt at, PetscInt col, int) { same = same && ja[at] == col; });
+    check(MatRestoreRowIJ(mat_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done), "MatRestoreRowIJ");
+  }
+  if (!same) {
+    destroy();  // the old matrix and preconditioner let go before the new ones are built
+    std::vector<PetscInt> cols(static_cast<size_t>(nnz));
+    each_entry([&](PetscInt at, PetscInt col, int) { cols[static_cast<size_t>(at)] = col; });
+    create(n, rows.data(), cols.data(), nullptr);
+  }
+  PetscScalar* a = nullptr;
+  check(MatSeqAIJGetArrayWrite(mat_, &a), "MatSeqAIJGetArrayWrite");
+  each_entry([&](PetscInt at, PetscInt, int k) { a[at] = vp[k]; });
+  check(MatSeqAIJRestoreArrayWrite(mat_, &a), "MatSeqAIJRestoreArrayWrite");
+  // New values on the same operator: without this the KSP keeps the preconditioner (or a direct factorization)
+  // of the old values.
+  if (same) check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
+}
+
+void PetscSolver::setup_own_rows(const SparseMatrix& A) {
+  // This process's rows in compressed row storage (the others stay empty: the matrix's other rows may be another
+  // process's to assemble).
+  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R;
+  const auto n = static_cast<PetscInt>(A.rows());
+  const auto [lo, hi] = ownership(n);
+  std::vector<PetscInt> count(static_cast<size_t>(n) + 1, 0);
+  for (int col = 0; col < A.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+      if (it.row() >= lo && it.row() < hi) ++count[static_cast<size_t>(it.row()) + 1];
+  for (size_t r = 1; r < count.size(); ++r) count[r] += count[r - 1];
+  R.resize(n, n);
+  R.resizeNonZeros(count.back());
+  std::copy(count.begin(), count.end(), R.outerIndexPtr());
+  for (int col = 0; col < A.outerSize(); ++col)  // columns in increasing order: each row's stay sorted
+    for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+      if (it.row() >= lo && it.row() < hi) {
+        const PetscInt at = count[static_cast<size_t>(it.row())]++;
+        R.innerIndexPtr()[at] = col;
+        R.valuePtr()[at] = it.value();
+      }
   int same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
              inner_.size() == static_cast<size_t>(R.nonZeros()) &&
              std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&
@@ -302,12 +344,24 @@ void PetscSolver::do_setup(const SparseMatrix& A) {
   MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
   if (same) {
     fill(R);
-    // New values on the same operator: without this the KSP keeps the preconditioner (or a direct
-    // factorization) of the old values.
+    // New values on the same operator (as in setup_whole).
     check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
-  } else {
-    create(R);
+    return;
   }
+  const PetscInt* outer = R.outerIndexPtr();
+  std::vector<PetscInt> rows(static_cast<size_t>(hi - lo + 1));
+  for (PetscInt r = lo; r <= hi; ++r) rows[static_cast<size_t>(r - lo)] = outer[r] - outer[lo];
+  create(n, rows.data(), R.innerIndexPtr() + outer[lo], R.valuePtr() + outer[lo]);
+  outer_.assign(outer, outer + R.outerSize() + 1);
+  inner_.assign(R.innerIndexPtr(), R.innerIndexPtr() + R.nonZeros());
+}
+
+void PetscSolver::do_setup(const SparseMatrix& A) {
+  if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
+  if (s_.distributed)
+    setup_own_rows(A);
+  else
+    setup_whole(A);
   // The numeric stage (the preconditioner: multigrid hierarchy, Schur approximation) happens here, not at
   // the first solve.
   check(KSPSetUp(ksp_), "KSPSetUp (preconditioner set-up)");

@@ -183,8 +183,6 @@ class PetscSolver final : public LinearSolver {
   void setup_own_rows(const SparseMatrix& A);
   /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
   void set_rigid_body_modes(PetscInt lo, PetscInt hi);
-  /// The values of R into the matrix (same pattern as at create).
-  void fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R);
   void destroy() {
     if (ksp_) KSPDestroy(&ksp_);
     if (mat_) MatDestroy(&mat_);
@@ -201,8 +199,7 @@ class PetscSolver final : public LinearSolver {
   KSP ksp_ = nullptr;
   Mat mat_ = nullptr;
   ::Vec x_ = nullptr, b_ = nullptr;
-  std::vector<PetscInt> outer_, inner_;  // a distributed matrix's pattern (row pointers, this process's columns)
-  Vec coordinates_;                      // set_coordinates: the rigid-body near-null space's nodes
+  Vec coordinates_;  // set_coordinates: the rigid-body near-null space's nodes
 };
 
 std::pair<PetscInt, PetscInt> PetscSolver::ownership(PetscInt n) const {
@@ -252,18 +249,6 @@ void PetscSolver::set_rigid_body_modes(PetscInt lo, PetscInt hi) {
   check(MatSetNearNullSpace(mat_, modes), "MatSetNearNullSpace");
   MatNullSpaceDestroy(&modes);
   VecDestroy(&xy);
-}
-
-void PetscSolver::fill(const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>& R) {
-  PetscInt lo = 0, hi = 0;
-  check(MatGetOwnershipRange(mat_, &lo, &hi), "MatGetOwnershipRange");
-  for (PetscInt r = lo; r < hi; ++r) {
-    const PetscInt begin = R.outerIndexPtr()[r], count = R.outerIndexPtr()[r + 1] - begin;
-    check(MatSetValues(mat_, 1, &r, count, R.innerIndexPtr() + begin, R.valuePtr() + begin, INSERT_VALUES),
-          "MatSetValues");
-  }
-  check(MatAssemblyBegin(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
 void PetscSolver::setup_whole(const SparseMatrix& A) {
@@ -316,49 +301,101 @@ void PetscSolver::setup_whole(const SparseMatrix& A) {
 }
 
 void PetscSolver::setup_own_rows(const SparseMatrix& A) {
-  // This process's rows in compressed row storage (the others stay empty: the matrix's other rows may be another
-  // process's to assemble).
-  Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R;
-  const auto n = static_cast<PetscInt>(A.rows());
-  const auto [lo, hi] = ownership(n);
-  std::vector<PetscInt> count(static_cast<size_t>(n) + 1, 0);
-  for (int col = 0; col < A.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-      if (it.row() >= lo && it.row() < hi) ++count[static_cast<size_t>(it.row()) + 1];
-  for (size_t r = 1; r < count.size(); ++r) count[r] += count[r - 1];
-  R.resize(n, n);
-  R.resizeNonZeros(count.back());
-  std::copy(count.begin(), count.end(), R.outerIndexPtr());
-  for (int col = 0; col < A.outerSize(); ++col)  // columns in increasing order: each row's stay sorted
-    for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-      if (it.row() >= lo && it.row() < hi) {
-        const PetscInt at = count[static_cast<size_t>(it.row())]++;
-        R.innerIndexPtr()[at] = col;
-        R.valuePtr()[at] = it.value();
-      }
-  int same = mat_ && outer_.size() == static_cast<size_t>(R.outerSize() + 1) &&
-             inner_.size() == static_cast<size_t>(R.nonZeros()) &&
-             std::equal(outer_.begin(), outer_.end(), R.outerIndexPtr()) &&
-             std::equal(inner_.begin(), inner_.end(), R.innerIndexPtr());
-  // Creating the matrix is collective: every process takes the same branch.
-  MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
-  if (same) {
-    fill(R);
-    // New values on the same operator (as in setup_whole).
-    check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
+  if (!A.isCompressed()) {
+    SparseMatrix C = A;
+    C.makeCompressed();
+    setup_own_rows(C);
     return;
   }
-  const PetscInt* outer = R.outerIndexPtr();
-  std::vector<PetscInt> rows(static_cast<size_t>(hi - lo + 1));
-  for (PetscInt r = lo; r <= hi; ++r) rows[static_cast<size_t>(r - lo)] = outer[r] - outer[lo];
-  create(n, rows.data(), R.innerIndexPtr() + outer[lo], R.valuePtr() + outer[lo]);
-  outer_.assign(outer, outer + R.outerSize() + 1);
-  inner_.assign(R.innerIndexPtr(), R.innerIndexPtr() + R.nonZeros());
+  const auto n = static_cast<PetscInt>(A.rows());
+  const auto [lo, hi] = ownership(n);
+  const PetscInt m = hi - lo;
+  const int* op = A.outerIndexPtr();
+  const int* ip = A.innerIndexPtr();
+  const double* vp = A.valuePtr();
+  // fn(local row, column, k) on A's entries in this process's rows, column by column (so each row's columns come in
+  // increasing order). The other rows stay empty: they may be another process's to assemble.
+  auto each_own = [&](const auto& fn) {
+    for (Index col = 0; col < A.outerSize(); ++col)
+      for (int k = op[col]; k < op[col + 1]; ++k)
+        if (ip[k] >= lo && ip[k] < hi) fn(static_cast<PetscInt>(ip[k] - lo), static_cast<PetscInt>(col), k);
+  };
+  std::vector<PetscInt> rows(static_cast<size_t>(m) + 1, 0);
+  each_own([&](PetscInt r, PetscInt, int) { ++rows[static_cast<size_t>(r) + 1]; });
+  for (size_t r = 1; r < rows.size(); ++r) rows[r] += rows[r - 1];
+  // The matrix's two blocks (MatMPIAIJGetSeqAIJ): columns [lo, hi) in the diagonal one (local column numbers), the
+  // others in the off-diagonal one (compressed numbers, garray[] their columns in increasing order). A row's entries
+  // in the order of their columns therefore go to the next place of that row in one block or the other.
+  struct Blocks {
+    Mat d = nullptr, o = nullptr;
+    const PetscInt* garray = nullptr;
+    const PetscInt *di = nullptr, *dj = nullptr, *oi = nullptr, *oj = nullptr;
+    PetscInt dn = 0, on = 0;
+    PetscBool dok = PETSC_FALSE, ook = PETSC_FALSE;
+  } b;
+  auto open_blocks = [&] {
+    check(MatMPIAIJGetSeqAIJ(mat_, &b.d, &b.o, &b.garray), "MatMPIAIJGetSeqAIJ");
+    check(MatGetRowIJ(b.d, 0, PETSC_FALSE, PETSC_FALSE, &b.dn, &b.di, &b.dj, &b.dok), "MatGetRowIJ");
+    check(MatGetRowIJ(b.o, 0, PETSC_FALSE, PETSC_FALSE, &b.on, &b.oi, &b.oj, &b.ook), "MatGetRowIJ");
+  };
+  auto close_blocks = [&] {
+    check(MatRestoreRowIJ(b.d, 0, PETSC_FALSE, PETSC_FALSE, &b.dn, &b.di, &b.dj, &b.dok), "MatRestoreRowIJ");
+    check(MatRestoreRowIJ(b.o, 0, PETSC_FALSE, PETSC_FALSE, &b.on, &b.oi, &b.oj, &b.ook), "MatRestoreRowIJ");
+  };
+  std::vector<PetscInt> nd, no;            // each row's next place in the diagonal and the off-diagonal block
+  auto each_place = [&](const auto& fn) {  // fn(in diagonal block, place, column, k)
+    nd.assign(b.di, b.di + m);
+    no.assign(b.oi, b.oi + m);
+    each_own([&](PetscInt r, PetscInt col, int k) {
+      const bool diag = col >= lo && col < hi;
+      fn(diag, diag ? nd[static_cast<size_t>(r)]++ : no[static_cast<size_t>(r)]++, r, col, k);
+    });
+  };
+  // The same pattern as the matrix's own (compared with its blocks, not with a copy of them).
+  int same = 0;
+  if (mat_) {
+    open_blocks();
+    same = b.dok && b.ook && b.dn == m && b.on == m;
+    for (PetscInt r = 0; same && r < m; ++r)
+      same = (b.di[r + 1] - b.di[r]) + (b.oi[r + 1] - b.oi[r]) ==
+             rows[static_cast<size_t>(r) + 1] - rows[static_cast<size_t>(r)];
+    if (same)
+      each_place([&](bool diag, PetscInt at, PetscInt r, PetscInt col, int) {
+        const PetscInt end = diag ? b.di[r + 1] : b.oi[r + 1];
+        same = same && at < end && (diag ? b.dj[at] + lo : b.garray[b.oj[at]]) == col;
+      });
+    close_blocks();
+  }
+  // Creating the matrix is collective: every process takes the same branch.
+  MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
+  if (!same) {
+    destroy();  // the old matrix and preconditioner let go before the new ones are built
+    std::vector<PetscInt> cols(static_cast<size_t>(rows.back()));
+    std::vector<PetscInt> next(rows.begin(), rows.end() - 1);
+    each_own([&](PetscInt r, PetscInt col, int) { cols[static_cast<size_t>(next[static_cast<size_t>(r)]++)] = col; });
+    create(n, rows.data(), cols.data(), nullptr);
+  }
+  // The values straight into the blocks, then an assembly (no entries to move) that marks the matrix as changed.
+  open_blocks();
+  PetscScalar *dv = nullptr, *ov = nullptr;
+  check(MatSeqAIJGetArrayWrite(b.d, &dv), "MatSeqAIJGetArrayWrite");
+  check(MatSeqAIJGetArrayWrite(b.o, &ov), "MatSeqAIJGetArrayWrite");
+  each_place([&](bool diag, PetscInt at, PetscInt, PetscInt, int k) { (diag ? dv : ov)[at] = vp[k]; });
+  check(MatSeqAIJRestoreArrayWrite(b.d, &dv), "MatSeqAIJRestoreArrayWrite");
+  check(MatSeqAIJRestoreArrayWrite(b.o, &ov), "MatSeqAIJRestoreArrayWrite");
+  close_blocks();
+  check(MatAssemblyBegin(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // New values on the same operator (as in setup_whole).
+  if (same) check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
 }
 
 void PetscSolver::do_setup(const SparseMatrix& A) {
   if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
-  if (s_.distributed)
+  int processes = 1;
+  MPI_Comm_size(comm_, &processes);
+  // A distributed system on one process is a whole one (PETSc makes its matrix sequential).
+  if (s_.distributed && processes > 1)
     setup_own_rows(A);
   else
     setup_whole(A);

@@ -47,10 +47,12 @@ class ProcessRows {
   /// process assembles: the whole mesh's unless split.
   ElementPattern pattern(const std::vector<std::array<Index, 3>>& tri, const std::vector<Index>& conn, Index np,
                          int dpn) const {
-    if (!split_) return ElementPattern(conn, 3, np, dpn);
+    // The fluid's element loops add into per-thread copies (parallel_sum.hpp): no colours.
+    constexpr auto none = ElementPattern::Colouring::none;
+    if (!split_) return ElementPattern(conn, 3, np, dpn, none);
     std::vector<char> keep(tri.size());
     for (size_t e = 0; e < tri.size(); ++e) keep[e] = mine(tri[e]) ? 1 : 0;
-    return ElementPattern(conn, 3, np, dpn, keep);
+    return ElementPattern(conn, 3, np, dpn, keep, none);
   }
   /// A per-particle array (`per` values a particle) summed by each process over its elements, made whole on every
   /// process: each particle's entries kept where its rows are, zeroed elsewhere, then combined.

@@ -82,6 +82,21 @@ TEST(ElementPattern, EachLocalEntryIsAddedAtItsOwnRowAndColumn) {
   }
 }
 
+TEST(ElementPattern, WithoutColoursThePatternAndTheScatterMapAreTheSame) {
+  for (int dpn : {1, 3}) {
+    const ElementPattern coloured(kConn, 3, 6, dpn, {1, 1, 0, 1});
+    const ElementPattern plain(kConn, 3, 6, dpn, {1, 1, 0, 1}, ElementPattern::Colouring::none);
+    EXPECT_TRUE(plain.colors().empty());
+    size_t in_colours = 0;
+    for (const auto& c : coloured.colors()) in_colours += c.size();
+    EXPECT_EQ(in_colours, 3u);
+    EXPECT_EQ(positions(plain), positions(coloured));
+    for (Index e : {0, 1, 3})
+      for (int j = 0; j < 3 * dpn; ++j)
+        for (int i = 0; i < 3 * dpn; ++i) EXPECT_EQ(plain.position(e, i, j), coloured.position(e, i, j));
+  }
+}
+
 TEST(ElementPattern, ANodeOfNoKeptElementKeepsItsDiagonal) {
   const ElementPattern part(kConn, 3, 6, 1, {1, 0, 0, 0});
   const auto p = positions(part);

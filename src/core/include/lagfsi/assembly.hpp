@@ -20,15 +20,19 @@ namespace lagfsi {
 
 class ElementPattern {
  public:
+  /// Whether the elements are coloured (colors()): the OpenMP loops that add whole elements by colour need it,
+  /// a loop that adds into per-thread copies does not.
+  enum class Colouring { colour, none };
   ElementPattern() = default;
   /// conn: npe node indices per element; num_nodes: nodes of the mesh (nodes in no element get a
   /// diagonal entry so that the matrix stays square and can carry a Dirichlet 1 on them).
-  ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node);
+  ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node,
+                 Colouring colouring = Colouring::colour);
   /// Only the elements e with keep[e] != 0 (keep has one entry per element of conn): the pattern has their
   /// entries alone (and the diagonal), and only they have a scatter map and a colour. An MPI process that fills
   /// its own rows builds the pattern of the elements it assembles, not the whole mesh's.
   ElementPattern(const std::vector<Index>& conn, int npe, Index num_nodes, int dofs_per_node,
-                 const std::vector<char>& keep);
+                 const std::vector<char>& keep, Colouring colouring = Colouring::colour);
 
   ElementPattern(const ElementPattern&) = default;
   ElementPattern& operator=(const ElementPattern&) = default;
@@ -40,6 +44,7 @@ class ElementPattern {
     std::swap(dpn_, o.dpn_);
     std::swap(per_element_, o.per_element_);
     std::swap(ne_, o.ne_);
+    std::swap(colour_, o.colour_);
     slot_.swap(o.slot_);
     pattern_.swap(o.pattern_);
     scatter_.swap(o.scatter_);
@@ -65,7 +70,7 @@ class ElementPattern {
     const int a = j / dpn_, b = i / dpn_;
     return sc[a * npe_ + b] + (j % dpn_) * stride(sc, a) + i % dpn_;
   }
-  /// Element colours (lists of elements).
+  /// Element colours (lists of elements); empty when built with Colouring::none.
   const std::vector<std::vector<Index>>& colors() const { return colors_; }
 
   /// Adds a column-major local matrix (m x m) of element e into `values` (the value array of a matrix
@@ -107,6 +112,7 @@ class ElementPattern {
   int m_ = 0, npe_ = 0, dpn_ = 0;
   size_t per_element_ = 0;  // integers of an element's map
   Index ne_ = 0;
+  bool colour_ = true;
   std::vector<Index> slot_;  // with `keep`: each element's place among the kept ones (-1: left out); else empty
   SparseMatrix pattern_;
   std::vector<int> scatter_;

@@ -27,6 +27,24 @@ double FluidEnergy::potential() const {
   return e;
 }
 
+FluidEnergy::Totals FluidEnergy::totals() const {
+  const Vec& x = cloud_.x();
+  const Vec& v = cloud_.v();
+  Totals t;
+  for (Index k = 0; k < mesh_.num_elements(); ++k) {
+    const double a = mesh_.element_area(x, k);
+    t.area += a;
+    const double m = c_.rho * a / 3.0;
+    Vec2 c = Vec2::Zero();
+    for (Index i : mesh_.tri[k]) {
+      t.kinetic += 0.5 * m * v.segment<2>(2 * i).squaredNorm();
+      c += x.segment<2>(2 * i);
+    }
+    t.potential -= c_.rho * a * c_.gravity.dot(c / 3.0);
+  }
+  return t;
+}
+
 void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, const Vec& boundary_force,
                           const Vec& constraint_force) {
   // On the step's mesh at x_n (lumped masses m_i = sum rho A/3, walls and ghosts included: their share of

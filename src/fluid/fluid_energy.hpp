@@ -19,6 +19,12 @@ class FluidEnergy {
   /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
   /// lumped masses) it depends only on the present fluid: KE + PE is the energy balance of a remeshed flow.
   double potential() const;
+  /// The mesh's area (FluidMesh::area), kinetic() and potential() in one pass over the elements (each summed in the
+  /// same order as alone: the same bits).
+  struct Totals {
+    double area = 0, kinetic = 0, potential = 0;
+  };
+  Totals totals() const;
   /// Adds the step's gravity work, viscous dissipation (the no-slip walls' "navier" friction included) and
   /// boundary work (before the state is updated): x_new the step's new positions, v the step's velocity (the
   /// scheme's, FluidScheme::step_velocity), t the step's end and dt its length, boundary_force the forces of

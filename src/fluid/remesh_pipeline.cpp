@@ -87,7 +87,8 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   }
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
-  const double area0 = mesh_.area(cloud_.x()), ke0 = energy.kinetic(), pe0 = energy.potential();
+  const FluidEnergy::Totals before_remesh = energy.totals();
+  const double area0 = before_remesh.area, ke0 = before_remesh.kinetic, pe0 = before_remesh.potential;
   const std::vector<double> strip0 = outlet_strip_areas();
   t_remesh_ = t_new;
   if (s_.detection == meshing::DomainDetection::Alpha) {
@@ -120,7 +121,8 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     }
   }
   if (owe) volume.owe_remesh_change(before, present);
-  const double area1 = mesh_.area(cloud_.x());
+  const FluidEnergy::Totals after_remesh = energy.totals();
+  const double area1 = after_remesh.area;
   remesh_dA_ = area1 - area0;
   // What the remesh changed in an outflow's strip (it fills part of the ragged end the outflow's elements left)
   // comes back from what that outflow took.
@@ -135,10 +137,10 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     }
     volume.rebase();
   }
-  remesh_dKE_ = energy.kinetic() - ke0;
+  remesh_dKE_ = after_remesh.kinetic - ke0;
   (remesh_dA_ > 0 ? remesh_area_added_ : remesh_area_removed_) += std::abs(remesh_dA_);
   remesh_ke_total_ += remesh_dKE_;
-  remesh_pe_total_ += energy.potential() - pe0;
+  remesh_pe_total_ += after_remesh.potential - pe0;
   if (volume.type() == VolumeCorrection::Type::surface) {
     // The faces of inflows and outflows are boundaries of the mesh but not free surface: moved outwards, an
     // inlet's face would be carried out of the channel and an outlet's would push water out. The particles on

@@ -3,8 +3,8 @@
 /// Sparse assembly on a fixed pattern: the CSC pattern of a mesh with `dofs_per_node` unknowns per node
 /// (dof = dofs_per_node * node + component), and for each element where its local entries sit in the value array
 /// (the "scatter map"), so that assembling a local matrix is a sequence of indexed additions. Elements are
-/// coloured (no two elements of a colour share a node) so that OpenMP threads can add whole elements without
-/// atomics.
+/// coloured (no two elements of a colour share a node; unless built with Colouring::none) so that OpenMP threads
+/// can add whole elements without atomics.
 ///
 /// The map is stored per node pair, not per entry: column d n + c of node n holds, for each neighbour m of n in
 /// order, its d rows (d = dofs_per_node), so the entry of row d m + r in that column sits at

@@ -60,10 +60,10 @@ void ElementPattern::build(const std::vector<Index>& conn, int npe, Index num_no
     }
   }
   // Node adjacency in compressed rows (each node is its own neighbour, also when it is in no element), sorted and
-  // without repeats.
+  // without repeats: about one entry a node and one an incidence (a boundary node has one neighbour more).
   std::vector<int> start(static_cast<size_t>(num_nodes) + 1, 0);
   std::vector<Index> adj;
-  adj.reserve(static_cast<size_t>(num_nodes) + 2 * static_cast<size_t>(istart[num_nodes]));
+  adj.reserve(static_cast<size_t>(num_nodes) + static_cast<size_t>(istart[num_nodes]) + num_nodes / 8);
   std::vector<Index> row;
   for (Index n = 0; n < num_nodes; ++n) {
     row.assign(1, n);

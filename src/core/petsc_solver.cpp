@@ -177,9 +177,9 @@ class PetscSolver final : public LinearSolver {
   /// storage (row pointers from 0, column indices, and values or nullptr for zeros).
   void create(PetscInt n, const PetscInt* rows, const PetscInt* cols, const double* vals);
   /// A system on one process: A's rows written straight into the PETSc matrix, with no compressed-row copy of it
-  /// kept (the matrix's own pattern is the one the next setup compares with).
+  /// kept (the matrix's own pattern is the one the next setup compares with). A is compressed.
   void setup_whole(const SparseMatrix& A);
-  /// A distributed system: this process's rows of A into the distributed matrix.
+  /// A distributed system: this process's rows of A into the distributed matrix. A is compressed.
   void setup_own_rows(const SparseMatrix& A);
   /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
   void set_rigid_body_modes(PetscInt lo, PetscInt hi);
@@ -252,12 +252,6 @@ void PetscSolver::set_rigid_body_modes(PetscInt lo, PetscInt hi) {
 }
 
 void PetscSolver::setup_whole(const SparseMatrix& A) {
-  if (!A.isCompressed()) {
-    SparseMatrix C = A;
-    C.makeCompressed();
-    setup_whole(C);
-    return;
-  }
   const auto n = static_cast<PetscInt>(A.rows());
   const int* op = A.outerIndexPtr();
   const int* ip = A.innerIndexPtr();
@@ -301,12 +295,6 @@ void PetscSolver::setup_whole(const SparseMatrix& A) {
 }
 
 void PetscSolver::setup_own_rows(const SparseMatrix& A) {
-  if (!A.isCompressed()) {
-    SparseMatrix C = A;
-    C.makeCompressed();
-    setup_own_rows(C);
-    return;
-  }
   const auto n = static_cast<PetscInt>(A.rows());
   const auto [lo, hi] = ownership(n);
   const PetscInt m = hi - lo;
@@ -392,6 +380,12 @@ void PetscSolver::setup_own_rows(const SparseMatrix& A) {
 
 void PetscSolver::do_setup(const SparseMatrix& A) {
   if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
+  if (!A.isCompressed()) {    // both paths below read the compressed arrays
+    SparseMatrix C = A;
+    C.makeCompressed();
+    do_setup(C);
+    return;
+  }
   int processes = 1;
   MPI_Comm_size(comm_, &processes);
   // A distributed system on one process is a whole one (PETSc makes its matrix sequential).

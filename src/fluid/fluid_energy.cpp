@@ -5,28 +5,6 @@
 
 namespace lagfsi::fluid {
 
-double FluidEnergy::kinetic() const {
-  const Vec& x = cloud_.x();
-  const Vec& v = cloud_.v();
-  double e = 0;
-  for (Index k = 0; k < mesh_.num_elements(); ++k) {
-    const double m = c_.rho * mesh_.element_area(x, k) / 3.0;
-    for (Index i : mesh_.tri[k]) e += 0.5 * m * v.segment<2>(2 * i).squaredNorm();
-  }
-  return e;
-}
-
-double FluidEnergy::potential() const {
-  const Vec& x = cloud_.x();
-  double e = 0;
-  for (Index k = 0; k < mesh_.num_elements(); ++k) {
-    Vec2 c = Vec2::Zero();
-    for (Index i : mesh_.tri[k]) c += x.segment<2>(2 * i);
-    e -= c_.rho * mesh_.element_area(x, k) * c_.gravity.dot(c / 3.0);
-  }
-  return e;
-}
-
 FluidEnergy::Totals FluidEnergy::totals() const {
   const Vec& x = cloud_.x();
   const Vec& v = cloud_.v();

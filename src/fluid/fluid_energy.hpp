@@ -14,17 +14,17 @@ class FluidEnergy {
   FluidEnergy(const FluidConstants& c, const ParticleCloud& cloud, const FluidMesh& mesh,
               const FluidBoundaries& boundaries)
       : c_(c), cloud_(cloud), mesh_(mesh), boundaries_(boundaries) {}
-  double kinetic() const;
-  /// Potential energy of gravity over the current mesh, -rho integral of g . x dA (exact on linear triangles:
-  /// rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the steps with each step's
-  /// lumped masses) it depends only on the present fluid: KE + PE is the energy balance of a remeshed flow.
-  double potential() const;
-  /// The mesh's area (FluidMesh::area), kinetic() and potential() in one pass over the elements (each summed in the
-  /// same order as alone: the same bits).
+  /// In one pass over the elements of the current mesh: its area (FluidMesh::area, the same sum); the kinetic
+  /// energy with the mesh-lumped masses rho A_e / 3; the potential energy of gravity, -rho integral of g . x dA
+  /// (exact on linear triangles: rho A_e g . centroid), zero at the origin. Unlike gravity_work (summed over the
+  /// steps with each step's lumped masses) it depends only on the present fluid: KE + PE is the energy balance of
+  /// a remeshed flow.
   struct Totals {
     double area = 0, kinetic = 0, potential = 0;
   };
   Totals totals() const;
+  double kinetic() const { return totals().kinetic; }
+  double potential() const { return totals().potential; }
   /// Adds the step's gravity work, viscous dissipation (the no-slip walls' "navier" friction included) and
   /// boundary work (before the state is updated): x_new the step's new positions, v the step's velocity (the
   /// scheme's, FluidScheme::step_velocity), t the step's end and dt its length, boundary_force the forces of

@@ -108,7 +108,8 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// The energy balance: KE + PE + viscous dissipation - boundary work. Constant for an exact discretization;
   /// its drift is the numerical energy (remeshing, time integration).
   double total_energy() const {
-    return kinetic_energy() + potential_energy() + energy_.dissipation() - energy_.boundary_work();
+    const FluidEnergy::Totals t = energy_.totals();
+    return t.kinetic + t.potential + energy_.dissipation() - energy_.boundary_work();
   }
 
  private:

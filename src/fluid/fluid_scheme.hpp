@@ -44,15 +44,22 @@ class ProcessRows {
   /// unless split).
   bool mine(const std::array<Index, 3>& t) const { return !split_ || own(t[0]) || own(t[1]) || own(t[2]); }
   /// The matrix pattern of the elements `tri` (connectivity `conn`, np particles, dpn unknowns each) that this
-  /// process assembles: the whole mesh's unless split.
-  ElementPattern pattern(const std::vector<std::array<Index, 3>>& tri, const std::vector<Index>& conn, Index np,
-                         int dpn) const {
+  /// process assembles (the whole mesh's unless split) into `pattern`, its matrix (zeros) handed to `matrix`. The
+  /// last mesh's pattern and matrix are let go first, so that the old and the new never coexist.
+  void renew_pattern(ElementPattern& pattern, SparseMatrix& matrix, const std::vector<std::array<Index, 3>>& tri,
+                     const std::vector<Index>& conn, Index np, int dpn) const {
+    SparseMatrix().swap(matrix);
+    pattern = ElementPattern();
     // The fluid's element loops add into per-thread copies (parallel_sum.hpp): no colours.
     constexpr auto none = ElementPattern::Colouring::none;
-    if (!split_) return ElementPattern(conn, 3, np, dpn, none);
-    std::vector<char> keep(tri.size());
-    for (size_t e = 0; e < tri.size(); ++e) keep[e] = mine(tri[e]) ? 1 : 0;
-    return ElementPattern(conn, 3, np, dpn, keep, none);
+    if (!split_) {
+      pattern = ElementPattern(conn, 3, np, dpn, none);
+    } else {
+      std::vector<char> keep(tri.size());
+      for (size_t e = 0; e < tri.size(); ++e) keep[e] = mine(tri[e]) ? 1 : 0;
+      pattern = ElementPattern(conn, 3, np, dpn, keep, none);
+    }
+    pattern.take_pattern(matrix);
   }
   /// A per-particle array (`per` values a particle) summed by each process over its elements, made whole on every
   /// process: each particle's entries kept where its rows are, zeroed elsewhere, then combined.

@@ -87,12 +87,8 @@ class FractionalStep final : public FluidScheme {
     // (mpi_run.hpp), on the pattern of those elements alone, and the particles' forces are combined over the
     // processes.
     rows_.set(s_.solver.distributed, np);
-    // The last mesh's pattern and matrices let go before the new ones are built, so that both never coexist.
-    SparseMatrix().swap(poisson_);
-    SparseMatrix().swap(viscous_);
-    poisson_pattern_ = ElementPattern();
-    poisson_pattern_ = rows_.pattern(f_.mesh.tri, f_.mesh.conn, np, 1);
-    poisson_pattern_.take_pattern(poisson_);
+    SparseMatrix().swap(viscous_);  // let go before the new pattern is built
+    rows_.renew_pattern(poisson_pattern_, poisson_, f_.mesh.tri, f_.mesh.conn, np, 1);
     if (viscous_implicit()) viscous_ = poisson_;
     // A new mesh: new matrices. Re-solves of the step (a coupling pass) keep the factorizations, which
     // depend on the mesh only.

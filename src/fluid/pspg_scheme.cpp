@@ -75,11 +75,7 @@ class PspgScheme final : public FluidScheme {
     // Over several processes with a distributed solver each computes the elements with a particle in its rows
     // (mpi_run.hpp), on the pattern of those elements alone; the particles' rows are whole blocks of 3.
     rows_.set(s_.solver.distributed, f_.cloud.n());
-    // The last mesh's pattern and matrix let go before the new ones are built, so that both never coexist.
-    SparseMatrix().swap(J_);
-    pattern_ = ElementPattern();
-    pattern_ = rows_.pattern(f_.mesh.tri, f_.mesh.conn, f_.cloud.n(), 3);
-    pattern_.take_pattern(J_);
+    rows_.renew_pattern(pattern_, J_, f_.mesh.tri, f_.mesh.conn, f_.cloud.n(), 3);
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);
     // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep
     // the factorization of the first pass.

@@ -286,6 +286,7 @@ int run_case(const RunOptions& opt) {
   if (code != kOk) std::cerr << "lagfsi: error: " << opt.case_file.string() << ": " << status.message << "\n";
   // Process 0's output failed (the only failure the processes do not all see): the others are stopped with it.
   if (code == kOutputError) mpi_run::abort_all(code);
+  outputs.summary.processes = process_report(sim.totals().phases, seconds_since(t_start));
   code = settle_status(sim, code, status);
   try {
     if (writer) outputs.summary.write(sim);

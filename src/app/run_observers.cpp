@@ -37,8 +37,10 @@ void RunLog::started(const Simulation& s) {
   std::string header = "step,time,dt,iterations,residual,nodes,elements";
   if (s.analysis().time_step.adaptive) header += ",dt_limit,dt_by";
   for (const Metric& m : s.metric_columns()) header += "," + m.name;
-  header += ",t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step\n";
-  csv_.write(header);
+  header += ",t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step";
+  if (mpi_run::size() > 1) header += ",t_comm,comm_MB,petsc_MB";
+  csv_.write(header + "\n");
+  traffic_ = mpi_run::traffic();
 }
 
 void RunLog::stepped(const Simulation& s, const StepRecord& r) {
@@ -49,7 +51,14 @@ void RunLog::stepped(const Simulation& s, const StepRecord& r) {
   for (double v : r.metrics) row << "," << v;
   const PhaseTimes& ph = r.phases;
   row << "," << ph.remesh << "," << ph.assembly << "," << ph.factorization << "," << ph.solve << "," << ph.output << ","
-      << r.wall << "\n";
+      << r.wall;
+  if (mpi_run::size() > 1) {
+    const mpi_run::Traffic now = mpi_run::traffic();
+    row << "," << now.seconds - traffic_.seconds << "," << (now.bytes - traffic_.bytes) / 1e6 << ","
+        << (now.petsc_bytes - traffic_.petsc_bytes) / 1e6;
+    traffic_ = now;
+  }
+  row << "\n";
   csv_.write(row.str());
 }
 
@@ -124,6 +133,25 @@ Json timing(const PhaseTimes& p) {
 }
 }  // namespace
 
+Json process_report(const PhaseTimes& p, double wall) {
+  if (mpi_run::size() <= 1) return nullptr;
+  const mpi_run::Traffic t = mpi_run::traffic();
+  const std::vector<double> mine{
+      p.remesh,      p.assembly,          p.factorization,          p.solve, p.output, wall, t.seconds,
+      t.bytes / 1e6, t.petsc_bytes / 1e6, mpi_run::peak_memory_mb()};
+  const std::vector<double> all = mpi_run::gather_to_writer(mine);
+  if (all.empty()) return nullptr;
+  const char* names[] = {"remesh", "assembly", "factorization", "solve",    "output",
+                         "wall",   "comm",     "comm_MB",       "petsc_MB", "peak_MB"};
+  Json out = Json::array();
+  for (size_t r = 0; r * mine.size() < all.size(); ++r) {
+    Json e{{"rank", r}};
+    for (size_t k = 0; k < mine.size(); ++k) e[names[k]] = all[r * mine.size() + k];
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 void SummaryWriter::write(const Simulation& sim) const {
   const RunTotals& tot = sim.totals();
   Json s;
@@ -182,6 +210,7 @@ void SummaryWriter::write(const Simulation& sim) const {
   if (couplings.size() == 1) s["coupling"] = couplings[0];
   s["threads"] = p_.threads;
   if (mpi_run::size() > 1) s["mpi_processes"] = mpi_run::size();  // mpi_run.hpp: replicated data, distributed solves
+  if (!processes.is_null()) s["processes"] = processes;
   write_file_atomic(p_.file, json_text(s));
 }
 

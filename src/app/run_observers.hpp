@@ -6,6 +6,7 @@
 #include "progress.hpp"
 #include "simulation.hpp"
 
+#include <lagfsi/mpi_run.hpp>
 #include <lagfsi/output_file.hpp>
 
 #include <chrono>
@@ -32,18 +33,24 @@ class ProbesCsv final : public StepObserver {
 };
 
 /// log.csv: a row per step — step, time, dt, Newton iterations, residual, nodes, elements, the models' metrics
-/// (model.hpp, Metric), then the wall time per phase (t_remesh .. t_output) and of the whole step (t_step).
+/// (model.hpp, Metric), then the wall time per phase (t_remesh .. t_output) and of the whole step (t_step); an MPI
+/// run also the communication of process 0 since the last row (mpi_run::traffic): t_comm (wall seconds in the
+/// collectives, waiting included), comm_MB (MB received in them) and petsc_MB (MB PETSc's messages sent).
 class RunLog final : public StepObserver {
  public:
   explicit RunLog(std::filesystem::path file) : file_(std::move(file)) {}
   void started(const Simulation& s) override;
-  void resumed(const Simulation&, const RunPosition& pos) override { csv_.resume(file_, pos.log_bytes); }
+  void resumed(const Simulation&, const RunPosition& pos) override {
+    csv_.resume(file_, pos.log_bytes);
+    traffic_ = mpi_run::traffic();
+  }
   void stepped(const Simulation& s, const StepRecord& r) override;
   std::uint64_t size() const { return csv_.size(); }
 
  private:
   std::filesystem::path file_;
   AppendFile csv_;
+  mpi_run::Traffic traffic_;  // an MPI run: this process's communication up to the last row
 };
 
 /// The ParaView series of every body: the initial state, every `every`-th step and the last one, the state
@@ -134,6 +141,9 @@ class SummaryWriter final : public StepObserver {
     std::chrono::steady_clock::time_point start;  ///< when this run started
   };
   SummaryWriter(Parts parts, const Status& status) : p_(std::move(parts)), status_(status) {}
+  /// An MPI run at its end: every process's phases, communication and memory (process_report), for the summary's
+  /// "processes".
+  Json processes;
   void started(const Simulation& s) override { write(s); }
   void resumed(const Simulation& s, const RunPosition&) override { write(s); }
   void stepped(const Simulation& s, const StepRecord& r) override {
@@ -145,6 +155,12 @@ class SummaryWriter final : public StepObserver {
   Parts p_;
   const Status& status_;
 };
+
+/// An MPI run's processes side by side: each one's phase times (`phases`, summed over the run's steps, those before a
+/// restart included), the wall time since it started (`wall`), its communication in this run (mpi_run::traffic:
+/// seconds, MB received in the collectives, MB PETSc's messages sent) and its peak resident memory; an array in
+/// rank order on process 0, null on the others and with one process. Every process must call it.
+Json process_report(const PhaseTimes& phases, double wall);
 
 /// JSON text for a file: never throws (every string is UTF-8 since the input is checked; any other byte would be
 /// replaced).

@@ -5,6 +5,8 @@
 #include "petsc_solver.hpp"
 
 #include <mpi.h>
+#include <petscsys.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -16,6 +18,16 @@ namespace lagfsi::mpi_run {
 namespace {
 bool started = false;
 int my_rank = 0, my_size = 1;
+Traffic counted;  // the collectives' seconds and bytes (traffic())
+
+/// Runs the collective `fn`, adding its wall time and the `bytes` it receives to the counts.
+template <class Fn>
+void timed(double bytes, Fn&& fn) {
+  const double t0 = MPI_Wtime();
+  fn();
+  counted.seconds += MPI_Wtime() - t0;
+  counted.bytes += bytes;
+}
 }  // namespace
 
 bool launched() {
@@ -40,7 +52,7 @@ int size() { return my_size; }
 bool any(bool flag) {
   if (my_size <= 1) return flag;
   int f = flag ? 1 : 0, r = 0;
-  MPI_Allreduce(&f, &r, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  timed(allreduce_bytes(sizeof f), [&] { MPI_Allreduce(&f, &r, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD); });
   return r != 0;
 }
 
@@ -54,7 +66,8 @@ std::pair<Index, Index> owned_blocks(Index blocks) {
 void sum_in_rank_order(double* values, int n) {
   if (my_size <= 1 || n <= 0) return;
   std::vector<double> all(static_cast<size_t>(n) * static_cast<size_t>(my_size));
-  MPI_Allgather(values, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, MPI_COMM_WORLD);
+  timed(8.0 * n * (my_size - 1),
+        [&] { MPI_Allgather(values, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, MPI_COMM_WORLD); });
   for (int k = 0; k < n; ++k) {
     double s = 0;
     for (int r = 0; r < my_size; ++r)
@@ -65,13 +78,13 @@ void sum_in_rank_order(double* values, int n) {
 
 void combine_disjoint(double* values, Index n) {
   if (my_size <= 1 || n <= 0) return;
-  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  timed(allreduce_bytes(8.0 * n), [&] { MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD); });
 }
 
 Index min(Index value) {
   if (my_size <= 1) return value;
   int v = value, r = 0;
-  MPI_Allreduce(&v, &r, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  timed(allreduce_bytes(sizeof v), [&] { MPI_Allreduce(&v, &r, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD); });
   return r;
 }
 
@@ -90,27 +103,58 @@ std::vector<Index> gather_all(const std::vector<Index>& mine) {
   if (my_size <= 1) return mine;
   const int count = static_cast<int>(mine.size());
   std::vector<int> counts(static_cast<size_t>(my_size)), offsets(static_cast<size_t>(my_size), 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  timed(4.0 * (my_size - 1), [&] { MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD); });
   long long total = 0;
   for (int r = 0; r < my_size; ++r) {
     offsets[static_cast<size_t>(r)] = static_cast<int>(total);
     total += counts[static_cast<size_t>(r)];
   }
   std::vector<Index> all(static_cast<size_t>(total));
-  MPI_Allgatherv(mine.data(), count, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT, MPI_COMM_WORLD);
+  timed(4.0 * static_cast<double>(total - count), [&] {
+    MPI_Allgatherv(mine.data(), count, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT, MPI_COMM_WORLD);
+  });
   return all;
 }
 
 void or_flags(std::uint8_t* flags, Index n) {
   if (my_size <= 1 || n <= 0) return;
-  MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_UINT8_T, MPI_MAX, MPI_COMM_WORLD);
+  timed(allreduce_bytes(static_cast<double>(n)),
+        [&] { MPI_Allreduce(MPI_IN_PLACE, flags, n, MPI_UINT8_T, MPI_MAX, MPI_COMM_WORLD); });
+}
+
+std::vector<double> gather_to_writer(const std::vector<double>& mine) {
+  if (my_size <= 1) return mine;
+  const int n = static_cast<int>(mine.size());
+  std::vector<double> all(my_rank == 0 ? mine.size() * static_cast<size_t>(my_size) : 0);
+  timed(my_rank == 0 ? 8.0 * n * (my_size - 1) : 0.0,
+        [&] { MPI_Gather(mine.data(), n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, 0, MPI_COMM_WORLD); });
+  return all;
+}
+
+Traffic traffic() {
+  Traffic t = counted;
+  t.petsc_bytes = petsc_isend_len + petsc_send_len;
+  return t;
+}
+
+void note_traffic(double seconds, double bytes) {
+  counted.seconds += seconds;
+  counted.bytes += bytes;
+}
+
+double allreduce_bytes(double bytes) { return my_size > 1 ? 2.0 * (my_size - 1) / my_size * bytes : 0.0; }
+
+double peak_memory_mb() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
 }
 
 std::string first_failure(const std::string& message) {
   if (my_size <= 1) return message;
   const int mine = message.empty() ? my_size : my_rank;
   int first = my_size;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  timed(allreduce_bytes(sizeof mine), [&] { MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD); });
   if (first == my_size) return {};
   int length = static_cast<int>(message.size());
   MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);

@@ -23,6 +23,7 @@
 #include "petsc_solver.hpp"
 
 #include <lagfsi/error.hpp>
+#include <lagfsi/mpi_run.hpp>
 
 #include <petscksp.h>
 
@@ -355,7 +356,9 @@ void PetscSolver::setup_own_rows(const SparseMatrix& A) {
     close_blocks();
   }
   // Creating the matrix is collective: every process takes the same branch.
+  const double t0 = MPI_Wtime();
   MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
+  mpi_run::note_traffic(MPI_Wtime() - t0, mpi_run::allreduce_bytes(sizeof same));
   if (!same) {
     destroy();  // the old matrix and preconditioner let go before the new ones are built
     std::vector<PetscInt> cols(static_cast<size_t>(rows.back()));
@@ -434,8 +437,11 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   check(VecGetArrayRead(x_, &px), "VecGetArrayRead");
   std::copy(px, px + (hi - lo), x.data() + lo);
   check(VecRestoreArrayRead(x_, &px), "VecRestoreArrayRead");
-  if (s_.distributed && s_.gather)  // each entry from one process, zeros from the others: the same bits everywhere
+  if (s_.distributed && s_.gather) {  // each entry from one process, zeros from the others: the same bits everywhere
+    const double t0 = MPI_Wtime();
     MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(n), MPIU_SCALAR, MPI_SUM, comm_);
+    mpi_run::note_traffic(MPI_Wtime() - t0, mpi_run::allreduce_bytes(8.0 * static_cast<double>(n)));
+  }
   // The true relative residual (one product): the report's number whatever norm the method monitored.
   ::Vec r = nullptr;
   check(VecDuplicate(b_, &r), "VecDuplicate");

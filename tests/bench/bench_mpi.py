@@ -39,7 +39,7 @@ H0, N0, DT = 0.0073, 861, 1e-3
 PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
 COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
            "setup", "solve", "rest", "peak_mb", "speedup", "newton_per_step", "krylov_per_solve", "speedup_per_iteration",
-           "ghost_share", "gathered_mb"]
+           "ghost_share", "gathered_mb", "comm_share", "comm_mb_per_step"]
 
 
 def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
@@ -71,6 +71,14 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     for name, col in PHASES:
         r[name] = sum(float(r_[col]) for r_ in steady) * scale
     r["rest"] = r["us_per_particle_step"] - sum(r[name] for name, _ in PHASES)
+    # An MPI run's communication (process 0's log): the share of the step spent in the collectives (within the
+    # phases above, waiting for the other processes included) and the MB a step received in them or sent by PETSc.
+    comm = "t_comm" in rows[0] if rows else False
+    r["comm_share"] = (sum(float(r_["t_comm"]) for r_ in steady) / sum(float(r_["t_step"]) for r_ in steady)
+                       if comm else float("nan"))
+    r["comm_mb_per_step"] = (sum(float(r_["comm_MB"]) + float(r_["petsc_MB"]) for r_ in steady) / len(steady)
+                             if comm else float("nan"))
+    r["per_process"] = s.get("processes", [])
     # Newton iterations a step (the steps measured) and Krylov iterations a solve (the whole run): two runs whose
     # Newton tests stop after different counts differ by whole iterations, which the speed-up per iteration removes.
     r["newton_per_step"] = sum(float(r_["iterations"]) for r_ in steady) / len(steady)
@@ -124,17 +132,43 @@ def markdown(rows, commit, machine, scheme, command, bw):
              ("; the pressure solve" if scheme == "fractional_step" else "") + "); per iteration: the speed-up of the "
              "time per Newton iteration (the runs' Newton tests may stop after different counts); ghosts: "
              "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
-             "process 0 receives of the others' shares of the mesh a remesh." + bandwidth_sentence(bw), "",
+             "process 0 receives of the others' shares of the mesh a remesh; comm: process 0's share of the step in "
+             "the processes' collectives (the mesh's shares, the combined sums, the solution's gather, the decisions "
+             "taken together; within the phases, waiting for the other process included) and the MB a step it "
+             "received in them plus what PETSc's messages sent (the matrices' halo; hypre's are not counted)."
+             + bandwidth_sentence(bw), "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
-             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB | comm | comm MB a step |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
                      f"{r['solve']:.2f} | {r['rest']:.2f} | {r['peak_mb']:.0f} | {r['speedup']:.2f} | "
                      f"{r['newton_per_step']:.2f} | {r['krylov_per_solve']:.2f} | {r['speedup_per_iteration']:.2f} | "
                      + ("– | – |" if r["ghost_share"] != r["ghost_share"] else
-                        f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |"))
+                        f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |")
+                     + (" – | – |" if r["comm_share"] != r["comm_share"] else
+                        f" {100 * r['comm_share']:.1f} % | {r['comm_mb_per_step']:.1f} |"))
+    return "\n".join(lines) + "\n" + process_table(rows)
+
+
+def process_table(rows):
+    """Each process of the runs over several: its phases over the whole run (the first steps and the set-up of the
+    first matrices included), in seconds, from summary.json's "processes"."""
+    multi = [r for r in rows if len(r.get("per_process", [])) > 1]
+    if not multi:
+        return ""
+    lines = ["", "Each process of those runs over the whole run (summary.json's `processes`), in seconds: the phases, "
+             "the collectives within them (comm, waiting for the other process included), the rest of its wall time "
+             "(the case's set-up, output, the steps' bookkeeping); MB received in the collectives and sent by PETSc.",
+             "", "| particles | process | remesh | assembly | set-up | solve | comm | rest | wall | peak MB "
+             "| MB received | PETSc MB sent |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in multi:
+        for q in r["per_process"]:
+            phases = q["remesh"] + q["assembly"] + q["factorization"] + q["solve"]
+            lines.append(f"| {r['particles']} | {q['rank']} | {q['remesh']:.2f} | {q['assembly']:.2f} | "
+                         f"{q['factorization']:.2f} | {q['solve']:.2f} | {q['comm']:.2f} | {q['wall'] - phases:.2f} | "
+                         f"{q['wall']:.2f} | {q['peak_MB']:.0f} | {q['comm_MB']:.0f} | {q['petsc_MB']:.0f} |")
     return "\n".join(lines) + "\n"
 
 

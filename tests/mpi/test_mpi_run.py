@@ -91,6 +91,14 @@ for n in (2, 3):
     divided = summary["bodies"][0]["remeshing"].get("divided", {})
     if divided.get("processes") != n or not 0 < divided.get("ghost_share", 0) < n - 1:
         failures.append("%d processes: summary.json's divided remeshing %s" % (n, divided))
+    # Each process's report: its phases, some communication, its memory; process 0's communication in the log.
+    procs = summary.get("processes", [])
+    if ([q.get("rank") for q in procs] != list(range(n)) or
+            not all(q["solve"] > 0 and q["comm"] > 0 and q["comm_MB"] > 0 and q["petsc_MB"] > 0 and q["peak_MB"] > 0
+                    and q["remesh"] + q["assembly"] + q["factorization"] + q["solve"] <= q["wall"] for q in procs)):
+        failures.append("%d processes: summary.json's processes %s" % (n, procs))
+    if not all(float(r["comm_MB"]) > 0 and float(r["t_comm"]) <= float(r["t_step"]) for r in log):
+        failures.append("%d processes: log.csv's communication columns %s" % (n, log[0]))
 
 # Bad input: every process stops, one message (mpirun's own report aside), exit code 2.
 p = subprocess.run(MPI + ["2", exe, "run", case, "-o", os.path.join(work, "bad"), "--set", "analysis.dt=-1"],

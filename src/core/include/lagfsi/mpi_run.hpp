@@ -61,6 +61,26 @@ void abort_all(int code);
 LinearSolverSettings distribute(LinearSolverSettings s);
 /// Every process's `mine` one after the other in rank order, on every process (`mine` itself with one process).
 std::vector<Index> gather_all(const std::vector<Index>& mine);
+/// Every process's `mine` (the same length on each) one after the other in rank order, on process 0; empty on the
+/// others (`mine` itself with one process). Every process must call it.
+std::vector<double> gather_to_writer(const std::vector<double>& mine);
+/// What this process has spent on communication since MPI started.
+///  - seconds, bytes: the wall time of the collectives of this file and of those a caller reports (note_traffic),
+///    waiting for the slower processes included, and the bytes the process received in them (an all-reduce of n
+///    bytes over P processes counted as a ring's 2 (P - 1) / P n: a reduce-scatter, then an all-gather);
+///  - petsc_bytes: the bytes PETSc's point-to-point messages sent (the distributed matrices' and vectors' halo
+///    exchanges, counted by PETSc's logging; their time is in the solver's). hypre's messages inside its
+///    multigrid are not counted.
+struct Traffic {
+  double seconds = 0, bytes = 0, petsc_bytes = 0;
+};
+Traffic traffic();
+/// Adds a collective made outside this file to traffic(): its wall seconds and the bytes this process received.
+void note_traffic(double seconds, double bytes);
+/// The bytes an all-reduce of `bytes` receives on each process, as traffic() counts them.
+double allreduce_bytes(double bytes);
+/// This process's peak resident memory in MiB (0 where the system does not say).
+double peak_memory_mb();
 /// Flags set (non-zero) on any process, set on every process, in place.
 void or_flags(std::uint8_t* flags, Index n);
 /// A failure some processes saw: the message of the lowest process whose `message` is not empty, on every process,

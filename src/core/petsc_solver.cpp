@@ -17,10 +17,13 @@
 /// Each solver has an options prefix of its own ("lagfsi<k>_"), so that two solvers of a run (a Poisson and a
 /// predictor) never read each other's options; the case file's raw options are prefixed the same way.
 ///
-/// Distributed: the matrix is a PETSc AIJ matrix and the vectors PETSc vectors on a communicator
-/// (PETSC_COMM_SELF, or PETSC_COMM_WORLD with LinearSolverSettings::distributed); each process inserts the rows
-/// of the ownership range PETSc gives it, and the solve never gathers the system.
+/// The matrix (petsc_matrix.hpp) is a PETSc AIJ matrix, or for the saddle point's default field split a nest of its
+/// velocity and pressure blocks, which the field split then uses without copying them; the vectors are PETSc
+/// vectors on a communicator (PETSC_COMM_SELF, or PETSC_COMM_WORLD with LinearSolverSettings::distributed). Each
+/// process writes the rows of the ownership range PETSc gives it, and the solve never gathers the system.
 #include "petsc_solver.hpp"
+
+#include "petsc_matrix.hpp"
 
 #include <lagfsi/error.hpp>
 #include <lagfsi/mpi_run.hpp>
@@ -154,6 +157,7 @@ class PetscSolver final : public LinearSolver {
     opts += " " + s.options;
     options_ = prefixed(opts, prefix_);
     check(PetscOptionsInsertString(nullptr, options_.c_str()), "reading the options");
+    matrix_ = std::make_unique<petsc::SystemMatrix>(comm_, s.block_size, nests_fields(), prefix_);
   }
   ~PetscSolver() override {
     destroy();
@@ -174,31 +178,30 @@ class PetscSolver final : public LinearSolver {
   /// The rows [lo, hi) this process owns in a system of n rows: whole blocks of block_size rows (all rows on one
   /// process), as PETSc's default split gives them.
   std::pair<PetscInt, PetscInt> ownership(PetscInt n) const;
-  /// A new matrix, vectors and KSP for a new pattern of n rows: this process's rows [lo, hi) in compressed row
-  /// storage (row pointers from 0, column indices, and values or nullptr for zeros).
-  void create(PetscInt n, const PetscInt* rows, const PetscInt* cols, const double* vals);
-  /// A system on one process: A's rows written straight into the PETSc matrix, with no compressed-row copy of it
-  /// kept (the matrix's own pattern is the one the next setup compares with). A is compressed.
-  void setup_whole(const SparseMatrix& A);
-  /// A distributed system: this process's rows of A into the distributed matrix. A is compressed.
-  void setup_own_rows(const SparseMatrix& A);
+  /// Whether the matrix is a nest of the saddle point's velocity and pressure blocks (petsc_matrix.hpp): a
+  /// saddle-point system whose preconditioner, after the case file's options, is still the default field split.
+  bool nests_fields() const;
+  /// A new KSP and vectors for the matrix's new pattern of n rows, this process's rows [lo, hi).
+  void make_solver(PetscInt n, PetscInt lo, PetscInt hi);
   /// The rigid-body modes of the nodes at set_coordinates as the matrix's near-null space (rows lo..hi here).
   void set_rigid_body_modes(PetscInt lo, PetscInt hi);
-  void destroy() {
+  void destroy_solver() {
     if (ksp_) KSPDestroy(&ksp_);
-    if (mat_) MatDestroy(&mat_);
     if (x_) VecDestroy(&x_);
     if (b_) VecDestroy(&b_);
     ksp_ = nullptr;
-    mat_ = nullptr;
     x_ = b_ = nullptr;
+  }
+  void destroy() {
+    destroy_solver();
+    if (matrix_) matrix_->destroy();
   }
 
   LinearSolverSettings s_;
   MPI_Comm comm_ = PETSC_COMM_SELF;
   std::string prefix_, options_;
   KSP ksp_ = nullptr;
-  Mat mat_ = nullptr;
+  std::unique_ptr<petsc::SystemMatrix> matrix_;
   ::Vec x_ = nullptr, b_ = nullptr;
   Vec coordinates_;  // set_coordinates: the rigid-body near-null space's nodes
 };
@@ -214,26 +217,43 @@ std::pair<PetscInt, PetscInt> PetscSolver::ownership(PetscInt n) const {
   return {first_block * bs, (first_block + local_blocks) * bs};
 }
 
-void PetscSolver::create(PetscInt n, const PetscInt* rows, const PetscInt* cols, const double* vals) {
-  destroy();
-  // The rows this process owns (all of them on one process), whole blocks of block_size rows.
+bool PetscSolver::nests_fields() const {
+  if (s_.kind != SystemKind::saddle_point || s_.block_size < 2) return false;
+  char pc[64] = "";
+  PetscBool set = PETSC_FALSE;
+  check(PetscOptionsGetString(nullptr, prefix_.c_str(), "-pc_type", pc, sizeof pc, &set), "reading the options");
+  // Fields of the case file's own choosing are its to split.
+  for (const char* own : {"fieldsplit_0_fields", "fieldsplit_1_fields", "fieldsplit_block_size", "fieldsplit_detect"})
+    if (s_.options.find(own) != std::string::npos) return false;
+  return set && std::string(pc) == PCFIELDSPLIT;
+}
+
+void PetscSolver::make_solver(PetscInt n, PetscInt lo, PetscInt hi) {
+  destroy_solver();
+  Mat mat = matrix_->mat();
   const PetscInt bs = s_.block_size > 1 && n % s_.block_size == 0 ? s_.block_size : 1;
-  const auto [lo, hi] = ownership(n);
-  check(MatCreate(comm_, &mat_), "MatCreate");
-  check(MatSetSizes(mat_, hi - lo, hi - lo, n, n), "MatSetSizes");
-  check(MatSetType(mat_, MATAIJ), "MatSetType");
-  if (bs > 1) check(MatSetBlockSize(mat_, bs), "MatSetBlockSize");
-  check(MatSetOptionsPrefix(mat_, prefix_.c_str()), "MatSetOptionsPrefix");
-  check(MatSeqAIJSetPreallocationCSR(mat_, rows, cols, vals), "MatSeqAIJSetPreallocationCSR");
-  check(MatMPIAIJSetPreallocationCSR(mat_, rows, cols, vals), "MatMPIAIJSetPreallocationCSR");
-  check(MatSetOption(mat_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
-  if (coordinates_.size() == n && bs == 2) set_rigid_body_modes(lo, hi);
-  check(MatCreateVecs(mat_, &x_, &b_), "MatCreateVecs");
+  if (coordinates_.size() == n && bs == 2 && !matrix_->split()) set_rigid_body_modes(lo, hi);
+  if (matrix_->split()) {  // plain vectors in the nest's order (the nest's own would be nest vectors)
+    check(VecCreate(comm_, &x_), "VecCreate");
+    check(VecSetSizes(x_, hi - lo, n), "VecSetSizes");
+    check(VecSetType(x_, VECSTANDARD), "VecSetType");
+    check(VecDuplicate(x_, &b_), "VecDuplicate");
+  } else {
+    check(MatCreateVecs(mat, &x_, &b_), "MatCreateVecs");
+  }
   check(KSPCreate(comm_, &ksp_), "KSPCreate");
   check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
-  check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
+  check(KSPSetOperators(ksp_, mat, mat), "KSPSetOperators");
   check(KSPSetTolerances(ksp_, s_.rtol, 1e-300, PETSC_DEFAULT, s_.max_iterations), "KSPSetTolerances");
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions (check the solver's options)");
+  if (matrix_->split()) {  // the field split's two fields are the nest's (named as the default options name them)
+    PC pc = nullptr;
+    IS sets[2] = {nullptr, nullptr};
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    matrix_->field_sets(sets);
+    check(PCFieldSplitSetIS(pc, "0", sets[0]), "PCFieldSplitSetIS");
+    check(PCFieldSplitSetIS(pc, "1", sets[1]), "PCFieldSplitSetIS");
+  }
   ++symbolic_count_;
 }
 
@@ -247,155 +267,27 @@ void PetscSolver::set_rigid_body_modes(PetscInt lo, PetscInt hi) {
   check(VecRestoreArray(xy, &p), "VecRestoreArray");
   MatNullSpace modes = nullptr;
   check(MatNullSpaceCreateRigidBody(xy, &modes), "MatNullSpaceCreateRigidBody");
-  check(MatSetNearNullSpace(mat_, modes), "MatSetNearNullSpace");
+  check(MatSetNearNullSpace(matrix_->mat(), modes), "MatSetNearNullSpace");
   MatNullSpaceDestroy(&modes);
   VecDestroy(&xy);
 }
 
-void PetscSolver::setup_whole(const SparseMatrix& A) {
-  const auto n = static_cast<PetscInt>(A.rows());
-  const int* op = A.outerIndexPtr();
-  const int* ip = A.innerIndexPtr();
-  const double* vp = A.valuePtr();
-  const Index nnz = A.nonZeros();
-  // Row pointers of A's rows (A is stored by columns).
-  std::vector<PetscInt> rows(static_cast<size_t>(n) + 1, 0);
-  for (Index k = 0; k < nnz; ++k) ++rows[static_cast<size_t>(ip[k]) + 1];
-  for (size_t r = 1; r < rows.size(); ++r) rows[r] += rows[r - 1];
-  // next[r]: where row r's next entry goes; the columns come in increasing order, so each row's stay sorted.
-  std::vector<PetscInt> next;
-  auto each_entry = [&](const auto& fn) {
-    next.assign(rows.begin(), rows.end() - 1);
-    for (Index col = 0; col < A.outerSize(); ++col)
-      for (int k = op[col]; k < op[col + 1]; ++k) fn(next[static_cast<size_t>(ip[k])]++, static_cast<PetscInt>(col), k);
-  };
-  // The same pattern as the matrix's own (compared with PETSc's arrays, not with a copy of them).
-  bool same = false;
-  if (mat_) {
-    PetscInt nr = 0;
-    const PetscInt *ia = nullptr, *ja = nullptr;
-    PetscBool done = PETSC_FALSE;
-    check(MatGetRowIJ(mat_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done), "MatGetRowIJ");
-    same = done && nr == n && std::equal(rows.begin(), rows.end(), ia);
-    if (same) each_entry([&](PetscInt at, PetscInt col, int) { same = same && ja[at] == col; });
-    check(MatRestoreRowIJ(mat_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done), "MatRestoreRowIJ");
-  }
-  if (!same) {
-    destroy();  // the old matrix and preconditioner let go before the new ones are built
-    std::vector<PetscInt> cols(static_cast<size_t>(nnz));
-    each_entry([&](PetscInt at, PetscInt col, int) { cols[static_cast<size_t>(at)] = col; });
-    create(n, rows.data(), cols.data(), nullptr);
-  }
-  PetscScalar* a = nullptr;
-  check(MatSeqAIJGetArrayWrite(mat_, &a), "MatSeqAIJGetArrayWrite");
-  each_entry([&](PetscInt at, PetscInt, int k) { a[at] = vp[k]; });
-  check(MatSeqAIJRestoreArrayWrite(mat_, &a), "MatSeqAIJRestoreArrayWrite");
-  // New values on the same operator: without this the KSP keeps the preconditioner (or a direct factorization)
-  // of the old values.
-  if (same) check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
-}
-
-void PetscSolver::setup_own_rows(const SparseMatrix& A) {
-  const auto n = static_cast<PetscInt>(A.rows());
-  const auto [lo, hi] = ownership(n);
-  const PetscInt m = hi - lo;
-  const int* op = A.outerIndexPtr();
-  const int* ip = A.innerIndexPtr();
-  const double* vp = A.valuePtr();
-  // fn(local row, column, k) on A's entries in this process's rows, column by column (so each row's columns come in
-  // increasing order). The other rows stay empty: they may be another process's to assemble.
-  auto each_own = [&](const auto& fn) {
-    for (Index col = 0; col < A.outerSize(); ++col)
-      for (int k = op[col]; k < op[col + 1]; ++k)
-        if (ip[k] >= lo && ip[k] < hi) fn(static_cast<PetscInt>(ip[k] - lo), static_cast<PetscInt>(col), k);
-  };
-  std::vector<PetscInt> rows(static_cast<size_t>(m) + 1, 0);
-  each_own([&](PetscInt r, PetscInt, int) { ++rows[static_cast<size_t>(r) + 1]; });
-  for (size_t r = 1; r < rows.size(); ++r) rows[r] += rows[r - 1];
-  // The matrix's two blocks (MatMPIAIJGetSeqAIJ): columns [lo, hi) in the diagonal one (local column numbers), the
-  // others in the off-diagonal one (compressed numbers, garray[] their columns in increasing order). A row's entries
-  // in the order of their columns therefore go to the next place of that row in one block or the other.
-  struct Blocks {
-    Mat d = nullptr, o = nullptr;
-    const PetscInt* garray = nullptr;
-    const PetscInt *di = nullptr, *dj = nullptr, *oi = nullptr, *oj = nullptr;
-    PetscInt dn = 0, on = 0;
-    PetscBool dok = PETSC_FALSE, ook = PETSC_FALSE;
-  } b;
-  auto open_blocks = [&] {
-    check(MatMPIAIJGetSeqAIJ(mat_, &b.d, &b.o, &b.garray), "MatMPIAIJGetSeqAIJ");
-    check(MatGetRowIJ(b.d, 0, PETSC_FALSE, PETSC_FALSE, &b.dn, &b.di, &b.dj, &b.dok), "MatGetRowIJ");
-    check(MatGetRowIJ(b.o, 0, PETSC_FALSE, PETSC_FALSE, &b.on, &b.oi, &b.oj, &b.ook), "MatGetRowIJ");
-  };
-  auto close_blocks = [&] {
-    check(MatRestoreRowIJ(b.d, 0, PETSC_FALSE, PETSC_FALSE, &b.dn, &b.di, &b.dj, &b.dok), "MatRestoreRowIJ");
-    check(MatRestoreRowIJ(b.o, 0, PETSC_FALSE, PETSC_FALSE, &b.on, &b.oi, &b.oj, &b.ook), "MatRestoreRowIJ");
-  };
-  std::vector<PetscInt> nd, no;            // each row's next place in the diagonal and the off-diagonal block
-  auto each_place = [&](const auto& fn) {  // fn(in diagonal block, place, column, k)
-    nd.assign(b.di, b.di + m);
-    no.assign(b.oi, b.oi + m);
-    each_own([&](PetscInt r, PetscInt col, int k) {
-      const bool diag = col >= lo && col < hi;
-      fn(diag, diag ? nd[static_cast<size_t>(r)]++ : no[static_cast<size_t>(r)]++, r, col, k);
-    });
-  };
-  // The same pattern as the matrix's own (compared with its blocks, not with a copy of them).
-  int same = 0;
-  if (mat_) {
-    open_blocks();
-    same = b.dok && b.ook && b.dn == m && b.on == m;
-    for (PetscInt r = 0; same && r < m; ++r)
-      same = (b.di[r + 1] - b.di[r]) + (b.oi[r + 1] - b.oi[r]) ==
-             rows[static_cast<size_t>(r) + 1] - rows[static_cast<size_t>(r)];
-    if (same)
-      each_place([&](bool diag, PetscInt at, PetscInt r, PetscInt col, int) {
-        const PetscInt end = diag ? b.di[r + 1] : b.oi[r + 1];
-        same = same && at < end && (diag ? b.dj[at] + lo : b.garray[b.oj[at]]) == col;
-      });
-    close_blocks();
-  }
-  // Creating the matrix is collective: every process takes the same branch.
-  const double t0 = MPI_Wtime();
-  MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
-  mpi_run::note_traffic(MPI_Wtime() - t0, mpi_run::allreduce_bytes(sizeof same));
-  if (!same) {
-    destroy();  // the old matrix and preconditioner let go before the new ones are built
-    std::vector<PetscInt> cols(static_cast<size_t>(rows.back()));
-    std::vector<PetscInt> next(rows.begin(), rows.end() - 1);
-    each_own([&](PetscInt r, PetscInt col, int) { cols[static_cast<size_t>(next[static_cast<size_t>(r)]++)] = col; });
-    create(n, rows.data(), cols.data(), nullptr);
-  }
-  // The values straight into the blocks, then an assembly (no entries to move) that marks the matrix as changed.
-  open_blocks();
-  PetscScalar *dv = nullptr, *ov = nullptr;
-  check(MatSeqAIJGetArrayWrite(b.d, &dv), "MatSeqAIJGetArrayWrite");
-  check(MatSeqAIJGetArrayWrite(b.o, &ov), "MatSeqAIJGetArrayWrite");
-  each_place([&](bool diag, PetscInt at, PetscInt, PetscInt, int k) { (diag ? dv : ov)[at] = vp[k]; });
-  check(MatSeqAIJRestoreArrayWrite(b.d, &dv), "MatSeqAIJRestoreArrayWrite");
-  check(MatSeqAIJRestoreArrayWrite(b.o, &ov), "MatSeqAIJRestoreArrayWrite");
-  close_blocks();
-  check(MatAssemblyBegin(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(mat_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  // New values on the same operator (as in setup_whole).
-  if (same) check(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators");
-}
-
 void PetscSolver::do_setup(const SparseMatrix& A) {
   if (A.rows() == 0) return;  // nothing to lay out; LinearSolver::solve answers an empty system itself
-  if (!A.isCompressed()) {    // both paths below read the compressed arrays
+  if (!A.isCompressed()) {    // the matrix reads the compressed arrays
     SparseMatrix C = A;
     C.makeCompressed();
     do_setup(C);
     return;
   }
-  int processes = 1;
-  MPI_Comm_size(comm_, &processes);
-  // A distributed system on one process is a whole one (PETSc makes its matrix sequential).
-  if (s_.distributed && processes > 1)
-    setup_own_rows(A);
-  else
-    setup_whole(A);
+  // This process's rows (all of them on one process; a distributed system on one process is a whole one).
+  const auto n = static_cast<PetscInt>(A.rows());
+  const auto [lo, hi] = ownership(n);
+  // A new pattern: the old solver (its preconditioner) let go before the new matrix is made, then a new one.
+  if (matrix_->fill(A, lo, hi, [this] { destroy_solver(); }))
+    make_solver(n, lo, hi);
+  else  // new values on the same operator: without this the KSP keeps the preconditioner of the old values
+    check(KSPSetOperators(ksp_, matrix_->mat(), matrix_->mat()), "KSPSetOperators");
   // The numeric stage (the preconditioner: multigrid hierarchy, Schur approximation) happens here, not at
   // the first solve.
   check(KSPSetUp(ksp_), "KSPSetUp (preconditioner set-up)");
@@ -422,7 +314,7 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   check(VecGetOwnershipRange(b_, &lo, &hi), "VecGetOwnershipRange");
   PetscScalar* pb = nullptr;
   check(VecGetArray(b_, &pb), "VecGetArray");
-  std::copy(b.data() + lo, b.data() + hi, pb);
+  matrix_->to_petsc(b.data() + lo, pb);
   check(VecRestoreArray(b_, &pb), "VecRestoreArray");
   PetscReal bnorm = 0;  // over every process's rows
   check(VecNorm(b_, NORM_2, &bnorm), "VecNorm");
@@ -435,7 +327,7 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   report_.iterations = s_.type == "mumps" ? 0 : static_cast<int>(its);  // a direct solve counts none
   const PetscScalar* px = nullptr;
   check(VecGetArrayRead(x_, &px), "VecGetArrayRead");
-  std::copy(px, px + (hi - lo), x.data() + lo);
+  matrix_->from_petsc(px, x.data() + lo);
   check(VecRestoreArrayRead(x_, &px), "VecRestoreArrayRead");
   if (s_.distributed && s_.gather) {  // each entry from one process, zeros from the others: the same bits everywhere
     const double t0 = MPI_Wtime();
@@ -445,7 +337,7 @@ void PetscSolver::do_solve(const Vec& b, Vec& x) {
   // The true relative residual (one product): the report's number whatever norm the method monitored.
   ::Vec r = nullptr;
   check(VecDuplicate(b_, &r), "VecDuplicate");
-  check(MatMult(mat_, x_, r), "MatMult");
+  check(MatMult(matrix_->mat(), x_, r), "MatMult");
   check(VecAYPX(r, -1.0, b_), "VecAYPX");
   PetscReal rnorm = 0;
   check(VecNorm(r, NORM_2, &rnorm), "VecNorm");

@@ -1,6 +1,7 @@
 #pragma once
 /// @file petsc_solver.hpp
-/// The PETSc backend of lagfsi::LinearSolver (private to the core: no PETSc type leaves petsc_solver.cpp).
+/// The PETSc backend of lagfsi::LinearSolver (private to the core: no PETSc type leaves petsc_solver.cpp and
+/// petsc_matrix.cpp).
 #include <lagfsi/linear_solver.hpp>
 
 #include <memory>

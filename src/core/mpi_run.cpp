@@ -43,8 +43,6 @@ void start() {
   start_petsc();
   MPI_Comm_rank(MPI_COMM_WORLD, &my_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &my_size);
-  // PETSc's event log (its cost is a clock reading per event): traffic() reads its halo exchanges' time.
-  if (my_size > 1) PetscLogDefaultBegin();
   started = true;
 }
 
@@ -136,14 +134,6 @@ std::vector<double> gather_to_writer(const std::vector<double>& mine) {
 Traffic traffic() {
   Traffic t = counted;
   t.petsc_bytes = petsc_isend_len + petsc_send_len;
-  // The vector scatters' time (the matrices' halo exchanges: packing, sending, waiting, unpacking) in the main stage.
-  if (my_size > 1)
-    for (const char* name : {"VecScatterBegin", "VecScatterEnd"}) {
-      PetscLogEvent event = 0;
-      PetscEventPerfInfo info{};
-      if (PetscLogEventGetId(name, &event) == 0 && PetscLogEventGetPerfInfo(0, event, &info) == 0)
-        t.petsc_seconds += info.time;
-    }
   return t;
 }
 

@@ -39,7 +39,7 @@ H0, N0, DT = 0.0073, 861, 1e-3
 PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
 COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
            "setup", "solve", "rest", "peak_mb", "speedup", "newton_per_step", "krylov_per_solve", "speedup_per_iteration",
-           "ghost_share", "gathered_mb", "comm_share", "halo_share", "comm_mb_per_step"]
+           "ghost_share", "gathered_mb", "comm_share", "comm_mb_per_step"]
 
 
 def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
@@ -74,9 +74,8 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     # An MPI run's communication (process 0's log): the share of the step spent in the collectives (within the
     # phases above, waiting for the other processes included) and the MB a step received in them or sent by PETSc.
     comm = "t_comm" in rows[0] if rows else False
-    step_s = sum(float(r_["t_step"]) for r_ in steady)
-    r["comm_share"] = sum(float(r_["t_comm"]) for r_ in steady) / step_s if comm else float("nan")
-    r["halo_share"] = sum(float(r_["t_halo"]) for r_ in steady) / step_s if comm else float("nan")
+    r["comm_share"] = (sum(float(r_["t_comm"]) for r_ in steady) / sum(float(r_["t_step"]) for r_ in steady)
+                       if comm else float("nan"))
     r["comm_mb_per_step"] = (sum(float(r_["comm_MB"]) + float(r_["petsc_MB"]) for r_ in steady) / len(steady)
                              if comm else float("nan"))
     r["per_process"] = s.get("processes", [])
@@ -135,14 +134,12 @@ def markdown(rows, commit, machine, scheme, command, bw):
              "the divided remeshing's ghost particles over the particles, summed over the processes; gathered MB: what "
              "process 0 receives of the others' shares of the mesh a remesh; comm: process 0's share of the step in "
              "the processes' collectives (the mesh's shares, the combined sums, the solution's gather, the decisions "
-             "taken together; within the phases, waiting for the other process included); halo: its share in "
-             "PETSc's halo exchanges (the vector scatters of the distributed matrices' products, from PETSc's event "
-             "log; within the set-up and solve); comm MB a step: what process 0 received in the collectives plus "
-             "what PETSc's messages sent (hypre's messages are counted by neither)."
+             "taken together; within the phases, waiting for the other process included) and the MB a step it "
+             "received in them plus what PETSc's messages sent (the matrices' halo; hypre's are not counted)."
              + bandwidth_sentence(bw), "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
-             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB | comm | halo | comm MB a step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB | comm | comm MB a step |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
@@ -150,9 +147,8 @@ def markdown(rows, commit, machine, scheme, command, bw):
                      f"{r['newton_per_step']:.2f} | {r['krylov_per_solve']:.2f} | {r['speedup_per_iteration']:.2f} | "
                      + ("– | – |" if r["ghost_share"] != r["ghost_share"] else
                         f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |")
-                     + (" – | – | – |" if r["comm_share"] != r["comm_share"] else
-                        f" {100 * r['comm_share']:.1f} % | {100 * r['halo_share']:.1f} % | "
-                        f"{r['comm_mb_per_step']:.1f} |"))
+                     + (" – | – |" if r["comm_share"] != r["comm_share"] else
+                        f" {100 * r['comm_share']:.1f} % | {r['comm_mb_per_step']:.1f} |"))
     return "\n".join(lines) + "\n" + process_table(rows)
 
 
@@ -163,17 +159,15 @@ def process_table(rows):
     if not multi:
         return ""
     lines = ["", "Each process of those runs over the whole run (summary.json's `processes`), in seconds: the phases, "
-             "the collectives within them (comm, waiting for the other process included) and PETSc's halo exchanges "
-             "(halo), the rest of its wall time (the case's set-up, output, the steps' bookkeeping); MB received in the "
-             "collectives and sent by PETSc.",
-             "", "| particles | process | remesh | assembly | set-up | solve | comm | halo | rest | wall | peak MB "
-             "| MB received | PETSc MB sent |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "the collectives within them (comm, waiting for the other process included), the rest of its wall time "
+             "(the case's set-up, output, the steps' bookkeeping); MB received in the collectives and sent by PETSc.",
+             "", "| particles | process | remesh | assembly | set-up | solve | comm | rest | wall | peak MB "
+             "| MB received | PETSc MB sent |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in multi:
         for q in r["per_process"]:
             phases = q["remesh"] + q["assembly"] + q["factorization"] + q["solve"]
             lines.append(f"| {r['particles']} | {q['rank']} | {q['remesh']:.2f} | {q['assembly']:.2f} | "
-                         f"{q['factorization']:.2f} | {q['solve']:.2f} | {q['comm']:.2f} | {q['halo']:.2f} | "
-                         f"{q['wall'] - phases:.2f} | "
+                         f"{q['factorization']:.2f} | {q['solve']:.2f} | {q['comm']:.2f} | {q['wall'] - phases:.2f} | "
                          f"{q['wall']:.2f} | {q['peak_MB']:.0f} | {q['comm_MB']:.0f} | {q['petsc_MB']:.0f} |")
     return "\n".join(lines) + "\n"
 
@@ -226,18 +220,16 @@ def weak(a, exe, outdir):
     lines = [f"Measured at {head_commit()} on {os.cpu_count()} cores, {platform.machine()} (`{command}`): the same particles "
              "per process, the dam break's first steps as in the table above; seconds a step over the steps after "
              "the first two (process 0's log); efficiency: the one-process time a step (or a Newton iteration) over "
-             "this run's, 1 when the work per process stays the same; comm and halo: process 0's share of the step in "
-             "the processes' collectives and in PETSc's halo exchanges, as in the table above."
-             + bandwidth_sentence(bw), "",
+             "this run's, 1 when the work per process stays the same; comm: process 0's share of the step in the "
+             "processes' collectives, as in the table above." + bandwidth_sentence(bw), "",
              "| processes | particles | s a step | Newton a step | remesh | assembly | set-up | solve (µs/particle-step) "
-             "| efficiency | per iteration | ghosts | comm | halo |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| efficiency | per iteration | ghosts | comm |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['processes']} | {r['particles']} | {seconds_per_step(r):.3f} | {r['newton_per_step']:.2f} | "
                      f"{r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | {r['solve']:.2f} | "
                      f"{r['efficiency']:.2f} | {r['efficiency_per_iteration']:.2f} | "
                      + ("– |" if r["ghost_share"] != r["ghost_share"] else f"{100 * r['ghost_share']:.1f} % |")
-                     + (" – | – |" if r["comm_share"] != r["comm_share"] else
-                        f" {100 * r['comm_share']:.1f} % | {100 * r['halo_share']:.1f} % |"))
+                     + (" – |" if r["comm_share"] != r["comm_share"] else f" {100 * r['comm_share']:.1f} % |"))
     table = "\n".join(lines) + "\n"
     print(table)
     if a.doc:

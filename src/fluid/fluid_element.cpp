@@ -6,8 +6,13 @@
 
 namespace lagfsi {
 
-bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
-                  double& inertia2, double& gravity2, double* viscous2) {
+namespace {
+
+/// pspg_element, with the tangent (Tangent) or without it (K is not touched): the residual's operations are the same
+/// either way.
+template <bool Tangent>
+bool element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
+             double& inertia2, double& gravity2, double* viscous2) {
   const double A2 =
       (in.x[1] - in.x[0]).x() * (in.x[2] - in.x[0]).y() - (in.x[1] - in.x[0]).y() * (in.x[2] - in.x[0]).x();
   if (!(A2 > 0.0)) return false;
@@ -46,7 +51,7 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
   const double m = in.rho * A / 3.0;
 
   r.setZero();
-  K.setZero();
+  if constexpr (Tangent) K.setZero();
   for (int a = 0; a < 3; ++a) {
     // momentum
     Vec2 inertia;
@@ -70,8 +75,9 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
     // determined instead of leaving a singular constant mode.
     if (in.bulk > 0) {
       r[3 * a + 2] += A / 3.0 * (in.p[a] - in.p_old[a]) / (in.bulk * in.dt);
-      K(3 * a + 2, 3 * a + 2) += A / 3.0 / (in.bulk * in.dt);
+      if constexpr (Tangent) K(3 * a + 2, 3 * a + 2) += A / 3.0 / (in.bulk * in.dt);
     }
+    if constexpr (!Tangent) continue;
     for (int b = 0; b < 3; ++b) {
       // d(momentum_a)/d(x_b): mass and viscous terms
       const double mass_ab = in.lumped ? (a == b ? m : 0.0) : in.rho * A / 12.0 * (a == b ? 2.0 : 1.0);
@@ -97,12 +103,26 @@ bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Ei
     const double snn = 2.0 * in.mu * n.dot(L * n);                   // normal viscous stress
     for (const int a : {k, k1}) {
       r[3 * a + 2] += beta * (in.p[a] - snn);
+      if constexpr (!Tangent) continue;
       K(3 * a + 2, 3 * a + 2) += beta;
       for (int b = 0; b < 3; ++b)
         K.block<1, 2>(3 * a + 2, 3 * b) += (-beta * 2.0 * in.mu * in.c_c * n.dot(dN[b]) * n).transpose();
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
+                  double& inertia2, double& gravity2, double* viscous2) {
+  return element<true>(in, r, K, inertia2, gravity2, viscous2);
+}
+
+bool pspg_residual(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, double& inertia2, double& gravity2,
+                   double* viscous2) {
+  Eigen::Matrix<double, 9, 9> unused;
+  return element<false>(in, r, unused, inertia2, gravity2, viscous2);
 }
 
 }  // namespace lagfsi

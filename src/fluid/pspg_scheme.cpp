@@ -103,11 +103,17 @@ class PspgScheme final : public FluidScheme {
   /// force scales, which particles have mass), the rows of particles in no element and of the walls' friction,
   /// the Dirichlet rows with the reactions they give (ghost, wall and constraint forces; returns the squared
   /// momentum residual), and the Newton correction (factorize, solve, update).
-  void assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2, double& gravity2,
-                         double& viscous2, std::vector<char>& has_mass);
-  void add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,
+  /// `tangent`: J_ too (else R alone, and J_ keeps whatever it held).
+  void assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, bool tangent, Vec& R, double& inertia2,
+                         double& gravity2, double& viscous2, std::vector<char>& has_mass);
+  void add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, bool tangent, Vec& R,
                                   const std::vector<char>& has_mass);
-  double apply_dirichlet(Vec& R, double sp);
+  double apply_dirichlet(Vec& R, double sp, bool tangent);
+  /// Whether this iteration sets up the solver with a new tangent: the step's first iteration (or every
+  /// refactor_every-th), the others solving with it (a frozen-tangent Newton method).
+  bool tangent_due() const {
+    return s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0;
+  }
   void correct(const Vec& R, double sp, const IterationReport& rep);
   PspgSettings s_;
   std::unique_ptr<TimeIntegrator> integrator_;
@@ -159,16 +165,18 @@ IterationReport PspgScheme::iterate() {
   f_.boundaries.set_motion(ev.t, ev.v, ev.a);
   const TangentCoefficients cf = integrator_->coefficients();
   Vec R = Vec::Zero(3 * np);
+  // The tangent only where the solver takes it (the other iterations keep the step's first: J_ is not read).
+  const bool tangent = tangent_due();
   // Every stored entry (for_each_entry: the other processes' rows do not matter).
-  std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
+  if (tangent) std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
   std::vector<char> has_mass(np, 0);
   double inertia2 = 0, gravity2 = 0, viscous2 = 0;
-  assemble_elements(ev, cf, R, inertia2, gravity2, viscous2, has_mass);
+  assemble_elements(ev, cf, tangent, R, inertia2, gravity2, viscous2, has_mass);
 
-  add_free_and_friction_rows(ev, cf, R, has_mass);
+  add_free_and_friction_rows(ev, cf, tangent, R, has_mass);
   // Pressure columns scaled by s_p (apply_dirichlet).
   const double sp = 3.0 * f_.c.rho * h * cf.c_m;
-  const double rm2 = apply_dirichlet(R, sp);
+  const double rm2 = apply_dirichlet(R, sp, tangent);
   IterationReport rep;
   rep.residual = std::sqrt(rm2);
   rep.residual_ref = std::max({std::sqrt(inertia2), std::sqrt(gravity2), std::sqrt(viscous2)});
@@ -190,8 +198,9 @@ IterationReport PspgScheme::iterate() {
   return rep;
 }
 
-void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R, double& inertia2_out,
-                                   double& gravity2_out, double& viscous2_out, std::vector<char>& has_mass) {
+void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficients& cf, bool tangent, Vec& R,
+                                   double& inertia2_out, double& gravity2_out, double& viscous2_out,
+                                   std::vector<char>& has_mass) {
   const FluidMesh& mesh = f_.mesh;
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
 
@@ -199,7 +208,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
   // One parallel loop over all elements (no colour barriers: on a loaded 2-core machine each OpenMP barrier of
   // busy-waiting threads can cost a time slice), each thread adding into its own copy of R and of the matrix's
   // values, merged in thread order (parallel_sum.hpp: the same sums in every run with the same threads).
-  scatter_.targets({values_of(R), values_of(J_)});
+  scatter_.targets({values_of(R), tangent ? values_of(J_) : std::span<double>()});
   ThreadSums<3> scales;  // inertia2, gravity2, viscous2
   std::vector<char> assembled(ne, 0);
   Index failed = ne;  // the lowest element that failed (the one reported, whatever the threads' timing)
@@ -220,7 +229,7 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
       Eigen::Matrix<double, 9, 1> r;
       Eigen::Matrix<double, 9, 9> K;
       double i2 = 0, g2 = 0, v2 = 0;
-      if (!pspg_element(in, r, K, i2, g2, &v2)) {
+      if (!(tangent ? pspg_element(in, r, K, i2, g2, &v2) : pspg_residual(in, r, i2, g2, &v2))) {
         // Turned over by a structure's boundary sliding past another prescribed particle (see
         // Ghosts::moving_boundary_pair): left out of this step, removed by the next remesh.
         if (f_.ghosts.moving_boundary_pair(t, kind)) continue;
@@ -239,13 +248,14 @@ void PspgScheme::assemble_elements(const EvalPoint& ev, const TangentCoefficient
           if (frames.rotated(t[a])) {
             const Mat2 Q = frames.frame(t[a]);
             r.segment<2>(3 * a) = (Q.transpose() * r.segment<2>(3 * a)).eval();
+            if (!tangent) continue;
             K.block<2, 9>(3 * a, 0) = (Q.transpose() * K.block<2, 9>(3 * a, 0)).eval();
             K.block<9, 2>(0, 3 * a) = (K.block<9, 2>(0, 3 * a) * Q).eval();
           }
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) Rt[3 * t[a] + c] += r[3 * a + c];
       assembled[e] = 1;
-      pattern_.add(e, K, jt);
+      if (tangent) pattern_.add(e, K, jt);
     }
     scales.mine() = {inertia2, gravity2, viscous2};
   }
@@ -279,7 +289,7 @@ std::string PspgScheme::inverted_message(Index e, const Vec& x) const {
          std::to_string(f_.mesh.element_area(x, e)) + ")";
 }
 
-void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, Vec& R,
+void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCoefficients& cf, bool tangent, Vec& R,
                                             const std::vector<char>& has_mass) {
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
   const std::vector<char>& fixed = f_.step.fixed;
@@ -303,7 +313,7 @@ void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCo
     const double m0 = f_.c.rho * f_.cloud.h(i) * f_.cloud.h(i);
     for (int c = 0; c < 2; ++c) {
       R[3 * i + c] = m0 * f_.boundaries.frames().along(acc, i, c);  // (in its frame on an inclined wall)
-      diag(3 * i + c) += cf.c_m * m0;
+      if (tangent) diag(3 * i + c) += cf.c_m * m0;
     }
   }
   // No-slip walls with "navier" friction (fluid_walls.hpp): the tangential force k (v_t - v_wall,t) on each
@@ -313,11 +323,11 @@ void PspgScheme::add_free_and_friction_rows(const EvalPoint& ev, const TangentCo
     if (!has_mass[w.i] || fixed[dof]) continue;
     const double kf = f_.boundaries.friction_coefficient(w);
     R[dof] += kf * (f_.boundaries.frames().component(ev.v, w.i, w.c) - f_.boundaries.friction_velocity(w, ev.t));
-    diag(dof) += kf * cf.c_c;
+    if (tangent) diag(dof) += kf * cf.c_c;
   }
 }
 
-double PspgScheme::apply_dirichlet(Vec& R, double sp) {
+double PspgScheme::apply_dirichlet(Vec& R, double sp, bool tangent) {
   FluidStep& step = f_.step;
   const std::vector<char>& fixed = step.fixed;
   const Index np = f_.cloud.n();
@@ -325,12 +335,13 @@ double PspgScheme::apply_dirichlet(Vec& R, double sp) {
   // s_p = 3 rho h c_m (p = s_p p^), which brings the pressure blocks to the size of the momentum block:
   // unscaled, the PSPG diagonal (tau/rho ~ 1e-7) is far below the pivoting threshold of the sparse LU,
   // whose off-diagonal pivots then destroy the fill-reducing ordering (4-5x slower factorizations).
-  for_each_entry([&](Index row, Index col, double& value) {
-    if (fixed[row] || fixed[col])
-      value = row == col ? 1.0 : 0.0;
-    else if (col % 3 == 2)
-      value *= sp;
-  });
+  if (tangent)
+    for_each_entry([&](Index row, Index col, double& value) {
+      if (fixed[row] || fixed[col])
+        value = row == col ? 1.0 : 0.0;
+      else if (col % 3 == 2)
+        value *= sp;
+    });
   // Forces on the ghost particles: the reactions of their prescribed momentum rows, sign flipped (the
   // residual there is the force the structure applies to the fluid).
   Vec& ghost_force = f_.ghosts.forces();
@@ -368,7 +379,7 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
   const double h = f_.c.h;
   const Index np = f_.cloud.n();
   auto t0 = SteadyClock::now();
-  if (s_.refactor_every == 0 ? iter_in_step_ == 0 : iter_in_step_ % s_.refactor_every == 0) {
+  if (tangent_due()) {
     try {
       solver_->setup(J_);
     } catch (const SolverError& e) {

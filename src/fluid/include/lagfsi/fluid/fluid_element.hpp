@@ -52,5 +52,9 @@ struct PspgElementInput {
 /// area is not positive.
 bool pspg_element(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, Eigen::Matrix<double, 9, 9>& K,
                   double& inertia2, double& gravity2, double* viscous2 = nullptr);
+/// The residual alone, the same bits as pspg_element's: for the Newton iterations that keep the step's first tangent
+/// (a frozen-tangent Newton method, PspgSettings::refactor_every).
+bool pspg_residual(const PspgElementInput& in, Eigen::Matrix<double, 9, 1>& r, double& inertia2, double& gravity2,
+                   double* viscous2 = nullptr);
 
 }  // namespace lagfsi

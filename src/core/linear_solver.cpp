@@ -85,6 +85,11 @@ void LinearSolver::setup(const SparseMatrix& A) {
   stats_.setup_seconds += report_.setup_seconds;
 }
 
+void LinearSolver::release() {
+  do_release();
+  ready_ = false;
+}
+
 void LinearSolver::solve(const Vec& b, Vec& x) {
   const auto t0 = SteadyClock::now();
   report_.iterations = 0;

@@ -44,6 +44,10 @@ class AutoSolver final : public LinearSolver {
     report_.iterations = active_->report().iterations;
     report_.residual = active_->report().residual;
   }
+  void do_release() override {
+    direct_->release();
+    if (iterative_) iterative_->release();
+  }
 
  private:
   LinearSolverSettings s_;

@@ -173,6 +173,7 @@ class PetscSolver final : public LinearSolver {
  protected:
   void do_setup(const SparseMatrix& A) override;
   void do_solve(const Vec& b, Vec& x) override;
+  void do_release() override { destroy(); }
 
  private:
   /// The rows [lo, hi) this process owns in a system of n rows: whole blocks of block_size rows (all rows on one

@@ -75,6 +75,8 @@ class PspgScheme final : public FluidScheme {
     // Over several processes with a distributed solver each computes the elements with a particle in its rows
     // (mpi_run.hpp), on the pattern of those elements alone; the particles' rows are whole blocks of 3.
     rows_.set(s_.solver.distributed, f_.cloud.n());
+    // The last mesh's solver (its copy of the matrix, its preconditioner) goes before the new pattern is built.
+    solver_->release();
     rows_.renew_pattern(pattern_, J_, f_.mesh.tri, f_.mesh.conn, f_.cloud.n(), 3);
     integrator_->begin_step(f_.cloud.state(), f_.step.dt);
     // A new mesh: a new Jacobian, factorized at the first iteration; re-solves of the step (restart) keep
@@ -385,6 +387,9 @@ void PspgScheme::correct(const Vec& R, double sp, const IterationReport& rep) {
     } catch (const SolverError& e) {
       throw SolverError("body '" + f_.c.name + "': " + e.what());
     }
+    // Set up once a step: the solver holds what it needs of J_, which no other iteration of the step reads (the next
+    // step has a new pattern), so it goes before the solves allocate their Krylov vectors.
+    if (s_.refactor_every == 0) SparseMatrix().swap(J_);
   }
   ++iter_in_step_;
   f_.times.factorization += seconds_since(t0);

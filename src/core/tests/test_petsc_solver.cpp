@@ -104,6 +104,23 @@ TEST(PetscSolver, TheSaddlePointsNestOfBlocksSolvesAsTheWholeMatrixDoesAndFollow
   EXPECT_EQ(nest->statistics().pattern_setups, 2);
 }
 
+TEST(PetscSolver, AReleasedSolverRefusesToSolveUntilItsNextSetupWhichStartsAnew) {
+  const SparseMatrix A = saddle_point(24, 1.0, 1e-2);
+  const Vec b = random_vector(A.rows(), 5);
+  auto solver = make_linear_solver(petsc(SystemKind::saddle_point, 3));
+  solver->setup(A);
+  Vec x;
+  solver->solve(b, x);
+  solver->release();
+  Vec y;
+  EXPECT_THROW(solver->solve(b, y), SolverError);
+  solver->setup(A);  // the same pattern, made again: the old matrix is gone
+  EXPECT_EQ(solver->statistics().pattern_setups, 2);
+  solver->solve(b, y);
+  EXPECT_LE(relative_residual(A, y, b), 1e-8);
+  EXPECT_EQ((x - y).norm(), 0.0);  // a new matrix and preconditioner give the same bits
+}
+
 TEST(PetscSolver, GeneralSystemsUseRightPreconditionedGmres) {
   SparseMatrix A = laplacian(20, 0.5);
   A.coeffRef(0, 1) = -2.0;  // unsymmetric

@@ -104,6 +104,9 @@ class LinearSolver {
   /// Solves A x = b with the A of the last setup (b and x may alias); refused unless that setup succeeded and b
   /// is finite with A.rows() entries. An empty system (0 x 0) gives an empty x.
   void solve(const Vec& b, Vec& x);
+  /// Lets the solver's copy of the matrix and its preconditioner or factorization go, when a system of a new pattern
+  /// comes next (so that the old and the new are never held at once); solves are refused until the next setup.
+  void release();
   /// The nodes' coordinates [x0 y0 x1 y1 ...] of a 2D elasticity system whose unknowns are interleaved per node:
   /// an algebraic multigrid then keeps the rigid-body modes (two translations, one rotation) in its coarse
   /// spaces (the near-null space). Direct solvers ignore it.
@@ -119,6 +122,8 @@ class LinearSolver {
   /// The backend's solve, only after a successful do_setup of a non-empty A: b finite with A.rows() entries,
   /// b and x distinct.
   virtual void do_solve(const Vec& b, Vec& x) = 0;
+  /// The backend's release(): what it holds of the last setup let go (nothing by default).
+  virtual void do_release() {}
   /// Throws SolverError "<type>: <reason>".
   [[noreturn]] void fail(const std::string& reason) const;
   int symbolic_count_ = 0;

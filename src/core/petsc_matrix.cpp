@@ -8,14 +8,14 @@
 
 namespace lagfsi::petsc {
 
-namespace {
-
 void check(PetscErrorCode code, const char* what) {
   if (code == 0) return;
   const char* text = nullptr;
   PetscErrorMessage(code, &text, nullptr);
   throw SolverError(std::string("petsc: ") + what + " failed (" + (text ? text : "PETSc error") + ")");
 }
+
+namespace {
 
 /// An AIJ matrix's rows as PETSc keeps them: the diagonal block (the whole of a sequential matrix) with local column
 /// numbers, and the off-diagonal one with compressed numbers (garray[] their columns, in increasing order). A row's

@@ -23,6 +23,9 @@
 
 namespace lagfsi::petsc {
 
+/// Throws SolverError with PETSc's text for a non-zero error code ("petsc: <what> failed (<text>)").
+void check(PetscErrorCode code, const char* what);
+
 class SystemMatrix {
  public:
   /// A matrix on `comm` for systems of block_size unknowns a node; `split`: the nest layout (block_size >= 2);

@@ -39,17 +39,7 @@
 
 namespace lagfsi {
 
-namespace {
-
-/// Throws SolverError with PETSc's text for a non-zero error code.
-void check(PetscErrorCode code, const char* what) {
-  if (code == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw SolverError(std::string("petsc: ") + what + " failed (" + (text ? text : "PETSc error") + ")");
-}
-
-}  // namespace
+using petsc::check;
 
 /// PETSc (and MPI under it) start with the first solver and stop at exit; PETSc's signal handlers are not
 /// installed and its errors are not printed (they become SolverError).

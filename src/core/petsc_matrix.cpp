@@ -3,6 +3,7 @@
 #include "petsc_matrix.hpp"
 
 #include <lagfsi/error.hpp>
+#include <lagfsi/mpi_run.hpp>
 
 #include <string>
 
@@ -194,7 +195,11 @@ bool SystemMatrix::write(const SparseMatrix& A, const Each& each, const std::fun
     close();
   }
   // Making the matrix is collective: every process takes the same branch.
-  if (distributed_) MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
+  if (distributed_) {
+    const double t0 = MPI_Wtime();
+    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_);
+    mpi_run::note_traffic(MPI_Wtime() - t0, mpi_run::allreduce_bytes(sizeof same));
+  }
   if (!same) {
     if (before_new) before_new();
     destroy();  // the old matrix let go before the new one is made
@@ -254,28 +259,26 @@ void SystemMatrix::field_sets(IS sets[2]) const {
   if (split_ && mat_) check(MatNestGetISs(mat_, sets, nullptr), "MatNestGetISs");
 }
 
-void SystemMatrix::to_petsc(const double* v, PetscScalar* p) const {
+template <class Fn>
+void SystemMatrix::each_place(const Fn& fn) const {
   if (!split_) {
-    std::copy(v, v + local_, p);
+    for (PetscInt k = 0; k < local_; ++k) fn(k, k);
     return;
   }
+  // The nest's order: this process's velocities (nv a node, node by node), then its pressures.
   const PetscInt nv = bs_ - 1, m = local_ / bs_;
   for (PetscInt i = 0; i < m; ++i) {
-    for (PetscInt c = 0; c < nv; ++c) p[nv * i + c] = v[bs_ * i + c];
-    p[nv * m + i] = v[bs_ * i + nv];
+    for (PetscInt c = 0; c < nv; ++c) fn(bs_ * i + c, nv * i + c);
+    fn(bs_ * i + nv, nv * m + i);
   }
 }
 
+void SystemMatrix::to_petsc(const double* v, PetscScalar* p) const {
+  each_place([&](PetscInt k, PetscInt q) { p[q] = v[k]; });
+}
+
 void SystemMatrix::from_petsc(const PetscScalar* p, double* v) const {
-  if (!split_) {
-    std::copy(p, p + local_, v);
-    return;
-  }
-  const PetscInt nv = bs_ - 1, m = local_ / bs_;
-  for (PetscInt i = 0; i < m; ++i) {
-    for (PetscInt c = 0; c < nv; ++c) v[bs_ * i + c] = p[nv * i + c];
-    v[bs_ * i + nv] = p[nv * m + i];
-  }
+  each_place([&](PetscInt k, PetscInt q) { v[k] = p[q]; });
 }
 
 }  // namespace lagfsi::petsc

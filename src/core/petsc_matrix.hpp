@@ -72,6 +72,10 @@ class SystemMatrix {
   template <class Each>
   bool write(const SparseMatrix& A, const Each& each, const Hook& before_new);
   void make_block(Block& b, const std::vector<PetscInt>& cols);
+  /// fn(k, q) for each of this process's system entries: k its place in the system's (interleaved) order, q in the
+  /// matrix's.
+  template <class Fn>
+  void each_place(const Fn& fn) const;
   void make_operator();
 
   MPI_Comm comm_;

@@ -40,7 +40,15 @@ std::vector<char> FluidMesh::beside_interior_fluid(const std::vector<ParticleKin
                          [&](Index i) { return kind[i] == ParticleKind::Fluid && !free[i]; });
 }
 
-std::vector<std::pair<Index, int>> FluidMesh::boundary_edges() const {
+const std::vector<std::pair<Index, int>>& FluidMesh::boundary_edges() const {
+  if (boundary_of_ != tri) {
+    boundary_ = find_boundary_edges();
+    boundary_of_ = tri;
+  }
+  return boundary_;
+}
+
+std::vector<std::pair<Index, int>> FluidMesh::find_boundary_edges() const {
   // The edges bucketed by their smaller particle (a counting sort), each bucket (a few edges) sorted by the
   // larger one: an edge found once is on the boundary. In the order of (smaller, larger) particle.
   const Index ne = num_elements();

@@ -37,12 +37,21 @@ struct FluidMesh {
   std::vector<char> beside_interior_fluid(const std::vector<ParticleKind>& kind) const;
   /// The edges in one element only, as (element, k: the edge from its particle k to k + 1), in the order of
   /// their particle pairs (smaller index first): the boundary of the mesh, counter-clockwise in its element.
-  std::vector<std::pair<Index, int>> boundary_edges() const;
+  /// Kept for the triangles it was found for: a step asks for it three times (the free surface's flags, the
+  /// Robin edges, the next remesh's boundary chains) on the same triangles, and each search sorts every edge.
+  const std::vector<std::pair<Index, int>>& boundary_edges() const;
   /// Per element, its edges on the free surface (bit k: from its particle k to k + 1): in no other element,
   /// between two free-surface fluid particles (the Robin free-surface pressure, fluid_element.hpp).
   std::vector<unsigned char> free_surface_edges(const std::vector<ParticleKind>& kind) const;
   /// Checkpoints (state_archive.hpp; fluid_checkpoint.cpp).
   void serialize(StateArchive& ar);
+
+ private:
+  std::vector<std::pair<Index, int>> find_boundary_edges() const;
+  // boundary_edges() of the triangles boundary_of_ (compared whole: any change of tri, wherever it is made,
+  // finds the boundary again; no triangles, no boundary).
+  mutable std::vector<std::array<Index, 3>> boundary_of_;
+  mutable std::vector<std::pair<Index, int>> boundary_;
 };
 
 }  // namespace lagfsi::fluid

@@ -11,13 +11,14 @@ domain detection are divided among them, the particle management is not. Per run
 residual's rows over the processes, solver set-up, solve, rest) and the speed-up against the one-process MPI run of
 the same size (wall time per step, measured in this one invocation), the Newton iterations a step and that speed-up
 per Newton iteration; from summary.json, the Krylov iterations a solve, the divided remeshing's ghost share and the
-mesh data process 0 receives a remesh; and the memory bandwidth of one process alone and of each of P at once (the
-STREAM triad of tests/bench/bench_bandwidth.cpp), which bounds what P processes gain on this machine's memory-bound
-phases.
+mesh data process 0 receives a remesh; the same measures of P serial runs of N / P particles started together,
+whose time a step against the one-process run's bounds the speed-up of a perfect division of the work among P
+processes on this machine (its shared cores, caches and memory; `--no-bound` leaves them out); and the memory
+bandwidth of one process alone and of each of P at once (the STREAM triad of tests/bench/bench_bandwidth.cpp).
 
 usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes 1e5 1e6] [--processes 2]
            [--steps 8] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
-           [--marker bench_mpi]
+           [--marker bench_mpi] [--no-bound]
 --doc: rewrite the table between the markers <!-- MARKER begin --> and <!-- MARKER end --> of that file.
 --weak N ...: weak scaling instead, one process at N particles against P processes at P N (marker bench_mpi_weak).
 Sizes past the 2 million nodes a mesh may have by default pass --max-nodes.
@@ -42,13 +43,14 @@ COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_partic
            "ghost_share", "gathered_mb", "comm_share", "comm_mb_per_step"]
 
 
-def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
+def start(exe, outdir, launch, processes, n, steps, warmup, scheme, copy=None):
+    """Launches one run (`copy`: the number of one of several serial runs at once); finish() reads it."""
     h = H0 * (N0 / n) ** 0.5
     dt = DT * h / H0
-    tag = f"{launch}_np{processes}_n{int(n)}_{scheme}"
+    tag = f"{launch}_np{processes}_n{int(n)}_{scheme}" + (f"_copy{copy}" if copy is not None else "")
     out = os.path.join(outdir, tag)
     shutil.rmtree(out, ignore_errors=True)
-    mpi = [] if launch == "serial" else [shutil.which("mpirun") or "mpirun", "--allow-run-as-root", "--oversubscribe",
+    mpi = [] if launch != "mpirun" else [shutil.which("mpirun") or "mpirun", "--allow-run-as-root", "--oversubscribe",
                                          "-np", str(processes)]
     args = (["/usr/bin/time", "-f", "%M"] + mpi +
             [exe, "run", CASE, "-o", out, "--quiet", "--threads", "1",
@@ -56,11 +58,23 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
              "--max-nodes", f"{max(2e6, 1.2 * n):.0f}", "--set", f"bodies.0.scheme.type={scheme}",
              "--set", f"bodies.0.spacing={h:.6g}", "--set", "bodies.0.scheme.linear_solver=petsc",
              "--set", "output.vtk=false", "--set", "output.every=100000"])
-    p = subprocess.run(args, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
-    if p.returncode != 0:
-        print(f"bench_mpi: {tag} failed: {p.stderr.strip()[-300:]}", file=sys.stderr)
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=dict(os.environ, OMP_NUM_THREADS="1"))
+    return proc, tag, out, (launch, processes, n, warmup)
+
+
+def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
+    return finish(start(exe, outdir, launch, processes, n, steps, warmup, scheme))
+
+
+def finish(started):
+    """The measures of a run start() launched, or None when it failed."""
+    proc, tag, out, (launch, processes, n, warmup) = started
+    stderr = proc.communicate()[1]
+    if proc.returncode != 0:
+        print(f"bench_mpi: {tag} failed: {stderr.strip()[-300:]}", file=sys.stderr)
         return None
-    peak_kb = float(p.stderr.strip().splitlines()[-1])
+    peak_kb = float(stderr.strip().splitlines()[-1])
     s = json.load(open(os.path.join(out, "summary.json")))
     rows = list(csv.DictReader(open(os.path.join(out, "log.csv"))))
     steady = rows[warmup:] if len(rows) > warmup else rows
@@ -91,6 +105,23 @@ def run(exe, outdir, launch, processes, n, steps, warmup, scheme):
     r["ghost_share"] = divided.get("ghost_share", float("nan"))
     r["gathered_mb"] = divided.get("gathered_mb_per_remesh", float("nan"))
     return r
+
+
+def at_once(exe, outdir, p, n, steps, warmup, scheme):
+    """P serial runs of N / P particles each, started together: what P processes that each had a P-th of the work
+    and nothing to exchange would take on this machine (its cores, caches and memory shared). Their mean time a step
+    against the one-process run of N bounds the speed-up any division of the work among P processes reaches here."""
+    started = [start(exe, outdir, "serial", 1, n / p, steps, warmup, scheme, copy=k) for k in range(p)]
+    copies = [finish(s_) for s_ in started]
+    if any(c is None for c in copies):
+        return None
+    row = {k: sum(c[k] for c in copies) / p for k in ["us_per_particle_step", "remesh", "assembly", "setup", "solve",
+                                                      "rest", "newton_per_step", "krylov_per_solve"]}
+    row.update({"launch": f"{p} serial at once", "processes": p, "target": int(n), "particles": copies[0]["particles"],
+                "steps": copies[0]["steps"], "peak_mb": max(c["peak_mb"] for c in copies),
+                "ghost_share": float("nan"), "gathered_mb": float("nan"), "comm_share": float("nan"),
+                "comm_mb_per_step": float("nan"), "per_process": []})
+    return row
 
 
 def bandwidth(build, processes):
@@ -127,7 +158,10 @@ def markdown(rows, commit, machine, scheme, command, bw):
     lines = [f"Measured at {commit} on {machine} (`{command}`): the dam break's first steps, the "
              f"{what} with the PETSc solver, one thread per process; µs per particle-step over the steps "
              "after the first two (process 0's log), by phase; peak MB: the largest process's resident memory; the "
-             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); Newton: "
+             "speed-up is the one-process MPI run's time per step over this run's (same size, same invocation); "
+             "P serial at once: P serial runs of a P-th of the particles each, started together (the particles column "
+             "gives one run's), whose speed-up (the one-process time per step over theirs) bounds what any division "
+             "of the work among P processes reaches on this machine's shared cores, caches and memory; Newton: "
              "iterations a step; Krylov: iterations a linear solve (the whole run" +
              ("; the pressure solve" if scheme == "fractional_step" else "") + "); per iteration: the speed-up of the "
              "time per Newton iteration (the runs' Newton tests may stop after different counts); ghosts: "
@@ -247,6 +281,8 @@ def main():
     ap.add_argument("--scheme", default="monolithic_pspg", choices=["monolithic_pspg", "fractional_step"])
     ap.add_argument("--doc")
     ap.add_argument("--marker", default="bench_mpi")
+    ap.add_argument("--no-bound", action="store_true",
+                    help="leave out the P serial runs of N / P particles at once (the bound on the speed-up)")
     ap.add_argument("--weak", nargs="+", type=float,
                     help="weak scaling instead: one process at each N against P processes at P N")
     a = ap.parse_args()
@@ -262,11 +298,13 @@ def main():
         size_rows = [run(exe, outdir, "serial", 1, n, a.steps, a.warmup, a.scheme),
                      run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup, a.scheme)]
         size_rows += [run(exe, outdir, "mpirun", p, n, a.steps, a.warmup, a.scheme) for p in a.processes]
+        if not a.no_bound:
+            size_rows += [at_once(exe, outdir, p, n, a.steps, a.warmup, a.scheme) for p in a.processes]
         size_rows = [r for r in size_rows if r]
         base = next((r for r in size_rows if r["launch"] == "mpirun" and r["processes"] == 1), None)
         for r in size_rows:
-            # Per step: the particle counts of the runs agree (the same mesh at every step).
-            r["speedup"] = base["us_per_particle_step"] / r["us_per_particle_step"] if base else float("nan")
+            # Per step (the runs of N particles have the same mesh at every step; the copies at once a P-th of it).
+            r["speedup"] = seconds_per_step(base) / seconds_per_step(r) if base else float("nan")
             r["speedup_per_iteration"] = (r["speedup"] * r["newton_per_step"] / base["newton_per_step"] if base
                                           else float("nan"))
             print(f"bench_mpi: {r['launch']} np {r['processes']} n {r['particles']}: "

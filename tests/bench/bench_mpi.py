@@ -240,9 +240,12 @@ def weak(a, exe, outdir):
     for n in a.weak:
         pair = [run(exe, outdir, "mpirun", 1, n, a.steps, a.warmup, a.scheme)]
         pair += [run(exe, outdir, "mpirun", p, p * n, a.steps, a.warmup, a.scheme) for p in a.processes]
+        if not a.no_bound:  # P serial runs of N at once: the efficiency of P processes that exchange nothing
+            pair += [at_once(exe, outdir, p, p * n, a.steps, a.warmup, a.scheme) for p in a.processes]
         pair = [r for r in pair if r]
         base = next((r for r in pair if r["processes"] == 1), None)
         for r in pair:
+            # The P serial runs at once: each copy's time a step (its work is the one-process run's).
             r["efficiency"] = seconds_per_step(base) / seconds_per_step(r) if base else float("nan")
             r["efficiency_per_iteration"] = (r["efficiency"] * r["newton_per_step"] / base["newton_per_step"] if base
                                              else float("nan"))
@@ -254,12 +257,15 @@ def weak(a, exe, outdir):
     lines = [f"Measured at {head_commit()} on {os.cpu_count()} cores, {platform.machine()} (`{command}`): the same particles "
              "per process, the dam break's first steps as in the table above; seconds a step over the steps after "
              "the first two (process 0's log); efficiency: the one-process time a step (or a Newton iteration) over "
-             "this run's, 1 when the work per process stays the same; comm: process 0's share of the step in the "
-             "processes' collectives, as in the table above." + bandwidth_sentence(bw), "",
+             "this run's, 1 when the work per process stays the same (P serial at once: P serial runs of N particles "
+             "started together, each copy's time a step: the efficiency P processes that exchange nothing reach on "
+             "this machine); comm: process 0's share of the step in the processes' collectives, as in the table "
+             "above." + bandwidth_sentence(bw), "",
              "| processes | particles | s a step | Newton a step | remesh | assembly | set-up | solve (µs/particle-step) "
              "| efficiency | per iteration | ghosts | comm |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['processes']} | {r['particles']} | {seconds_per_step(r):.3f} | {r['newton_per_step']:.2f} | "
+        who = f"{r['processes']}" if r["launch"] == "mpirun" else r["launch"]
+        lines.append(f"| {who} | {r['particles']} | {seconds_per_step(r):.3f} | {r['newton_per_step']:.2f} | "
                      f"{r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | {r['solve']:.2f} | "
                      f"{r['efficiency']:.2f} | {r['efficiency_per_iteration']:.2f} | "
                      + ("– |" if r["ghost_share"] != r["ghost_share"] else f"{100 * r['ghost_share']:.1f} % |")

@@ -20,7 +20,8 @@ usage: /usr/bin/python3 tests/bench/bench_mpi.py [OUTDIR] [--build DIR] [--sizes
            [--steps 8] [--warmup 2] [--scheme monolithic_pspg|fractional_step] [--doc docs/running.md]
            [--marker bench_mpi] [--no-bound]
 --doc: rewrite the table between the markers <!-- MARKER begin --> and <!-- MARKER end --> of that file.
---weak N ...: weak scaling instead, one process at N particles against P processes at P N (marker bench_mpi_weak).
+--weak N ...: weak scaling instead, one process at N particles against P processes at P N and against P serial runs
+of N at once (marker bench_mpi_weak).
 Sizes past the 2 million nodes a mesh may have by default pass --max-nodes.
 Run it on an otherwise idle machine: P processes need P free cores.
 OUTDIR (default BUILD/bench_mpi/) receives bench_mpi.csv and the runs' output folders.

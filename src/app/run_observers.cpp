@@ -38,7 +38,7 @@ void RunLog::started(const Simulation& s) {
   if (s.analysis().time_step.adaptive) header += ",dt_limit,dt_by";
   for (const Metric& m : s.metric_columns()) header += "," + m.name;
   header += ",t_remesh,t_assembly,t_factorization,t_solve,t_output,t_step";
-  if (mpi_run::size() > 1) header += ",t_comm,comm_MB,petsc_MB";
+  if (mpi_run::size() > 1) header += ",t_comm,comm_MB,t_halo,petsc_MB";
   csv_.write(header + "\n");
   traffic_ = mpi_run::traffic();
 }
@@ -55,7 +55,7 @@ void RunLog::stepped(const Simulation& s, const StepRecord& r) {
   if (mpi_run::size() > 1) {
     const mpi_run::Traffic now = mpi_run::traffic();
     row << "," << now.seconds - traffic_.seconds << "," << (now.bytes - traffic_.bytes) / 1e6 << ","
-        << (now.petsc_bytes - traffic_.petsc_bytes) / 1e6;
+        << now.halo_seconds - traffic_.halo_seconds << "," << (now.petsc_bytes - traffic_.petsc_bytes) / 1e6;
     traffic_ = now;
   }
   row << "\n";
@@ -137,12 +137,12 @@ Json process_report(const PhaseTimes& p, double wall) {
   if (mpi_run::size() <= 1) return nullptr;
   const mpi_run::Traffic t = mpi_run::traffic();
   const std::vector<double> mine{
-      p.remesh,      p.assembly,          p.factorization,          p.solve, p.output, wall, t.seconds,
-      t.bytes / 1e6, t.petsc_bytes / 1e6, mpi_run::peak_memory_mb()};
+      p.remesh,       p.assembly,          p.factorization,          p.solve, p.output, wall, t.seconds, t.bytes / 1e6,
+      t.halo_seconds, t.petsc_bytes / 1e6, mpi_run::peak_memory_mb()};
   const std::vector<double> all = mpi_run::gather_to_writer(mine);
   if (all.empty()) return nullptr;
-  const char* names[] = {"remesh", "assembly", "factorization", "solve",    "output",
-                         "wall",   "comm",     "comm_MB",       "petsc_MB", "peak_MB"};
+  const char* names[] = {"remesh", "assembly", "factorization", "solve",    "output", "wall",
+                         "comm",   "comm_MB",  "halo",          "petsc_MB", "peak_MB"};
   Json out = Json::array();
   for (size_t r = 0; r * mine.size() < all.size(); ++r) {
     Json e{{"rank", r}};

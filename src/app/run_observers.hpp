@@ -35,7 +35,8 @@ class ProbesCsv final : public StepObserver {
 /// log.csv: a row per step — step, time, dt, Newton iterations, residual, nodes, elements, the models' metrics
 /// (model.hpp, Metric), then the wall time per phase (t_remesh .. t_output) and of the whole step (t_step); an MPI
 /// run also the communication of process 0 since the last row (mpi_run::traffic): t_comm (wall seconds in the
-/// collectives, waiting included), comm_MB (MB received in them) and petsc_MB (MB PETSc's messages sent).
+/// collectives, waiting included), comm_MB (MB received in them), t_halo (wall seconds in the point-to-point waits of
+/// PETSc's and hypre's halo exchanges) and petsc_MB (MB PETSc's messages sent).
 class RunLog final : public StepObserver {
  public:
   explicit RunLog(std::filesystem::path file) : file_(std::move(file)) {}
@@ -158,7 +159,8 @@ class SummaryWriter final : public StepObserver {
 
 /// An MPI run's processes side by side: each one's phase times (`phases`, summed over the run's steps, those before a
 /// restart included), the wall time since it started (`wall`), its communication in this run (mpi_run::traffic:
-/// seconds, MB received in the collectives, MB PETSc's messages sent) and its peak resident memory; an array in
+/// seconds and MB received in the collectives, seconds in the halo exchanges' waits, MB PETSc's messages sent) and
+/// its peak resident memory; an array in
 /// rank order on process 0, null on the others and with one process. Every process must call it.
 Json process_report(const PhaseTimes& phases, double wall);
 

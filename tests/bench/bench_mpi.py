@@ -41,7 +41,7 @@ H0, N0, DT = 0.0073, 861, 1e-3
 PHASES = [("remesh", "t_remesh"), ("assembly", "t_assembly"), ("setup", "t_factorization"), ("solve", "t_solve")]
 COLUMNS = ["launch", "processes", "target", "particles", "steps", "us_per_particle_step", "remesh", "assembly",
            "setup", "solve", "rest", "peak_mb", "speedup", "newton_per_step", "krylov_per_solve", "speedup_per_iteration",
-           "ghost_share", "gathered_mb", "comm_share", "comm_mb_per_step"]
+           "ghost_share", "gathered_mb", "comm_share", "halo_share", "comm_mb_per_step"]
 
 
 def start(exe, outdir, launch, processes, n, steps, warmup, scheme, copy=None):
@@ -93,6 +93,9 @@ def finish(started):
                        if comm else float("nan"))
     r["comm_mb_per_step"] = (sum(float(r_["comm_MB"]) + float(r_["petsc_MB"]) for r_ in steady) / len(steady)
                              if comm else float("nan"))
+    # The point-to-point waits of PETSc's and hypre's halo exchanges (within the solver's phases).
+    r["halo_share"] = (sum(float(r_["t_halo"]) for r_ in steady) / sum(float(r_["t_step"]) for r_ in steady)
+                       if comm else float("nan"))
     r["per_process"] = s.get("processes", [])
     # Newton iterations a step (the steps measured) and Krylov iterations a solve (the whole run): two runs whose
     # Newton tests stop after different counts differ by whole iterations, which the speed-up per iteration removes.
@@ -121,6 +124,7 @@ def at_once(exe, outdir, p, n, steps, warmup, scheme):
     row.update({"launch": f"{p} serial at once", "processes": p, "target": int(n), "particles": copies[0]["particles"],
                 "steps": copies[0]["steps"], "peak_mb": max(c["peak_mb"] for c in copies),
                 "ghost_share": float("nan"), "gathered_mb": float("nan"), "comm_share": float("nan"),
+                "halo_share": float("nan"),
                 "comm_mb_per_step": float("nan"), "per_process": []})
     return row
 
@@ -170,11 +174,14 @@ def markdown(rows, commit, machine, scheme, command, bw):
              "process 0 receives of the others' shares of the mesh a remesh; comm: process 0's share of the step in "
              "the processes' collectives (the mesh's shares, the combined sums, the solution's gather, the decisions "
              "taken together; within the phases, waiting for the other process included) and the MB a step it "
-             "received in them plus what PETSc's messages sent (the matrices' halo; hypre's are not counted)."
+             "received in them plus what PETSc's messages sent (the matrices' halo; hypre's are not counted); halo: "
+             "process 0's share of the step in the point-to-point waits of PETSc's and hypre's halo exchanges "
+             "(within the set-up and the solve, waiting for the other process included)."
              + bandwidth_sentence(bw), "",
              "| launch | processes | particles | steps | µs/particle-step | remesh | assembly | set-up | solve | rest "
-             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB | comm | comm MB a step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| peak MB | speed-up | Newton | Krylov | per iteration | ghosts | gathered MB | comm | halo "
+             "| comm MB a step |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['launch']} | {r['processes']} | {r['particles']} | {r['steps']} | "
                      f"{r['us_per_particle_step']:.2f} | {r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | "
@@ -182,8 +189,9 @@ def markdown(rows, commit, machine, scheme, command, bw):
                      f"{r['newton_per_step']:.2f} | {r['krylov_per_solve']:.2f} | {r['speedup_per_iteration']:.2f} | "
                      + ("– | – |" if r["ghost_share"] != r["ghost_share"] else
                         f"{100 * r['ghost_share']:.1f} % | {r['gathered_mb']:.1f} |")
-                     + (" – | – |" if r["comm_share"] != r["comm_share"] else
-                        f" {100 * r['comm_share']:.1f} % | {r['comm_mb_per_step']:.1f} |"))
+                     + (" – | – | – |" if r["comm_share"] != r["comm_share"] else
+                        f" {100 * r['comm_share']:.1f} % | {100 * r['halo_share']:.1f} % | "
+                        f"{r['comm_mb_per_step']:.1f} |"))
     return "\n".join(lines) + "\n" + process_table(rows)
 
 
@@ -195,14 +203,17 @@ def process_table(rows):
         return ""
     lines = ["", "Each process of those runs over the whole run (summary.json's `processes`), in seconds: the phases, "
              "the collectives within them (comm, waiting for the other process included), the rest of its wall time "
-             "(the case's set-up, output, the steps' bookkeeping); MB received in the collectives and sent by PETSc.",
-             "", "| particles | process | remesh | assembly | set-up | solve | comm | rest | wall | peak MB "
-             "| MB received | PETSc MB sent |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "(the case's set-up, output, the steps' bookkeeping); halo: the point-to-point waits of PETSc's and "
+             "hypre's halo exchanges (within the set-up and the solve); MB received in the collectives and sent by "
+             "PETSc.",
+             "", "| particles | process | remesh | assembly | set-up | solve | comm | halo | rest | wall | peak MB "
+             "| MB received | PETSc MB sent |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in multi:
         for q in r["per_process"]:
             phases = q["remesh"] + q["assembly"] + q["factorization"] + q["solve"]
             lines.append(f"| {r['particles']} | {q['rank']} | {q['remesh']:.2f} | {q['assembly']:.2f} | "
-                         f"{q['factorization']:.2f} | {q['solve']:.2f} | {q['comm']:.2f} | {q['wall'] - phases:.2f} | "
+                         f"{q['factorization']:.2f} | {q['solve']:.2f} | {q['comm']:.2f} | {q['halo']:.2f} | "
+                         f"{q['wall'] - phases:.2f} | "
                          f"{q['wall']:.2f} | {q['peak_MB']:.0f} | {q['comm_MB']:.0f} | {q['petsc_MB']:.0f} |")
     return "\n".join(lines) + "\n"
 
@@ -261,16 +272,17 @@ def weak(a, exe, outdir):
              "this run's, 1 when the work per process stays the same (P serial at once: P serial runs of N particles "
              "started together, each copy's time a step: the efficiency P processes that exchange nothing reach on "
              "this machine); comm: process 0's share of the step in the processes' collectives, as in the table "
-             "above." + bandwidth_sentence(bw), "",
+             "above, and halo its share in the halo exchanges' waits." + bandwidth_sentence(bw), "",
              "| processes | particles | s a step | Newton a step | remesh | assembly | set-up | solve (µs/particle-step) "
-             "| efficiency | per iteration | ghosts | comm |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| efficiency | per iteration | ghosts | comm | halo |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         who = f"{r['processes']}" if r["launch"] == "mpirun" else r["launch"]
         lines.append(f"| {who} | {r['particles']} | {seconds_per_step(r):.3f} | {r['newton_per_step']:.2f} | "
                      f"{r['remesh']:.2f} | {r['assembly']:.2f} | {r['setup']:.2f} | {r['solve']:.2f} | "
                      f"{r['efficiency']:.2f} | {r['efficiency_per_iteration']:.2f} | "
                      + ("– |" if r["ghost_share"] != r["ghost_share"] else f"{100 * r['ghost_share']:.1f} % |")
-                     + (" – |" if r["comm_share"] != r["comm_share"] else f" {100 * r['comm_share']:.1f} % |"))
+                     + (" – | – |" if r["comm_share"] != r["comm_share"] else
+                        f" {100 * r['comm_share']:.1f} % | {100 * r['halo_share']:.1f} % |"))
     table = "\n".join(lines) + "\n"
     print(table)
     if a.doc:

@@ -95,9 +95,11 @@ for n in (2, 3):
     procs = summary.get("processes", [])
     if ([q.get("rank") for q in procs] != list(range(n)) or
             not all(q["solve"] > 0 and q["comm"] > 0 and q["comm_MB"] > 0 and q["petsc_MB"] > 0 and q["peak_MB"] > 0
+                    and 0 < q["halo"] < q["factorization"] + q["solve"]
                     and q["remesh"] + q["assembly"] + q["factorization"] + q["solve"] <= q["wall"] for q in procs)):
         failures.append("%d processes: summary.json's processes %s" % (n, procs))
-    if not all(float(r["comm_MB"]) > 0 and float(r["t_comm"]) >= 0 for r in log):
+    if not all(float(r["comm_MB"]) > 0 and float(r["t_comm"]) >= 0 and 0 <= float(r["t_halo"]) <= float(r["t_step"])
+               for r in log):
         failures.append("%d processes: log.csv's communication columns %s" % (n, log[0]))
 
 # Bad input: every process stops, one message (mpirun's own report aside), exit code 2.

@@ -68,11 +68,13 @@ std::vector<double> gather_to_writer(const std::vector<double>& mine);
 ///  - seconds, bytes: the wall time of the collectives of this file and of those a caller reports (note_traffic),
 ///    waiting for the slower processes included, and the bytes the process received in them (an all-reduce of n
 ///    bytes over P processes counted as a ring's 2 (P - 1) / P n: a reduce-scatter, then an all-gather);
+///  - halo_seconds: the wall time in point-to-point waits (MPI_Wait, MPI_Waitall, MPI_Waitany, timed through MPI's
+///    profiling interface): the halo exchanges of PETSc's distributed products and of hypre's multigrid, waiting for
+///    the other processes included (within the solver's phases; posting a message does not wait and is not counted);
 ///  - petsc_bytes: the bytes PETSc's point-to-point messages sent (the distributed matrices' and vectors' halo
-///    exchanges, counted by PETSc's logging; their time is in the solver's). hypre's messages inside its
-///    multigrid are not counted.
+///    exchanges, counted by PETSc's logging). hypre's messages inside its multigrid are not counted.
 struct Traffic {
-  double seconds = 0, bytes = 0, petsc_bytes = 0;
+  double seconds = 0, bytes = 0, halo_seconds = 0, petsc_bytes = 0;
 };
 Traffic traffic();
 /// Adds a collective made outside this file to traffic(): its wall seconds and the bytes this process received.

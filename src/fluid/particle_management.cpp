@@ -26,8 +26,7 @@
 //     the new mesh against the old (log.csv remesh_dA, remesh_dKE; totals in summary.json).
 #include <lagfsi/geometry2d.hpp>
 
-#include "point_grid.hpp"
-#include "remesh_pipeline.hpp"
+#include "particle_management.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,72 +63,6 @@ meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b)
     if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});
   return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
 }
-
-/// What the stages of manage_particles share: the cloud at the start (positions and lumped masses; a merge
-/// moves its survivor in the cloud, not in `pts`), what becomes of each particle, the particles to insert and
-/// the previous mesh's edges through these changes.
-struct RemeshPipeline::Management {
-  /// A particle to insert: its state interpolated on the advected mesh.
-  struct NewParticle {
-    Vec2 x, v, a;
-    double p, h;
-  };
-
-  Management(const BoundaryChains& chain, const std::vector<char>& on_wall) : chain(chain), on_wall(on_wall) {}
-
-  const BoundaryChains& chain;
-  const std::vector<char>& on_wall;
-  Index np = 0;                                   // particles at the start
-  std::vector<Vec2> pts;                          // their positions at the start
-  std::vector<double> lumped;                     // their masses: the lumped areas sum_e A_e / 3
-  std::vector<char> drop, touched;                // removed; merged or removed (its elements are gone)
-  std::vector<Index> alias;                       // a merged particle's survivor (itself otherwise)
-  std::vector<Index> heir;                        // a particle removed at a wall: the wall particle that stands for it
-  std::vector<NewParticle> fresh;                 // the particles to insert, numbered np, np + 1, ...
-  std::vector<Index> split_at;                    // boundary edge from a (to chain.next[a]) split by new particle k
-  std::unique_ptr<PointGrid> taken;               // the occupied spots (walls as constraints: occupy_spots)
-  std::vector<Vec2> taken_pts;                    // their positions
-  double r_taken = 0;                             // no new particle closer than this times its size to an occupied spot
-  std::vector<std::uint8_t> used;                 // the particles the previous mesh used (new ones: 0)
-  std::vector<std::pair<Index, Index>> edges;     // its boundary edges through merges and splits
-  std::vector<std::pair<Index, Index>> interior;  // its other edges through merges (when all_edges is asked)
-
-  /// The number of a particle's components constrained by a wall (0 without walls as constraints).
-  int walled(Index i) const { return on_wall.empty() ? 0 : int(on_wall[static_cast<size_t>(i)]); }
-  bool on_boundary(Index i) const { return chain.next[i] >= 0 || chain.prev[i] >= 0; }
-
-  /// The weighted mean sum_k w_k (state of ids[k]) of the particles' states, at their starting positions.
-  NewParticle between(const ParticleCloud& cloud, const std::vector<Index>& ids, const std::vector<double>& w) const {
-    NewParticle q{Vec2::Zero(), Vec2::Zero(), Vec2::Zero(), 0.0, 0.0};
-    for (size_t k = 0; k < ids.size(); ++k) {
-      q.x += w[k] * pts[ids[k]];
-      q.v += w[k] * cloud.v().segment<2>(2 * ids[k]);
-      q.a += w[k] * cloud.a().segment<2>(2 * ids[k]);
-      q.p += w[k] * cloud.p()[ids[k]];
-      q.h += w[k] * cloud.h(ids[k]);
-    }
-    return q;
-  }
-
-  /// Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
-  /// or landed) may sit on a boundary edge between two others: no new particle within r (max(close_fraction, 0.05) h)
-  /// of an existing one. The particles that stay occupy their spots.
-  void occupy_spots(double r, double h_max) {
-    r_taken = r;
-    taken = std::make_unique<PointGrid>(std::max(r_taken * h_max, 1e-300), static_cast<std::size_t>(np));
-    for (Index i = 0; i < np; ++i)
-      if (!drop[i]) taken->add(pts[i], i);
-    taken_pts = pts;
-  }
-  /// True when x is free for a particle of size h (always without occupy_spots); a free spot is then occupied.
-  bool free_spot(const Vec2& x, double h) {
-    if (!taken) return true;
-    if (taken->find(x, r_taken * h, taken_pts) >= 0) return false;
-    taken->add(x, static_cast<Index>(taken_pts.size()));
-    taken_pts.push_back(x);
-    return true;
-  }
-};
 
 bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,
                                       std::vector<std::pair<Index, Index>>& boundary_edges,
@@ -169,6 +102,7 @@ RemeshPipeline::Management RemeshPipeline::start_management(const BoundaryChains
   for (Index i = 0; i < np; ++i) m.alias[i] = i;
   m.heir.assign(np, -1);
   m.split_at.assign(np, -1);
+  if (mpi_run::size() > 1) m.part = std::make_unique<meshing::SpacePartition>(m.pts, mpi_run::size());
   return m;
 }
 
@@ -243,43 +177,45 @@ void RemeshPipeline::merge_onto_walls(Management& m) {
   // Within r h_i of fluid particle i (h_i its size); the grids' cells r h_max.
   const double r = std::max(s_.close_fraction, 0.05), cell = std::max(r * cloud_.h_max(), 1e-300);
   const auto fluid = [&](Index i) { return cloud_.kind(i) == ParticleKind::Fluid; };
-  // A merge needs a particle on a wall in the pair, within r h_max of the other; and what a particle's search
-  // finds is decided by the particles within r h_max of it. So only the particles within 2 r h_max of a
-  // particle on a wall take part (the same merges as a pass over all of them, at the cost of the few near the
-  // walls): `near` marks them.
-  std::vector<char> near(static_cast<size_t>(np), 0);
-  std::size_t n_near = 0;
-  {
-    std::size_t n_walled = 0;
-    for (Index i = 0; i < np; ++i) n_walled += fluid(i) && m.walled(i) > 0;
-    PointGrid on_walls(2.0 * cell, n_walled);
-    for (Index i = 0; i < np; ++i)
-      if (fluid(i) && m.walled(i) > 0) on_walls.add(pts[i], i);
-    if (n_walled > 0)
-      for (Index i = 0; i < np; ++i)
-        if (fluid(i) && (m.walled(i) > 0 || on_walls.find(pts[i], 2.0 * cell, pts) >= 0)) {
-          near[static_cast<size_t>(i)] = 1;
-          ++n_near;
-        }
-  }
-  // Each grid sized for what it will hold (a table is zeroed at every remesh): the fluid particles near the
-  // walls, and the wall and ghost particles (none with walls as constraints but a structure's ghosts).
+  // The fluid particles on walls, and the wall and ghost particles (none with walls as constraints but a structure's
+  // ghosts), each grid sized for what it will hold (a table is zeroed at every remesh).
+  std::size_t n_walled = 0;
+  for (Index i = 0; i < np; ++i) n_walled += fluid(i) && m.walled(i) > 0;
+  PointGrid on_walls(2.0 * cell, n_walled);
+  for (Index i = 0; i < np; ++i)
+    if (fluid(i) && m.walled(i) > 0) on_walls.add(pts[i], i);
   const auto n_fluid =
       static_cast<std::size_t>(std::count(cloud_.kind().begin(), cloud_.kind().end(), ParticleKind::Fluid));
-  PointGrid grid(cell, n_near), prescribed(cell, static_cast<std::size_t>(np) - n_fluid);
+  PointGrid prescribed(cell, static_cast<std::size_t>(np) - n_fluid);
   for (Index i = 0; i < np; ++i)
     if (!fluid(i)) prescribed.add(pts[i], i);
+  // What each fluid particle may do, which the others do not change: go, for a wall or ghost particle g within
+  // r h_i (the pair (i, g)); or, near a particle on a wall, merge with one (the pair (i, -1)). A merge needs a
+  // particle on a wall in the pair, within r h_max of the other, and what a particle's search finds is decided by
+  // the particles within r h_max of it: so only the particles within 2 r h_max of a particle on a wall take part
+  // (the same merges as a pass over all of them). An MPI run: each process finds its own particles' pairs, and
+  // every process takes all of them in particle order, as one process does.
+  std::vector<Index> acts;
   for (Index i = 0; i < np; ++i) {
-    if (!fluid(i)) continue;
-    const double ri = r * cloud_.h(i);
-    if (const Index g = prescribed.find(pts[i], ri, pts); g >= 0) {
-      leave_to_wall(m, i, g);
+    if (!fluid(i) || !m.mine(i)) continue;
+    if (const Index g = prescribed.find(pts[i], r * cloud_.h(i), pts); g >= 0)
+      acts.insert(acts.end(), {i, g});
+    else if (n_walled > 0 && (m.walled(i) > 0 || on_walls.find(pts[i], 2.0 * cell, pts) >= 0))
+      acts.insert(acts.end(), {i, -1});
+  }
+  if (m.part) acts = gather_pairs_in_order(acts);
+  std::size_t n_near = 0;
+  for (size_t k = 1; k < acts.size(); k += 2) n_near += acts[k] < 0;
+  PointGrid grid(cell, n_near);
+  for (size_t k = 0; k + 1 < acts.size(); k += 2) {
+    const Index i = acts[k];
+    if (acts[k + 1] >= 0) {
+      leave_to_wall(m, i, acts[k + 1]);
       continue;
     }
-    if (!near[static_cast<size_t>(i)]) continue;
     // A third particle put on the same corner in one step merges with the pair's survivor (the corner's
     // particle; it was left beside it, and the triangulation failed on the duplicate point).
-    const Index j = grid.find(pts[i], ri, pts);
+    const Index j = grid.find(pts[i], r * cloud_.h(i), pts);
     if (j >= 0 && !m.drop[j] && (m.walled(i) > 0 || m.walled(j) > 0)) {
       merge_pair(m, j, i);
       if (m.drop[j]) grid.add(pts[i], i);  // i survived (the more constrained): the later find returns it
@@ -346,9 +282,8 @@ void RemeshPipeline::merge_close_pairs(Management& m) {
   // cell where the particles are finest, so that a search reads a few cache lines, not nine mostly empty slots of a
   // table of a slot per particle (the same pairs whatever the cell: find() returns the largest id in reach).
   const double cell = std::max({s_.close_fraction * cloud_.h_max(), cloud_.h_min(), 1e-300});
-  PointGrid untouched(cell, static_cast<std::size_t>(m.np));
-  for (Index i = 0; i < m.np; ++i) {
-    if (cloud_.kind(i) != ParticleKind::Fluid || m.touched[i]) continue;
+  const auto meet = [&](Index i, PointGrid& untouched) {
+    if (cloud_.kind(i) != ParticleKind::Fluid || m.touched[i]) return;
     const Index j = untouched.find(m.pts[i], s_.close_fraction * cloud_.h(i), m.pts);
     if (j >= 0 && !m.touched[j]) {
       merge_pair(m, j, i);
@@ -356,7 +291,17 @@ void RemeshPipeline::merge_close_pairs(Management& m) {
     } else {
       untouched.add(m.pts[i], i);
     }
+  };
+  if (!m.part) {
+    PointGrid untouched(cell, static_cast<std::size_t>(m.np));
+    for (Index i = 0; i < m.np; ++i) meet(i, untouched);
+    return;
   }
+  // An MPI run: the same pass over the particles that have another within reach (meeting_candidates), the only ones
+  // whose searches find anything.
+  const std::vector<Index> ids = meeting_candidates(m, cell);
+  PointGrid untouched(cell, ids.size());
+  for (Index i : ids) meet(i, untouched);
 }
 
 void RemeshPipeline::follow_size_field(const BoundaryChains& chain, const std::vector<char>& on_wall, double t) {

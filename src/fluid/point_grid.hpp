@@ -40,8 +40,8 @@ class PointGrid {
     nodes_.push_back({id, s.head});
     s.head = static_cast<Index>(nodes_.size() - 1);
   }
-  /// The last added point within r of p among `pts` (the largest id), or -1.
-  Index find(const Vec2& p, double r, const std::vector<Vec2>& pts) const {
+  /// The last added point within r of p among `pts` (the largest id), or -1; `except` (optional) is left out.
+  Index find(const Vec2& p, double r, const std::vector<Vec2>& pts, Index except = -1) const {
     const Cell c = cell_of(p);
     Index found = -1;
     for (std::int64_t dx = -1; dx <= 1; ++dx)
@@ -49,7 +49,7 @@ class PointGrid {
         const Slot& s = slots_[probe({c.x + dx, c.y + dy})];
         for (Index k = s.head; k >= 0; k = nodes_[static_cast<std::size_t>(k)].next) {
           const Index j = nodes_[static_cast<std::size_t>(k)].id;
-          if ((pts[static_cast<std::size_t>(j)] - p).norm() < r) found = std::max(found, j);
+          if (j != except && (pts[static_cast<std::size_t>(j)] - p).norm() < r) found = std::max(found, j);
         }
       }
     return found;

@@ -53,6 +53,11 @@ meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const 
                                             const std::vector<double>& h, const meshing::RemeshSettings& settings,
                                             DividedRemeshStats* stats = nullptr);
 
+/// Every process's (particle, value) pairs, flattened (i, value, i, value, ...), each process's in increasing particle
+/// order and no particle on two processes, gathered on every process in increasing particle order
+/// (divided_management.cpp; the pairs themselves with one process). Every process must call it.
+std::vector<Index> gather_pairs_in_order(const std::vector<Index>& pairs);
+
 class RemeshPipeline {
  public:
   using Settings = FluidRemeshSettings;
@@ -194,6 +199,10 @@ class RemeshPipeline {
   void merge_onto_walls(Management& m);
   void merge_pressed_against_walls(Management& m);
   void merge_close_pairs(Management& m);
+  /// An MPI run: the fluid particles not yet touched that have another within close_fraction h_max, in increasing
+  /// index, each process finding those of its part of space (Management::part) and every process all of them
+  /// (divided_management.cpp).
+  std::vector<Index> meeting_candidates(const Management& m, double cell) const;
   void coarsen(Management& m);
   void split_long_edges(Management& m);
   void insert_in_large_elements(Management& m);

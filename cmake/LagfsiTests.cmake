@@ -56,3 +56,27 @@ function(lagfsi_unit_test source module)
   endforeach()
   lagfsi_add_test(${source} LABEL unit TIMEOUT 120 LINK ${module} ${arg_LINK} ${flags} ENV ${arg_ENV})
 endfunction()
+
+# A unit test run under MPI (label unit): the test file's executable under `mpiexec -np P` for each P of PROCESSES
+# (oversubscribed, as root in CI), one CTest test per count, named <NAME>.OnPProcesses. The test starts MPI itself
+# (mpi_run::start).
+#   lagfsi_mpi_unit_test(<source> <module target> NAME <name> PROCESSES <P>... [WHITE_BOX])
+function(lagfsi_mpi_unit_test source module)
+  cmake_parse_arguments(PARSE_ARGV 2 arg "WHITE_BOX" "NAME" "PROCESSES")
+  get_filename_component(name ${source} NAME_WE)
+  add_executable(${name} ${source})
+  target_link_libraries(${name} PRIVATE ${module} nlohmann_json::nlohmann_json lagfsi_options GTest::gtest
+                                        GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+  if(arg_WHITE_BOX)
+    get_filename_component(module_dir ${CMAKE_CURRENT_SOURCE_DIR} DIRECTORY)
+    target_include_directories(${name} PRIVATE ${module_dir})
+  endif()
+  foreach(p ${arg_PROCESSES})
+    add_test(NAME ${arg_NAME}.On${p}Processes
+             COMMAND ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe ${MPIEXEC_NUMPROC_FLAG} ${p}
+                     $<TARGET_FILE:${name}>)
+    set_tests_properties(${arg_NAME}.On${p}Processes PROPERTIES LABELS unit TIMEOUT 120 ENVIRONMENT "OMP_NUM_THREADS=1"
+                         ENVIRONMENT_MODIFICATION "${LAGFSI_PETSC_TEST_ENV}")
+  endforeach()
+endfunction()

@@ -30,12 +30,8 @@
 // slip length 0.1 h, at 0.954 s).
 #include <gtest/gtest.h>
 
-#include "fluid_boundaries.hpp"
-#include "fluid_energy.hpp"
-#include "fluid_scene.hpp"
 #include "fluid_walls.hpp"
-#include "ghosts.hpp"
-#include "remesh_pipeline.hpp"
+#include "remesh_scene.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -47,21 +43,7 @@ namespace {
 
 using fluid_test::kH;
 
-/// The scene with the remeshing's pieces, advected detection.
-struct Scene : fluid_test::FluidScene {
-  Ghosts ghosts;
-  FluidBoundaries boundaries;
-  FluidEnergy energy{c, cloud, mesh, boundaries};
-  RemeshPipeline remesh{c, cloud, mesh, ghosts};
-  Scene(const std::vector<Vec2>& pts, const std::vector<std::array<Index, 3>>& tri) : FluidScene(pts, tri) {
-    volume.start(mesh.area(cloud.x()));
-    RemeshPipeline::Settings s;
-    s.detection = meshing::DomainDetection::Advected;
-    remesh.configure(s);
-  }
-  /// The bookkeeping's total: the mesh's area and what the particles are owed (none left the domain here).
-  double water() const { return mesh.area(cloud.x()) + cloud.owed().sum(); }
-};
+using Scene = fluid_test::RemeshScene;
 
 TEST(ParticleManagement, ThreeParticlesPutOnOneCornerBecomeOne) {
   // A square of side h in the corner of a floor and a wall, two elements: 0-3-4 and 1-4-5, where 0 and 1 were

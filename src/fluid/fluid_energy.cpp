@@ -1,26 +1,45 @@
 // The fluid's energies (fluid_energy.hpp): kinetic and potential energy, work of gravity and dissipation.
 #include "fluid_energy.hpp"
 
+#include <lagfsi/mpi_run.hpp>
+
 #include <algorithm>
 
 namespace lagfsi::fluid {
 
-FluidEnergy::Totals FluidEnergy::totals() const {
-  const Vec& x = cloud_.x();
-  const Vec& v = cloud_.v();
-  Totals t;
-  for (Index k = 0; k < mesh_.num_elements(); ++k) {
-    const double a = mesh_.element_area(x, k);
+namespace {
+
+/// The totals of the elements [first, last) (FluidEnergy::Totals).
+FluidEnergy::Totals element_totals(const FluidConstants& c, const Vec& x, const Vec& v, const FluidMesh& mesh,
+                                   Index first, Index last) {
+  FluidEnergy::Totals t;
+  for (Index k = first; k < last; ++k) {
+    const double a = mesh.element_area(x, k);
     t.area += a;
-    const double m = c_.rho * a / 3.0;
-    Vec2 c = Vec2::Zero();
-    for (Index i : mesh_.tri[k]) {
+    const double m = c.rho * a / 3.0;
+    Vec2 cx = Vec2::Zero();
+    for (Index i : mesh.tri[k]) {
       t.kinetic += 0.5 * m * v.segment<2>(2 * i).squaredNorm();
-      c += x.segment<2>(2 * i);
+      cx += x.segment<2>(2 * i);
     }
-    t.potential -= c_.rho * a * c_.gravity.dot(c / 3.0);
+    t.potential -= c.rho * a * c.gravity.dot(cx / 3.0);
   }
   return t;
+}
+
+}  // namespace
+
+FluidEnergy::Totals FluidEnergy::totals() const {
+  return element_totals(c_, cloud_.x(), cloud_.v(), mesh_, 0, mesh_.num_elements());
+}
+
+FluidEnergy::Totals FluidEnergy::totals_over_processes() const {
+  if (mpi_run::size() <= 1) return totals();
+  const auto [first, last] = mpi_run::owned_blocks(mesh_.num_elements());
+  const Totals mine = element_totals(c_, cloud_.x(), cloud_.v(), mesh_, first, last);
+  double sums[] = {mine.area, mine.kinetic, mine.potential};
+  mpi_run::sum_in_rank_order(sums, 3);
+  return {sums[0], sums[1], sums[2]};
 }
 
 void FluidEnergy::account(const Vec& x_new, const Vec& v, double t, double dt, const Vec& boundary_force,

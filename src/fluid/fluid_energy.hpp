@@ -23,6 +23,10 @@ class FluidEnergy {
     double area = 0, kinetic = 0, potential = 0;
   };
   Totals totals() const;
+  /// totals() in a run over MPI processes (mpi_run.hpp): each process sums a share of the elements (PETSc's split of
+  /// them, mpi_run::owned_blocks) and the shares are added in rank order, the same bits on every process; totals()
+  /// itself with one process. Every process must call it.
+  Totals totals_over_processes() const;
   double kinetic() const { return totals().kinetic; }
   double potential() const { return totals().potential; }
   /// Adds the step's gravity work, viscous dissipation (the no-slip walls' "navier" friction included) and

@@ -78,9 +78,22 @@ bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<s
   if (size_.adaptive()) coarsen(m);
   // 2. Refinement where the particles moved apart (none next to a particle that was just merged or removed:
   // its elements are gone).
-  if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05), cloud_.h_max());
-  if (s_.split_factor > 0) split_long_edges(m);
-  if (s_.insert_factor > 0) insert_in_large_elements(m);
+  std::vector<Index> split_from;
+  std::vector<NewParticle> splits, inserts;
+  if (s_.split_factor > 0) splits = split_long_edges(m, split_from);
+  if (s_.insert_factor > 0) inserts = insert_in_large_elements(m);
+  if (!on_wall.empty()) m.occupy_spots(std::max(s_.close_fraction, 0.05), cloud_.h_max(), {&splits, &inserts});
+  for (size_t k = 0; k < splits.size(); ++k)
+    if (m.free_spot(splits[k].x, splits[k].h)) {
+      m.split_at[split_from[k]] = m.np + static_cast<Index>(m.fresh.size());
+      m.fresh.push_back(splits[k]);
+      ++split_;
+    }
+  for (const NewParticle& q : inserts)
+    if (m.free_spot(q.x, q.h)) {
+      m.fresh.push_back(q);
+      ++inserted_;
+    }
   // 3. The previous mesh's topology through the changes, then the changes made to the cloud.
   carry_topology(m, all_edges != nullptr);
   return apply_management(m, meshed, boundary_edges, all_edges);
@@ -396,35 +409,35 @@ bool RemeshPipeline::follow_size_field_alpha(double t) {
   return drop_particles(drop);
 }
 
-void RemeshPipeline::split_long_edges(Management& m) {
+std::vector<RemeshPipeline::NewParticle> RemeshPipeline::split_long_edges(const Management& m,
+                                                                          std::vector<Index>& from) const {
   // A boundary edge with a fluid end longer than split_edge_factor h_e (h_e the mean of its ends' h) gets a
   // particle at its midpoint, with the mean state of its ends.
+  std::vector<NewParticle> q;
+  from.clear();
   for (Index a = 0; a < m.np; ++a) {
     const Index c = m.chain.next[a];
     if (c < 0 || m.touched[a] || m.touched[c]) continue;
     if (cloud_.kind(a) != ParticleKind::Fluid && cloud_.kind(c) != ParticleKind::Fluid) continue;
     const double he = 0.5 * (cloud_.h(a) + cloud_.h(c));
     if ((m.pts[a] - m.pts[c]).norm() > s_.split_factor * he) {
-      const Management::NewParticle q = m.between(cloud_, {a, c}, {0.5, 0.5});
-      if (!m.free_spot(q.x, q.h)) continue;
-      m.split_at[a] = m.np + static_cast<Index>(m.fresh.size());
-      m.fresh.push_back(q);
-      ++split_;
+      q.push_back(m.between(cloud_, {a, c}, {0.5, 0.5}));
+      from.push_back(a);
     }
   }
+  return q;
 }
 
-void RemeshPipeline::insert_in_large_elements(Management& m) {
+std::vector<RemeshPipeline::NewParticle> RemeshPipeline::insert_in_large_elements(const Management& m) const {
   // An element larger than insert_area_factor h_e^2 (meshing::oversized_elements) gets a particle at its
   // centroid, with the P1 interpolation of the state there.
+  std::vector<NewParticle> q;
   for (Index e : meshing::oversized_elements(m.pts, cloud_.h(), mesh_.tri, s_.insert_factor)) {
     const auto& t = mesh_.tri[e];
     if (m.touched[t[0]] || m.touched[t[1]] || m.touched[t[2]] || !(mesh_.element_area(cloud_.x(), e) > 0)) continue;
-    const Management::NewParticle q = m.between(cloud_, {t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3});
-    if (!m.free_spot(q.x, q.h)) continue;
-    m.fresh.push_back(q);
-    ++inserted_;
+    q.push_back(m.between(cloud_, {t[0], t[1], t[2]}, {1.0 / 3, 1.0 / 3, 1.0 / 3}));
   }
+  return q;
 }
 
 void RemeshPipeline::carry_topology(Management& m, bool all_edges) const {

@@ -8,6 +8,7 @@
 #include <lagfsi/meshing/partition.hpp>
 #include <lagfsi/mpi_run.hpp>
 
+#include <initializer_list>
 #include <memory>
 #include <vector>
 
@@ -17,11 +18,7 @@ namespace lagfsi::fluid {
 /// moves its survivor in the cloud, not in `pts`), what becomes of each particle, the particles to insert and
 /// the previous mesh's edges through these changes.
 struct RemeshPipeline::Management {
-  /// A particle to insert: its state interpolated on the advected mesh.
-  struct NewParticle {
-    Vec2 x, v, a;
-    double p, h;
-  };
+  using NewParticle = RemeshPipeline::NewParticle;
 
   Management(const BoundaryChains& chain, const std::vector<char>& on_wall) : chain(chain), on_wall(on_wall) {}
 
@@ -67,13 +64,28 @@ struct RemeshPipeline::Management {
 
   /// Walls as constraints: many particles lie on one line (a floor), and one outside the mesh (just let go,
   /// or landed) may sit on a boundary edge between two others: no new particle within r (max(close_fraction, 0.05) h)
-  /// of an existing one. The particles that stay occupy their spots.
-  void occupy_spots(double r, double h_max) {
+  /// of an existing one. The particles that stay occupy their spots; only those within r h_max of a spot the stages
+  /// will ask for (`asked`: the new particles' positions) can make one taken, so only they are put in the grid (an
+  /// MPI run: each process finds its own, and every process gets them all).
+  void occupy_spots(double r, double h_max, std::initializer_list<const std::vector<NewParticle>*> asked) {
     r_taken = r;
-    taken = std::make_unique<PointGrid>(std::max(r_taken * h_max, 1e-300), static_cast<std::size_t>(np));
-    for (Index i = 0; i < np; ++i)
-      if (!drop[i]) taken->add(pts[i], i);
-    taken_pts = pts;
+    const double reach = std::max(r_taken * h_max, 1e-300);
+    std::vector<Vec2> spots;
+    for (const auto* list : asked)
+      for (const NewParticle& q : *list) spots.push_back(q.x);
+    taken = std::make_unique<PointGrid>(reach, spots.size());
+    taken_pts.clear();
+    if (spots.empty()) return;
+    PointGrid grid(reach, spots.size());
+    for (size_t k = 0; k < spots.size(); ++k) grid.add(spots[k], static_cast<Index>(k));
+    std::vector<Index> near;
+    for (Index i = 0; i < np; ++i)  // a hair wider: a new particle's h is a mean of the particles' sizes
+      if (!drop[i] && mine(i) && grid.find(pts[i], reach * (1 + 1e-12), spots) >= 0) near.push_back(i);
+    if (part) near = mpi_run::gather_all(near);
+    for (Index i : near) {
+      taken->add(pts[i], static_cast<Index>(taken_pts.size()));
+      taken_pts.push_back(pts[i]);
+    }
   }
   /// True when x is free for a particle of size h (always without occupy_spots); a free spot is then occupied.
   bool free_spot(const Vec2& x, double h) {

@@ -87,7 +87,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   }
   // What the remesh changes: area, kinetic and potential energy on the old mesh (the fluid that left the
   // domain box is counted apart, VolumeCorrection's area_left) against the new one.
-  const FluidEnergy::Totals before_remesh = energy.totals();
+  const FluidEnergy::Totals before_remesh = energy.totals_over_processes();
   const double area0 = before_remesh.area, ke0 = before_remesh.kinetic, pe0 = before_remesh.potential;
   const std::vector<double> strip0 = outlet_strip_areas();
   t_remesh_ = t_new;
@@ -121,7 +121,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
     }
   }
   if (owe) volume.owe_remesh_change(before, present);
-  const FluidEnergy::Totals after_remesh = energy.totals();
+  const FluidEnergy::Totals after_remesh = energy.totals_over_processes();
   const double area1 = after_remesh.area;
   remesh_dA_ = area1 - area0;
   // What the remesh changed in an outflow's strip (it fills part of the ragged end the outflow's elements left)

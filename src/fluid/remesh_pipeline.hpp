@@ -195,6 +195,11 @@ class RemeshPipeline {
                         const std::vector<char>& on_wall = {});
   /// manage_particles' stages (particle_management.cpp), in order; Management: what they share.
   struct Management;
+  /// A particle to insert: its state interpolated on the advected mesh.
+  struct NewParticle {
+    Vec2 x, v, a;
+    double p, h;
+  };
   Management start_management(const BoundaryChains& chain, const std::vector<char>& on_wall) const;
   void merge_onto_walls(Management& m);
   void merge_pressed_against_walls(Management& m);
@@ -204,8 +209,10 @@ class RemeshPipeline {
   /// (divided_management.cpp).
   std::vector<Index> meeting_candidates(const Management& m, double cell) const;
   void coarsen(Management& m);
-  void split_long_edges(Management& m);
-  void insert_in_large_elements(Management& m);
+  /// The particles refinement asks for (in the order they are tried): at the midpoints of long boundary edges (`from`:
+  /// each one's edge's first particle) and at the centroids of large elements.
+  std::vector<NewParticle> split_long_edges(const Management& m, std::vector<Index>& from) const;
+  std::vector<NewParticle> insert_in_large_elements(const Management& m) const;
   void carry_topology(Management& m, bool all_edges) const;
   bool apply_management(Management& m, std::vector<std::uint8_t>& meshed,
                         std::vector<std::pair<Index, Index>>& boundary_edges,

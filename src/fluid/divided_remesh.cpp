@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,24 +34,29 @@ std::vector<std::array<Index, 3>> triangles(const std::vector<Index>& f) {
 
 }  // namespace
 
+double divided_halo(const std::vector<double>& h, double alpha, double separation_alpha) {
+  // A kept element's circumradius is at most R = max(alpha, separation_alpha) h_e, and its circumdisc lies within 2 R
+  // of its centroid (meshing::remesh_part); two spacings more for the previous mesh's edges flipped back in.
+  const double h_max = h.empty() ? 0.0 : *std::max_element(h.begin(), h.end());
+  const double reach = std::max(alpha, separation_alpha) * h_max;
+  return 2.0 * reach + 2.0 * h_max;
+}
+
 meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
                                             const std::vector<double>& h, const meshing::RemeshSettings& settings,
-                                            DividedRemeshStats* stats) {
+                                            DividedRemeshStats* stats, const meshing::SpacePartition* partition) {
   const bool previous = settings.previous != nullptr && !settings.previous->empty();
   const bool level_set = previous && settings.detection == meshing::DomainDetection::LevelSet;
   if (mpi_run::size() <= 1 || level_set) return meshing::remesh(pts, kind, h, settings);
-  // The halo: a kept element's circumradius is at most R = max(alpha, separation_alpha) h_e, and its circumdisc lies
-  // within 2 R of its centroid (meshing::remesh_part); two spacings more for the previous mesh's edges flipped back in.
-  const double h_max = h.empty() ? 0.0 : *std::max_element(h.begin(), h.end());
-  const double reach = std::max(settings.alpha, previous ? settings.separation_alpha : 0.0) * h_max;
-  const double halo = 2.0 * reach + 2.0 * h_max;
+  const double halo = divided_halo(h, settings.alpha, previous ? settings.separation_alpha : 0.0);
   meshing::RemeshResult mine;
   std::string failure;
   Index ghosts = 0;
   const auto t0 = SteadyClock::now();
   try {
-    const meshing::SpacePartition partition(pts, mpi_run::size());
-    mine = meshing::remesh_part(pts, kind, h, settings, partition, mpi_run::rank(), halo, &ghosts);
+    std::unique_ptr<meshing::SpacePartition> own;
+    if (partition == nullptr) partition = (own = std::make_unique<meshing::SpacePartition>(pts, mpi_run::size())).get();
+    mine = meshing::remesh_part(pts, kind, h, settings, *partition, mpi_run::rank(), halo, &ghosts);
   } catch (const std::exception& e) {
     failure = e.what();
   }

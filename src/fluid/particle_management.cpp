@@ -52,7 +52,7 @@ RemeshPipeline::BoundaryChains RemeshPipeline::boundary_chains() const {
   return b;
 }
 
-meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b) const {
+RemeshPipeline::AdvectedDomain RemeshPipeline::advected_domain(const BoundaryChains& b) const {
   std::vector<std::array<Vec2, 3>> triangles;
   triangles.reserve(mesh_.tri.size());
   for (const auto& t : mesh_.tri) triangles.push_back({cloud_.pos(t[0]), cloud_.pos(t[1]), cloud_.pos(t[2])});
@@ -61,7 +61,7 @@ meshing::PreviousDomain RemeshPipeline::advected_domain(const BoundaryChains& b)
   std::vector<std::array<Vec2, 2>> boundary;
   for (Index i = 0; i < cloud_.n(); ++i)
     if (b.next[i] >= 0) boundary.push_back({cloud_.pos(i), cloud_.pos(b.next[i])});
-  return meshing::PreviousDomain(std::move(triangles), std::move(boundary));
+  return {std::move(triangles), std::move(boundary)};
 }
 
 bool RemeshPipeline::manage_particles(const BoundaryChains& chain, std::vector<std::uint8_t>& meshed,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace lagfsi::fluid {
@@ -23,6 +24,24 @@ ParticleCloud::Particle fluid_particle(const Vec2& x, const Vec2& v, const Vec2&
   q.a = a;
   q.p = p;
   return q;
+}
+
+/// Keeps the triangles whose bounding box meets the part's box grown by `halo` (a hair more), and at least one: an
+/// empty previous domain would change the detection (RemeshPipeline::remesh_now), and a triangle that meets no point
+/// the part asks about changes no answer.
+void keep_near_part(std::vector<std::array<Vec2, 3>>& triangles, const meshing::SpacePartition& partition,
+                    double halo) {
+  if (triangles.empty()) return;
+  const auto& [box_lo, box_hi] = partition.box(mpi_run::rank());
+  const Vec2 lo = box_lo - Vec2::Constant(halo * (1 + 1e-9)), hi = box_hi + Vec2::Constant(halo * (1 + 1e-9));
+  const auto near = [&](const std::array<Vec2, 3>& t) {
+    const Vec2 tlo = t[0].cwiseMin(t[1]).cwiseMin(t[2]), thi = t[0].cwiseMax(t[1]).cwiseMax(t[2]);
+    return !(thi.x() < lo.x() || thi.y() < lo.y() || tlo.x() > hi.x() || tlo.y() > hi.y());
+  };
+  const std::array<Vec2, 3> first = triangles.front();
+  triangles.erase(std::remove_if(triangles.begin(), triangles.end(), [&](const auto& t) { return !near(t); }),
+                  triangles.end());
+  if (triangles.empty()) triangles.push_back(first);
 }
 
 }  // namespace
@@ -100,16 +119,25 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   } else {
     const BoundaryChains chain = boundary_chains();
     if (size_.adaptive()) follow_size_field(chain, on_wall, t_new);
-    meshing::PreviousDomain previous = advected_domain(chain);
+    AdvectedDomain advected = advected_domain(chain);  // at the positions before the management
     std::vector<std::uint8_t> meshed;
     std::vector<std::pair<Index, Index>> edges, all_edges;
     manage_particles(chain, meshed, edges, s_.keep_edges_angle > 0 ? &all_edges : nullptr, on_wall);
     for (Index& k : present)
       if (k >= 0) k = survivor_[k];
+    // An MPI run with the advected detection: the managed particles' parts (remesh_over_processes), and of the
+    // advected elements those that meet this process's part grown by the ghost layer, the only ones that can hold a
+    // point its triangulation asks about.
+    std::unique_ptr<meshing::SpacePartition> partition;
+    if (mpi_run::size() > 1 && s_.detection == meshing::DomainDetection::Advected) {
+      partition = std::make_unique<meshing::SpacePartition>(cloud_.positions(), mpi_run::size());
+      keep_near_part(advected.triangles, *partition, divided_halo(cloud_.h(), s_.alpha, s_.separation_alpha));
+    }
+    meshing::PreviousDomain previous(std::move(advected.triangles), std::move(advected.boundary));
     previous.set_topology(std::move(meshed), std::move(edges));
     previous.set_edges(std::move(all_edges));
     try {
-      remesh_now(&previous);
+      remesh_now(&previous, partition.get());
     } catch (const SolverError&) {
       // The management changed the cloud and the mesh (merged, split, inserted particles) before the
       // triangulation failed; the retry starts from them. What it changed is owed now, as after a remesh
@@ -157,7 +185,7 @@ void RemeshPipeline::remesh_step(double t_new, VolumeCorrection& volume, const F
   }
 }
 
-void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
+void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous, const meshing::SpacePartition* partition) {
   const std::vector<ParticleKind>& kind = cloud_.kind();
   const std::vector<Vec2> pts = cloud_.positions();
   meshing::RemeshResult r;
@@ -172,7 +200,7 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous) {
     settings.keep_edges_angle = s_.keep_edges_angle;
   }
   try {
-    r = remesh_over_processes(pts, kind, cloud_.h(), settings, &divided_);
+    r = remesh_over_processes(pts, kind, cloud_.h(), settings, &divided_, partition);
   } catch (const std::exception& e) {
     throw SolverError("body '" + c_.name + "': remeshing failed: " + e.what());
   }

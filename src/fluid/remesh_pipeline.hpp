@@ -18,6 +18,7 @@
 #include "size_field.hpp"
 #include "volume_correction.hpp"
 
+#include <lagfsi/meshing/partition.hpp>
 #include <lagfsi/meshing/previous_domain.hpp>
 #include <lagfsi/meshing/remesh.hpp>
 
@@ -49,9 +50,16 @@ struct DividedRemeshStats {
 /// can differ by faces too large for a part to see whole). With one process, and with the level-set detection (which
 /// keeps elements of any size), remesh() itself. A failure on any process throws on every process with its message
 /// (divided_remesh.cpp). `stats` (optional) adds the remeshing's cost.
+/// `partition` (optional): the processes' parts of pts, as remesh_over_processes would make them (it makes them
+/// without).
 meshing::RemeshResult remesh_over_processes(const std::vector<Vec2>& pts, const std::vector<ParticleKind>& kind,
                                             const std::vector<double>& h, const meshing::RemeshSettings& settings,
-                                            DividedRemeshStats* stats = nullptr);
+                                            DividedRemeshStats* stats = nullptr,
+                                            const meshing::SpacePartition* partition = nullptr);
+
+/// The ghost layer of remesh_over_processes for particles of sizes h, the alpha test's alpha and, with the advected
+/// detection, its separation_alpha (0 without).
+double divided_halo(const std::vector<double>& h, double alpha, double separation_alpha);
 
 /// Every process's (particle, value) pairs, flattened (i, value, i, value, ...), each process's in increasing particle
 /// order and no particle on two processes, gathered on every process in increasing particle order
@@ -135,7 +143,9 @@ class RemeshPipeline {
   /// Delaunay + domain detection of the present cloud: the alpha shape, or (advected / level set) the
   /// previous domain `previous` as predicate; then the meniscus, flat-element and structure-crossing filters;
   /// the free-surface flags of what is left.
-  void remesh_now(const meshing::PreviousDomain* previous = nullptr);
+  /// `partition` (optional, an MPI run): the processes' parts of the present cloud (remesh_over_processes).
+  void remesh_now(const meshing::PreviousDomain* previous = nullptr,
+                  const meshing::SpacePartition* partition = nullptr);
   /// free and connected of the mesh from its elements: particles of edges used by one element, unless both
   /// ends are on a wall (`on_wall`) and, when `along_wall` is given, the edge's midpoint lies on one
   /// (FluidWalls::on_a_segment: not the long side of a corner's triangle); only Fluid particles are free
@@ -180,7 +190,12 @@ class RemeshPipeline {
   BoundaryChains boundary_chains() const;
   /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
   /// (particle_management.cpp); `chain`: its boundary_chains().
-  meshing::PreviousDomain advected_domain(const BoundaryChains& chain) const;
+  /// The advected domain's elements and boundary edges (meshing::PreviousDomain's).
+  struct AdvectedDomain {
+    std::vector<std::array<Vec2, 3>> triangles;
+    std::vector<std::array<Vec2, 2>> boundary;
+  };
+  AdvectedDomain advected_domain(const BoundaryChains& chain) const;
   /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
   /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long
   /// free-surface edges are split at their midpoints and large elements get a particle at their centroid

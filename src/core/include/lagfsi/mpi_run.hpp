@@ -13,8 +13,9 @@
 /// each process computes the elements with a particle in its rows, and the per-particle sums (the residual, the
 /// fractional step's forces) are combined over the processes (pspg_scheme.cpp, fractional_step.cpp). The remeshing's
 /// triangulation and domain detection are divided too: each process meshes the particles of its part of space with a
-/// ghost layer, and the shares are gathered (meshing::remesh_part; remesh_pipeline.cpp). The particles themselves are
-/// not divided: every process holds them all and manages them the same way.
+/// ghost layer, and the shares are gathered (meshing::remesh_part; remesh_pipeline.cpp); so are the particle
+/// management's searches, whose candidates every process then takes in particle order (divided_management.cpp). The
+/// particles themselves are not divided: every process holds them all and applies the same decisions to them.
 ///
 /// MPI starts (through PETSc, which owns it) only when an MPI launcher started the program (its environment
 /// variables say so); a program run without one never starts MPI.

@@ -17,17 +17,23 @@
 set(LAGFSI_PETSC_TEST_ENV
     "LSAN_OPTIONS=set:suppressions=${PROJECT_SOURCE_DIR}/scripts/lsan_suppressions.txt:fast_unwind_on_malloc=0:print_suppressions=0")
 
-function(lagfsi_add_test source)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "WHITE_BOX;RUNS_EXE" "LABEL;TIMEOUT" "LINK;ENV")
-  get_filename_component(name ${source} NAME_WE)
+# The test file's executable `name` (linked with `links`, GoogleTest and its main); white_box: the module's folder
+# on its include path.
+function(lagfsi_test_executable name source white_box)
   add_executable(${name} ${source})
-  target_link_libraries(${name} PRIVATE ${arg_LINK} nlohmann_json::nlohmann_json lagfsi_options GTest::gtest
+  target_link_libraries(${name} PRIVATE ${ARGN} nlohmann_json::nlohmann_json lagfsi_options GTest::gtest
                                         GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-  if(arg_WHITE_BOX)
+  if(white_box)
     get_filename_component(module_dir ${CMAKE_CURRENT_SOURCE_DIR} DIRECTORY)
     target_include_directories(${name} PRIVATE ${module_dir})
   endif()
+endfunction()
+
+function(lagfsi_add_test source)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "WHITE_BOX;RUNS_EXE" "LABEL;TIMEOUT" "LINK;ENV")
+  get_filename_component(name ${source} NAME_WE)
+  lagfsi_test_executable(${name} ${source} "${arg_WHITE_BOX}" ${arg_LINK})
   # GCC 12 reports a false -Wrestrict inside libstdc++ for "literal" + std::to_string(...) at -O2/-O3
   # (GCC bug 105329); the test names are built that way.
   target_compile_options(${name} PRIVATE $<$<AND:$<CXX_COMPILER_ID:GNU>,$<VERSION_LESS:$<CXX_COMPILER_VERSION>,13>>:-Wno-restrict>)
@@ -64,14 +70,7 @@ endfunction()
 function(lagfsi_mpi_unit_test source module)
   cmake_parse_arguments(PARSE_ARGV 2 arg "WHITE_BOX" "NAME" "PROCESSES")
   get_filename_component(name ${source} NAME_WE)
-  add_executable(${name} ${source})
-  target_link_libraries(${name} PRIVATE ${module} nlohmann_json::nlohmann_json lagfsi_options GTest::gtest
-                                        GTest::gtest_main)
-  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-  if(arg_WHITE_BOX)
-    get_filename_component(module_dir ${CMAKE_CURRENT_SOURCE_DIR} DIRECTORY)
-    target_include_directories(${name} PRIVATE ${module_dir})
-  endif()
+  lagfsi_test_executable(${name} ${source} "${arg_WHITE_BOX}" ${module})
   foreach(p ${arg_PROCESSES})
     add_test(NAME ${arg_NAME}.On${p}Processes
              COMMAND ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe ${MPIEXEC_NUMPROC_FLAG} ${p}

@@ -188,13 +188,13 @@ class RemeshPipeline {
     std::vector<char> pinched;
   };
   BoundaryChains boundary_chains() const;
-  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
-  /// (particle_management.cpp); `chain`: its boundary_chains().
   /// The advected domain's elements and boundary edges (meshing::PreviousDomain's).
   struct AdvectedDomain {
     std::vector<std::array<Vec2, 3>> triangles;
     std::vector<std::array<Vec2, 2>> boundary;
   };
+  /// The mesh of the last step at the particles' present positions, as the predicate of the next domain
+  /// (particle_management.cpp); `chain`: its boundary_chains().
   AdvectedDomain advected_domain(const BoundaryChains& chain) const;
   /// Conservative particle management on the advected mesh (particle_management.cpp): close fluid pairs are
   /// merged (mass-weighted state; on the free surface at the position that keeps the boundary's area), long

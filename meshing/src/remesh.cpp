@@ -250,6 +250,9 @@ struct RemeshInput {
   const PreviousDomain* previous = nullptr;  // the advected or level-set detection's domain; nullptr: alpha
   double tol2 = 0;                           // the duplicate tolerance squared (check_points)
   const char* where = "remesh";
+  /// With settings.on_wall: the particles of the previous domain's free surface, those on a boundary edge of it with
+  /// neither end on a wall (a particle that has just left a wall, between two particles on it, is not one).
+  std::vector<std::uint8_t> on_previous_surface{};
 };
 
 /// Checks remesh()'s input (sizes, settings, coordinates, h and kind; std::invalid_argument otherwise) and
@@ -276,6 +279,16 @@ void check_remesh_input(RemeshInput& in) {
           settings.keep_edges_angle < std::numbers::pi / 2))
       fail(where, "keep_edges_angle must be in [0, pi/2)");
     in.previous = settings.previous;
+    if (settings.on_wall != nullptr) {
+      const std::vector<std::uint8_t>& on_wall = *settings.on_wall;
+      if (on_wall.size() != in.points.size()) fail(where, "on_wall's size does not match the points'");
+      in.on_previous_surface.assign(in.points.size(), 0);
+      for (const auto& [a, b] : settings.previous->boundary_edges()) {
+        const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+        if (a < 0 || b < 0 || ia >= on_wall.size() || ib >= on_wall.size() || on_wall[ia] || on_wall[ib]) continue;
+        in.on_previous_surface[ia] = in.on_previous_surface[ib] = 1;
+      }
+    }
   }
   in.tol2 = check_points(in.points, where);
   for (std::size_t i = 0; i < n; ++i) {
@@ -363,6 +376,29 @@ bool accept_contact(const RemeshInput& in, const FaceGeometry& g, const Vec2& ce
 /// The domain detection's verdict on a face (before the removal of wall/ghost-only elements).
 enum class Verdict : std::uint8_t { RemovedAlpha, Separated, Accepted, AddedOutside };
 
+/// The separation test of an element inside the previous domain: a sliver beyond separation_alpha h_e (R > that) is
+/// a film tearing. An element leaning on a wall along an edge between two particles on it, whose third particle was
+/// not on the previous free surface, is water against the wall: it cannot tear along the wall, and its flatness
+/// (R grows without bound as the third particle nears the wall or the wall's particles spread along it) is not a
+/// tear. It separates only when one of its two other edges is longer than separation_alpha h_e (the third particle
+/// has left the wall); otherwise a confined flow would open a free surface with p = 0 inside its water.
+bool separated(const RemeshInput& in, const FaceGeometry& g) {
+  const double s = in.settings.separation_alpha * g.he;
+  if (!in.on_previous_surface.empty()) {
+    const std::vector<std::uint8_t>& on_wall = *in.settings.on_wall;
+    const Index ids[3] = {g.a, g.b, g.c};
+    const double opposite2[3] = {g.lbc2, g.lac2, g.lab2};  // the edge opposite a, b, c
+    for (int k = 0; k < 3; ++k) {
+      const auto i = static_cast<std::size_t>(ids[(k + 1) % 3]), j = static_cast<std::size_t>(ids[(k + 2) % 3]);
+      if (!on_wall[i] || !on_wall[j]) continue;
+      if (in.settings.along_wall && !in.settings.along_wall((in.points[i] + in.points[j]) * 0.5)) continue;
+      if (in.on_previous_surface[static_cast<std::size_t>(ids[k])]) break;
+      return std::max(opposite2[(k + 1) % 3], opposite2[(k + 2) % 3]) > s * s;
+    }
+  }
+  return g.lll > 2.0 * g.cr * s;
+}
+
 /// The alpha test (or, with the previous domain, the separation test inside it and accept_contact outside).
 Verdict detect(const RemeshInput& in, const FaceGeometry& g) {
   const auto& points = in.points;
@@ -376,8 +412,7 @@ Verdict detect(const RemeshInput& in, const FaceGeometry& g) {
   const Vec2& pb = points[static_cast<std::size_t>(g.b)];
   const Vec2& pc = points[static_cast<std::size_t>(g.c)];
   const Vec2 centroid = (pa + pb + pc) * (1.0 / 3.0);
-  if (in.previous->contains(centroid))
-    return g.lll > 2.0 * g.cr * in.settings.separation_alpha * g.he ? Verdict::Separated : Verdict::Accepted;
+  if (in.previous->contains(centroid)) return separated(in, g) ? Verdict::Separated : Verdict::Accepted;
   return accept_contact(in, g, centroid) ? Verdict::AddedOutside : Verdict::RemovedAlpha;
 }
 

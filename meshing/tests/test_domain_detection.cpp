@@ -1,8 +1,8 @@
 // Unit tests of the conservative PFEM domain detections (meshing/previous_domain.hpp, remesh.hpp
 // DomainDetection) on hand-made clouds whose expected domains are known in closed form: an L-shaped lattice
 // (its notch is a concave corner the alpha shape fills with a large alpha), two blocks a gap apart (merged
-// only when the gap closes, or once it is below contact_gap), a dent of one surface (never filled), and a dry wall
-// particle (wetted only by fluid that reaches it).
+// only when the gap closes, or once it is below contact_gap), a dent of one surface (never filled), a dry wall
+// particle (wetted only by fluid that reaches it), and water against a wall (its flat element kept).
 #include <lagfsi/meshing/previous_domain.hpp>
 #include <lagfsi/meshing/remesh.hpp>
 
@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -176,8 +177,8 @@ TEST(DomainDetection, ADentOfOneSurfaceIsNotFilledAndADryWallIsWettedOnlyByFluid
   // A dry wall particle 0.8 above the surface particle (4, 1) with a fluid neighbour at (3, 1): it joins only
   // once a fluid particle comes within wetting_distance h of it.
   c.add(4.0, 1.8, lagfsi::meshing::ParticleKind::Wall);
-  std::vector<std::uint8_t> meshed(c.p.size(), 1);
-  meshed.back() = 0;
+  std::vector<std::uint8_t> meshed(c.p.size() - 1, 1);
+  meshed.push_back(0);  // the dry wall particle
   prev.set_topology(meshed, surface);
   s.wetting_distance = 0.5;
   EXPECT_NEAR(kept_area(c, s), area, 1e-12) << "0.8 h away: stays dry";
@@ -258,6 +259,52 @@ TEST(DomainDetection, KeepsAPreviousInteriorEdgeWithinTheFlipHysteresis) {
     EXPECT_TRUE(has_edge(r.triangles, 1, 3));
     EXPECT_NEAR(r.area, quad, 1e-12);
   }
+}
+
+TEST(DomainDetection, WaterAgainstAWallDoesNotSeparateFromIt) {
+  // Walls as constraints: particles 0 and 1 lie on the floor y = 0, spread 1.9 h apart by a flow along it, and the
+  // water's particle 2 has come within 0.17 h of the floor between them. Their flat element (circumradius 2.74 h)
+  // fails the separation test (2.5 h): without the floor's particles marked, it is cut out and particle 2 becomes a
+  // free surface inside the water. Marked on the wall, the element leans on the floor and is kept; it is cut out
+  // when particle 2 was on the previous free surface (a boundary edge of it with no end on a wall: a film).
+  Cloud c;
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{0, 0}, {1.9, 0}, {0.95, 0.17}, {0, 1.2}, {1.9, 1.2}, {0.95, 1.2}})
+    c.add(x, y);
+  const Vec2 lo(0, 0), hi(1.9, 1.2);
+  const std::vector<std::uint8_t> on_wall{1, 1, 0, 0, 0, 0};
+  const double box = 1.9 * 1.2, sliver = 0.5 * 1.9 * 0.17;
+  std::function<bool(const Vec2&)> along;  // empty: every edge between two marked particles runs along a wall
+  const auto run = [&](bool marked, std::vector<std::pair<Index, Index>> boundary) {
+    PreviousDomain prev({{lo, Vec2(1.9, 0), hi}, {lo, hi, Vec2(0, 1.2)}}, {});
+    prev.set_topology({1, 1, 1, 1, 1, 1}, std::move(boundary));
+    RemeshSettings s;
+    s.alpha = 1.2;
+    s.detection = DomainDetection::Advected;
+    s.previous = &prev;
+    s.separation_alpha = 2.5;
+    if (marked) s.on_wall = &on_wall;
+    s.along_wall = along;
+    return remesh(c.p, c.kind, c.h, s);
+  };
+  const std::vector<std::pair<Index, Index>> walls_and_top{{0, 1}, {1, 4}, {4, 5}, {5, 3}, {3, 0}};
+  const auto unmarked = run(false, walls_and_top);
+  EXPECT_EQ(unmarked.separated_inside, 1);
+  EXPECT_NEAR(unmarked.area, box - sliver, 1e-12);
+  EXPECT_EQ(unmarked.free_surface[2], 1);
+  const auto marked = run(true, walls_and_top);
+  EXPECT_EQ(marked.separated_inside, 0);
+  EXPECT_NEAR(marked.area, box, 1e-12);
+  EXPECT_EQ(marked.free_surface[2], 0);
+  const auto film = run(true, {{0, 1}, {2, 5}, {1, 4}, {4, 5}, {5, 3}, {3, 0}});
+  EXPECT_EQ(film.separated_inside, 1);
+  EXPECT_NEAR(film.area, box - sliver, 1e-12);
+  // The edge must run along a wall (its midpoint on a wall's line): between particles on two walls that meet at a
+  // corner it crosses the water, and the element is tested as any other.
+  along = [](const Vec2& p) { return std::abs(p.y()) < 1e-12; };
+  EXPECT_EQ(run(true, walls_and_top).separated_inside, 0);
+  along = [](const Vec2& p) { return std::abs(p.x()) < 1e-12 || std::abs(p.x() - 1.9) < 1e-12; };
+  EXPECT_EQ(run(true, walls_and_top).separated_inside, 1);
 }
 
 }  // namespace

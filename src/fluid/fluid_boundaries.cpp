@@ -91,6 +91,10 @@ bool FluidBoundaries::along(const Vec2& p) const {
   return std::any_of(list_.begin(), list_.end(), [&](const auto& b) { return b->along(p); });
 }
 
+bool FluidBoundaries::along_fixed(const Vec2& p) const {
+  return std::any_of(list_.begin(), list_.end(), [&](const auto& b) { return b->along_fixed(p); });
+}
+
 void FluidBoundaries::settle(const std::vector<std::uint8_t>& free) {
   for (auto& b : list_) b->settle(free);
 }

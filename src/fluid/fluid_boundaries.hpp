@@ -36,6 +36,8 @@ class FluidBoundaries {
   std::vector<char> held(Index n) const;
   /// Whether p lies along a boundary (free-surface marking).
   bool along(const Vec2& p) const;
+  /// Whether p lies along a part of a boundary that does not move.
+  bool along_fixed(const Vec2& p) const;
   /// Every boundary adjusts what it holds to the marked free surface.
   void settle(const std::vector<std::uint8_t>& free);
   /// The step's prescribed components and frictions, every boundary's in turn (a boundary leaves a particle that a

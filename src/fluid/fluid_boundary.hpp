@@ -120,6 +120,11 @@ class FluidBoundary {
     (void)p;
     return false;
   }
+  /// Whether p lies along a part of it that does not move.
+  virtual bool along_fixed(const Vec2& p) const {
+    (void)p;
+    return false;
+  }
   /// After the free surface was marked (`free`, per particle): adjusts what it holds (a no-slip wall lets its
   /// contact line move).
   virtual void settle(const std::vector<std::uint8_t>& free) { (void)free; }

@@ -40,7 +40,8 @@ const KeyTable kFluidKeys(
       kDerived},
      {"separation_alpha", 2.5,
       "Advected/level-set detection: an element inside the domain with an edge beyond this times h is separated "
-      "(a film tearing); at least alpha."},
+      "(a film tearing); with walls as constraints, one along a wall only by its other edges (water against a "
+      "wall stays); at least alpha."},
      {"level_set_band", 0.25, "Level-set detection: width of the band around the advected boundary, times h."},
      {"contact_gap", 0.0,
       "Fluid parts are joined only once the gap between them is at most this times h (0: off, at most 2); "
@@ -276,7 +277,9 @@ void FluidModel::read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline
   }
   if (navier) walls->set_navier_friction(c_.mu, slip_length);
   boundaries_.set_walls(std::move(walls));
-  if (wall_constraints_) remesh_.set_wall_lines([this](const Vec2& x) { return boundaries_.along(x); });
+  if (wall_constraints_)
+    remesh_.set_wall_lines([this](const Vec2& x) { return boundaries_.along(x); },
+                           [this](const Vec2& x) { return boundaries_.along_fixed(x); });
   // The particle size field (size_field.hpp): an adaptive one needs remeshing and graded regions (unstructured
   // particles).
   SizeField size;

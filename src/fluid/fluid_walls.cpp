@@ -262,8 +262,13 @@ void FluidWalls::count_held(std::vector<char>& held) const {
     if (k.i < static_cast<Index>(held.size())) ++held[static_cast<size_t>(k.i)];
 }
 
-bool FluidWalls::along(const Vec2& p) const {
+bool FluidWalls::along(const Vec2& p) const { return along(p, false); }
+
+bool FluidWalls::along_fixed(const Vec2& p) const { return along(p, true); }
+
+bool FluidWalls::along(const Vec2& p, bool fixed_only) const {
   for (const Wall& w : walls_) {
+    if (fixed_only && w.fn) continue;  // a moving wall
     for (size_t s = 0; s + 1 < w.polyline.size(); ++s)
       if (w.distance_at(s, p, contact_t_) <= contact_tol_) return true;
   }

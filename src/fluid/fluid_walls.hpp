@@ -194,6 +194,7 @@ class FluidWalls : public FluidBoundary {
   // motion, the frictions of "navier".
   void count_held(std::vector<char>& held) const override;
   bool along(const Vec2& p) const override;
+  bool along_fixed(const Vec2& p) const override;
   void constrain(const ParticleCloud& cloud, const std::vector<char>& taken, double t,
                  std::vector<BoundaryConstraint>& out) override;
   /// A component on a turning wall follows the wall's point under the particle when it was found (its anchor).
@@ -237,6 +238,8 @@ class FluidWalls : public FluidBoundary {
   };
   /// The frames, corners, constraints and frictions of the particles on inclined segments.
   void add_skew_contacts(const std::vector<Skew>& skew, const Vec& x, double t);
+  /// Whether p lies along a wall (within the last contacts' tolerance), of the walls that do not move if fixed_only.
+  bool along(const Vec2& p, bool fixed_only) const;
 
   std::vector<Wall> walls_;
   std::vector<BoundaryConstraint> constraints_;  // fixed connectivity's, or the step's contacts

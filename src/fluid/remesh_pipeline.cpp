@@ -199,6 +199,15 @@ void RemeshPipeline::remesh_now(const meshing::PreviousDomain* previous, const m
     settings.contact_gap = s_.contact_gap;
     settings.keep_edges_angle = s_.keep_edges_angle;
   }
+  // Walls as constraints: the fluid particles on a fixed wall's line (the separation test leaves the water against
+  // the wall).
+  std::vector<std::uint8_t> on_wall;
+  if (on_fixed_wall_line_ && settings.previous != nullptr) {
+    on_wall.resize(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i) on_wall[i] = kind[i] == ParticleKind::Fluid && on_fixed_wall_line_(pts[i]);
+    settings.on_wall = &on_wall;
+    settings.along_wall = on_fixed_wall_line_;
+  }
   try {
     r = remesh_over_processes(pts, kind, cloud_.h(), settings, &divided_, partition);
   } catch (const std::exception& e) {

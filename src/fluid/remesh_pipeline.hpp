@@ -106,8 +106,14 @@ class RemeshPipeline {
   /// Whether a point lies on a wall that holds its particles by constraints: the surface correction leaves them
   /// alone too (moved along the area's gradient, a particle at the water's edge on a wall leaves the wall's line,
   /// and the wall puts it back in the step: the correction and the step undo each other, and the churn scatters
-  /// the water).
-  void set_wall_lines(std::function<bool(const Vec2&)> on_wall_line) { on_wall_line_ = std::move(on_wall_line); }
+  /// the water). `on_fixed_wall_line`: the same for the walls that do not move, along which the domain detection's
+  /// separation test leaves water against a wall (meshing::RemeshSettings::on_wall; a moving wall's particles are
+  /// put back on its new line after each step, and a flat element kept along it inverts as the wall turns).
+  void set_wall_lines(std::function<bool(const Vec2&)> on_wall_line,
+                      std::function<bool(const Vec2&)> on_fixed_wall_line) {
+    on_wall_line_ = std::move(on_wall_line);
+    on_fixed_wall_line_ = std::move(on_fixed_wall_line);
+  }
 
   /// The depth of a point at time t in the solid behind the walls' particles ("wall_model": "particles"; negative
   /// on the fluid side, zero on a wall's line). A fluid particle pressed onto a wall's line between two of its
@@ -270,6 +276,7 @@ class RemeshPipeline {
   std::vector<std::array<Vec2, 3>> open_regions_;
   std::function<bool(const Vec2&)> at_open_face_;          // set_open_faces
   std::function<bool(const Vec2&)> on_wall_line_;          // set_wall_lines
+  std::function<bool(const Vec2&)> on_fixed_wall_line_;    // set_wall_lines
   std::function<double(const Vec2&, double)> wall_depth_;  // set_wall_solid
   // Triangles of wall particles (never removed: their indices stay) counted as fluid by the next advected domain
   // (find_wet_corners).

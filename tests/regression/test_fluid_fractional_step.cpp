@@ -127,13 +127,15 @@ double energy_above_rest_ratio(const Csv& c, double width, double t) {
 TEST(FractionalStep, TheExactAreaRateKeepsTheAdvectedDamBreaksArea) {
   // The pressure equation's continuity is each element's exact area rate over the step (div u* + dt det grad u*):
   // with div u* alone the dam break with the advected domain and walls as constraints lost 8 % of its area in
-  // 1 s. Measured with the exact rate: 3.2 %, energy above rest at 0.25 s 0.995.
+  // 1 s. Measured with the exact rate: 6.3 %, energy above rest at 0.25 s 0.995; the splash is chaotic, and with
+  // dt 10 % shorter or h 4 % smaller the drift is 6.2 % and 4.3 % (3.2–6.3 % before water against a wall was
+  // kept; decision 0020).
   const RunResult r = run_case_1thread("cases/dam_break_tank/case.json", "fs_dam_break_exact_rate",
                                        {kScheme, "bodies.0.domain_detection=advected",
                                         "bodies.0.wall_model=constraints", "bodies.0.wall_friction=navier"});
   const Csv c = probes_of(r);
   EXPECT_NEAR(c["time"].back(), 1.0, 1e-9);
-  EXPECT_LT(max_area_drift(c), 0.05);
+  EXPECT_LT(max_area_drift(c), 0.07);
   EXPECT_GT(energy_above_rest_ratio(c, 0.584, 0.25), 0.97);
 }
 

@@ -13,6 +13,7 @@
 //  - The fluid side of a segment the initial fluid cannot see (an obstacle's downstream face, hidden by the
 //    obstacle) is its neighbours' along the polyline; a particle sliding along the floor into the obstacle's
 //    foot is then put on that face (WallContacts::snap_to_walls), not let through it.
+//  - Of a flap hinged on a floor, only the floor's line is a fixed wall's (FluidWalls::along_fixed).
 #include <gtest/gtest.h>
 
 #include "fluid_mesh.hpp"
@@ -188,6 +189,25 @@ TEST(FluidWalls, AParticleOnATurningWallFollowsItAndStaysOnItsLine) {
   walls.follow_turning_walls(cloud, 0.5);
   const Vec2 p = cloud.pos(1), n1(std::cos(0.1), -std::sin(0.1));  // the flap's normal at 0.5 s
   EXPECT_NEAR(n1.dot(p), 0.0, 1e-12);
+}
+
+TEST(FluidWalls, OnlyTheLinesOfWallsThatDoNotMoveAreFixedLines) {
+  // A flap hinged on a floor: a point on either lies along the walls; only the floor's is along a fixed wall (the
+  // domain detection leaves water against a wall only there).
+  Json walls_json = kFlap;
+  walls_json.push_back({{"name", "floor"}, {"points", {{0, 0}, {0.5, 0}}}, {"slip", true}});
+  WallContacts walls(kH, 0.1, Vec2(0, -9.81), 0.0);
+  walls.read(Params(walls_json, "test.json", "/bodies/0/walls"), kH, ".");
+  ParticleCloud cloud;
+  cloud.assign({{0.03, 0.05}, {0.0, 0.05}, {0.2, 0.0}}, std::vector<ParticleKind>(3, ParticleKind::Fluid), kH);
+  walls.set_fluid_sides(cloud.positions(), cloud.kind());
+  walls.find(cloud, 0.0);
+  EXPECT_TRUE(walls.along({0.0, 0.05}));
+  EXPECT_FALSE(walls.along_fixed({0.0, 0.05})) << "on the flap";
+  EXPECT_TRUE(walls.along({0.2, 0.0}));
+  EXPECT_TRUE(walls.along_fixed({0.2, 0.0})) << "on the floor";
+  EXPECT_FALSE(walls.along({0.03, 0.05}));
+  EXPECT_FALSE(walls.along_fixed({0.03, 0.05})) << "in the water";
 }
 
 TEST(FluidWalls, AFixedMeshsWallsDoNotTurn) {

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -28,7 +29,8 @@ enum class ParticleKind : std::uint8_t { Fluid = 0, Wall = 1, Ghost = 2 };
 ///    the particles alone at every remesh, so elements along the free surface appear and disappear, and the
 ///    fluid's area (its mass) changes with them.
 ///  - Advected: an element whose centroid lies in the previous domain (PreviousDomain) is kept unless it is
-///    a sliver beyond the separation test (R > separation_alpha h_e: a film tearing, a jet breaking up); one
+///    a sliver beyond the separation test (R > separation_alpha h_e: a film tearing, a jet breaking up; water
+///    against a wall, RemeshSettings::on_wall, only once it has left the wall); one
 ///    outside it is added only if it passes the alpha test and has at most one wall or ghost particle (two
 ///    free surfaces, or a surface and a wall, meeting). Where the topology does not change the domain does
 ///    not change.
@@ -58,6 +60,14 @@ struct RemeshSettings {
   /// divergence-free space the velocity lives in; this hysteresis keeps the connectivity until the quality
   /// asks for a change. 0: only the previous boundary edges are restored.
   double keep_edges_angle = 0.0;
+  /// Advected / LevelSet: per particle, 1 if it lies on a wall's line (walls as constraints); nullptr: none. An
+  /// element inside the previous domain with an edge along a wall (between two such particles, its midpoint on a
+  /// wall's line by along_wall) leans on the wall along that edge, which cannot tear: it separates only when one of
+  /// its other two edges is longer than separation_alpha h_e.
+  const std::vector<std::uint8_t>* on_wall = nullptr;
+  /// With on_wall: whether a point lies on a wall's line (an edge between particles on two walls that meet at a
+  /// corner crosses the water). Empty: every edge between two on_wall particles runs along a wall.
+  std::function<bool(const Vec2&)> along_wall{};
 };
 
 struct RemeshResult {
@@ -103,7 +113,9 @@ class SpacePartition;
 /// the halo of its centroid's box: with the alpha test or the advected detection every kept face has a circumradius
 /// R <= max(alpha, separation_alpha) h_e and its centroid is within R of its circumcentre, so a halo of
 /// 2 max(alpha, separation_alpha) max h_i suffices for the Delaunay faces (a face whose circumdisc lies where the part
-/// holds every particle of the cloud is Delaunay in both or in neither); the previous edges flipped back in are local
+/// holds every particle of the cloud is Delaunay in both or in neither); a flat element kept against a wall (on_wall)
+/// may have a larger circumdisc, whose part beyond the halo lies behind the wall, where a cloud bounded by that wall
+/// has no particle; the previous edges flipped back in are local
 /// to their quadrilaterals, for which the caller adds a margin. The level-set detection keeps faces of any size
 /// outside the previous domain and is refused (std::invalid_argument), as are a partition of other points, a part
 /// out of range and a halo that is not positive. `ghost_count` (optional) receives the number of ghosts it used.

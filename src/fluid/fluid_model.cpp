@@ -420,7 +420,8 @@ std::unique_ptr<Probe> FluidModel::make_probe(Params p) {
       "type", {"front", "column_height", "pressure", "elevation", "runup", "water_above", "discharge", "velocity",
                "fluid_area", "water_area", "kinetic_energy", "potential_energy", "gravity_work", "viscous_dissipation",
                "volume_correction_energy", "total_energy", "boundary_work", "max_speed", "wall_force"});
-  if (t == "wall_force") request_boundary_forces();
+  if (t == "wall_force" || (t == "pressure" && p.json().contains("method") && p.json().at("method") == "load"))
+    request_boundary_forces();
   // The work of gravity, the dissipation and the boundary work are summed over the run only when a probe
   // asks for them (an extra element loop per step).
   if (t == "gravity_work" || t == "viscous_dissipation" || t == "total_energy" || t == "boundary_work") {
@@ -435,6 +436,53 @@ int FluidModel::wall_index(const std::string& name) const {
   for (size_t w = 0; w < all.size(); ++w)
     if (all[w].name == name) return static_cast<int>(w);
   return -1;
+}
+
+std::vector<FluidModel::WallLoad> FluidModel::wall_loads() const {
+  std::vector<WallLoad> loads;
+  if (boundaries_.walls().finds_contacts()) {
+    const auto& ks = boundaries_.constraints();
+    const ParticleFrames& frames = boundaries_.frames();
+    std::vector<Index> slot(static_cast<size_t>(cloud_.n()), -1);
+    const auto load_of = [&](Index i) -> Vec2& {
+      if (slot[static_cast<size_t>(i)] < 0) {
+        slot[static_cast<size_t>(i)] = static_cast<Index>(loads.size());
+        loads.push_back({cloud_.x().segment<2>(2 * i), Vec2::Zero()});
+      }
+      return loads[static_cast<size_t>(slot[static_cast<size_t>(i)])].force;
+    };
+    if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
+      for (size_t k = 0; k < ks.size(); ++k)
+        if (ks[k].boundary == 0 && ks[k].i < cloud_.n())
+          load_of(ks[k].i) -= step_.constraint_force[static_cast<Index>(k)] * frames.direction(ks[k].i, ks[k].c);
+    for (const BoundaryFriction& w : boundaries_.frictions())
+      if (w.boundary == 0 && w.i < cloud_.n())
+        load_of(w.i) += boundaries_.friction_coefficient(w) *
+                        (frames.component(cloud_.v(), w.i, w.c) - boundaries_.friction_velocity(w, step_.t_new)) *
+                        frames.direction(w.i, w.c);
+    return loads;
+  }
+  const Index nb = static_cast<Index>(step_.boundary_force.size() / 2);
+  std::vector<char> done(static_cast<size_t>(nb), 0);
+  for (const Wall& w : boundaries_.walls().all())
+    for (Index j : w.particles)
+      if (j < nb && !done[static_cast<size_t>(j)]) {
+        done[static_cast<size_t>(j)] = 1;
+        loads.push_back({cloud_.x().segment<2>(2 * j), -step_.boundary_force.segment<2>(2 * j)});
+      }
+  return loads;
+}
+
+Vec2 FluidModel::wall_normal_near(const Vec2& p, double& distance) const {
+  distance = std::numeric_limits<double>::infinity();
+  Vec2 n = Vec2::Zero();
+  for (const Wall& w : boundaries_.walls().all())
+    for (size_t k = 0; k + 1 < w.polyline.size(); ++k)
+      if (const double d = w.distance_at(k, p, step_.t_new); d < distance) {
+        distance = d;
+        n = w.normal_at(k, step_.t_new);
+      }
+  return n;
 }
 
 Vec2 FluidModel::wall_force(int wall) const {

@@ -89,6 +89,17 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   /// particles applied to the fluid (FluidStep::boundary_force; a corner particle shared by two walls counts for
   /// the first). Zero before the first step.
   Vec2 wall_force(int wall) const;
+  /// Where and how hard the fluid pressed on the walls in the last step, particle by particle: each particle held
+  /// by a wall (a fluid particle on one, "wall_model": "constraints", or a wall particle) and the force (N per m of
+  /// thickness) it passed to the walls, as wall_force takes it (reactions and Navier friction, or minus the wall
+  /// particle's force on the fluid) but summed over the walls that hold it. Empty before the first step.
+  struct WallLoad {
+    Vec2 at, force;
+  };
+  std::vector<WallLoad> wall_loads() const;
+  /// The unit normal, towards the fluid, of the wall segment nearest to p as the walls are at the end of the last
+  /// step, and that distance (infinite without walls).
+  Vec2 wall_normal_near(const Vec2& p, double& distance) const;
   /// A wall_force probe needs the boundary forces of the step (the schemes compute them on demand).
   void request_boundary_forces() { step_.energy = true; }
   const std::vector<std::array<Index, 3>>& triangles() const { return mesh_.tri; }

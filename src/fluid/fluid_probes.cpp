@@ -39,16 +39,22 @@ const KeyTable kElevationKeys(
                 {"band", 0.0, "Particles method: half-width (m) of the band; default: 1.5 h (at least h / 4).",
                  kDerived}}));
 
-const KeyTable kPressureKeys("/probes/* (fluid body, type pressure)",
-                             "The mean pressure (Pa) of the particles on a sensor segment; with \"from\" equal to "
-                             "\"to\", a point sensor: the pressure interpolated (P1) in the element that holds the "
-                             "point, 0 where no element does (dry).",
-                             probe_keys({"pressure"}, {{"from", nullptr, "One end of the segment [x, y] (m)."},
-                                                       {"to", nullptr, "The other end [x, y] (m)."},
-                                                       {"tolerance", 0.0,
-                                                        "Distance (m) from the segment within which particles "
-                                                        "count; default: h / 2.",
-                                                        kDerived}}));
+const KeyTable kPressureKeys(
+    "/probes/* (fluid body, type pressure)",
+    "The mean pressure (Pa) on a sensor segment; with \"from\" equal to \"to\", a point sensor: the pressure "
+    "interpolated (P1) in the element that holds the point, 0 where no element does (dry).",
+    probe_keys({"pressure"},
+               {{"from", nullptr, "One end of the segment [x, y] (m)."},
+                {"to", nullptr, "The other end [x, y] (m)."},
+                {"tolerance", 0.0, "Distance (m) from the segment within which particles count; default: h / 2.",
+                 kDerived},
+                {"method", "particles",
+                 "particles (the mean pressure of the particles on the segment) or load (a segment on a wall: the "
+                 "force the fluid applied to the wall there in the step, along the wall's normal, over the "
+                 "segment's length, as a transducer of that face reads it; each particle the wall holds counts "
+                 "with its share of the wall, half-way to its neighbours along it, that lies on the segment: the "
+                 "reactions of the walls' constraints or the forces on the wall particles, wall_force's, the "
+                 "momentum of water stopped by the wall included; 0 where no particle is held, and at the start)."}}));
 
 const KeyTable kRunupKeys("/probes/* (fluid body, type runup)",
                           "The run-up (m): the largest y of the meshed (connected) fluid within a band along a wall "
@@ -117,6 +123,9 @@ class FluidProbe final : public Probe {
   Vec2 a_ = Vec2::Zero(), b_ = Vec2::Zero();
   double band_ = 0, coord_ = 0;
   bool mesh_method_ = true;
+  bool load_method_ = false;  // pressure: from the walls' loads
+  /// The load sensor's reading (method "load").
+  double wall_load_pressure() const;
   int component_ = 0;
   int wall_ = -1;  // wall_force: the wall's index
   /// The discharge through a_-b_ (the part of it in each element, where u is linear: its midpoint's u.n).
@@ -231,6 +240,15 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     p.validate(kPressureKeys, {{"tolerance", 0.5 * h}});
     read_segment();
     band_ = p.positive("tolerance");
+    load_method_ = p.choice("method", {"particles", "load"}) == "load";
+    if (load_method_ && !((b_ - a_).norm() > 0)) p.fail("to", "a load sensor needs a segment (its two ends coincide)");
+    if (load_method_) {
+      double distance = 0;
+      m.wall_normal_near(0.5 * (a_ + b_), distance);
+      if (!(distance <= band_))
+        p.fail("from", "a load sensor lies on a wall: its segment's midpoint is " + std::to_string(distance) +
+                           " m from the nearest wall, beyond its tolerance " + std::to_string(band_) + " m");
+    }
   } else {
     p.validate(kGlobalKeys);
   }
@@ -281,6 +299,7 @@ std::vector<double> FluidProbe::sample() const {
     // point on a wall is held), 0 when none does (a dry sensor).
     return {interpolated_at(1e-9, 0.0, [&](Index i) { return m_.pressure(i); })};
   }
+  if (type_ == "pressure" && load_method_) return {wall_load_pressure()};
   if (type_ == "pressure") {
     // mean pressure of the particles on the sensor segment (any kind)
     double s = 0;
@@ -312,6 +331,45 @@ std::vector<double> FluidProbe::sample() const {
     if (type_ == "elevation" && std::abs(q.x() - coord_) <= band_) best = std::max(best, q.y());
   }
   return {std::isfinite(best) ? best : std::numeric_limits<double>::quiet_NaN()};
+}
+
+double FluidProbe::wall_load_pressure() const {
+  // The particles the walls hold along the sensor's line, in order along it (s: the distance from `from`), within
+  // the tolerance of the line and two spacings beyond the segment's ends (their shares reach into it).
+  const Vec2 d = b_ - a_;
+  const double length = d.norm();
+  const Vec2 e = d / length;
+  const double reach = 2.0 * m_.spacing();
+  struct Held {
+    double s;
+    Vec2 force;
+  };
+  std::vector<Held> held;
+  for (const FluidModel::WallLoad& w : m_.wall_loads()) {
+    const double s = (w.at - a_).dot(e);
+    if (s < -reach || s > length + reach || std::abs(cross(e, w.at - a_)) > band_) continue;
+    held.push_back({s, w.force});
+  }
+  if (held.empty()) return 0.0;
+  std::sort(held.begin(), held.end(), [](const Held& p, const Held& q) { return p.s < q.s; });
+  // Each particle stands for the wall from half-way to its previous neighbour to half-way to its next (the first
+  // and last as far out as in): its force counts with the part of that share that lies on the segment.
+  Vec2 force = Vec2::Zero();
+  const size_t n = held.size();
+  for (size_t k = 0; k < n; ++k) {
+    const double before =
+        k > 0 ? 0.5 * (held[k].s - held[k - 1].s) : (n > 1 ? 0.5 * (held[1].s - held[0].s) : 0.5 * m_.spacing());
+    const double after = k + 1 < n ? 0.5 * (held[k + 1].s - held[k].s) : before;
+    const double lo = held[k].s - before, hi = held[k].s + after;
+    if (!(hi > lo)) continue;
+    const double on = std::max(0.0, std::min(hi, length) - std::max(lo, 0.0));
+    force += (on / (hi - lo)) * held[k].force;
+  }
+  // Positive when the fluid pushes on the wall: along the wall's normal away from the fluid.
+  double distance = 0;
+  const Vec2 toward_fluid = m_.wall_normal_near(0.5 * (a_ + b_), distance);
+  const double p = -toward_fluid.dot(force) / length;
+  return p == 0.0 ? 0.0 : p;  // no -0 in probes.csv
 }
 
 double FluidProbe::discharge() const {

@@ -10,7 +10,12 @@
 //    1-2 s: 0.978 of it with the fractional step, 0.915 with the monolithic scheme, whose flow rate is 0.91 of the
 //    inflow's at this size: cases/channel_poiseuille), and the floor and the ceiling the pressure in opposite
 //    directions;
-//  - a probe naming a wall the body does not have is an input error naming the key.
+//  - the load sensor (a pressure probe with "method": "load"): water at rest, a sensor on each side wall and on the
+//    floor reads the hydrostatic pressure at its centre, rho g (d - y_c) (measured: exact to the printed digits with
+//    either wall model and scheme; the particles' mean on the same segment of wall particles reads 0.91 of it); a
+//    sensor above the water reads 0;
+//  - a probe naming a wall the body does not have is an input error naming the key, as is a load sensor whose
+//    segment's ends coincide or whose segment is not on a wall.
 #include "case_runner.hpp"
 
 #include <gtest/gtest.h>
@@ -154,6 +159,65 @@ TEST(WallForce, ChannelWallsCarryThePoiseuilleShearWithTheFractionalStep) {
 
 TEST(WallForce, ChannelWallsCarryThePoiseuilleShearWithTheMonolithicScheme) {
   expect_wall_shear("monolithic_pspg", 0.12);
+}
+
+/// The tank at rest with load sensors: on the right wall centred at y = 0.09 m, 0.08 m long; on the left wall the
+/// same, from top to bottom; on the floor over 0.1-0.27 m; above the water; and one a twentieth of a spacing long.
+std::string tank_with_load_sensors(const std::string& scheme, const std::string& wall_model,
+                                   const std::string& detection) {
+  std::string text = tank(scheme, wall_model, detection);
+  const std::string probes = R"("probes": [)";
+  text.replace(text.find(probes), probes.size(), R"("probes": [
+      {"name": "right", "type": "pressure", "body": "water", "from": [0.4, 0.05], "to": [0.4, 0.13], "method": "load"},
+      {"name": "left", "type": "pressure", "body": "water", "from": [0.0, 0.13], "to": [0.0, 0.05], "method": "load"},
+      {"name": "floor", "type": "pressure", "body": "water", "from": [0.1, 0.0], "to": [0.27, 0.0], "method": "load"},
+      {"name": "dry", "type": "pressure", "body": "water", "from": [0.4, 0.24], "to": [0.4, 0.29], "method": "load"},
+      {"name": "short", "type": "pressure", "body": "water", "from": [0.4, 0.0895], "to": [0.4, 0.0905],
+       "method": "load"},)");
+  return text;
+}
+
+TEST(WallForce, ALoadSensorOnAWallReadsTheHydrostaticPressureAtItsCentre) {
+  struct Setting {
+    std::string scheme, wall_model, detection;
+  };
+  for (const Setting& s :
+       {Setting{"fractional_step", "constraints", "advected"}, Setting{"monolithic_pspg", "constraints", "advected"},
+        Setting{"fractional_step", "particles", "alpha"}}) {
+    const std::string tag = s.scheme + " " + s.wall_model;
+    const RunResult r = run_case_text(fresh_dir("wall_load_" + s.scheme + "_" + s.wall_model),
+                                      tank_with_load_sensors(s.scheme, s.wall_model, s.detection));
+    ASSERT_EQ(r.exit_code, 0) << r.stderr_text;
+    const Csv p = read_csv(r.out_dir / "probes.csv");
+    for (size_t k = 0; k < p.rows(); ++k) {
+      if (!(p["time"][k] > 0)) {  // no step yet: no load
+        EXPECT_EQ(p["right"][k], 0.0) << tag;
+        continue;
+      }
+      const double side = kRhoG * (0.2 - 0.09), floor = kRhoG * 0.2;
+      EXPECT_NEAR(p["right"][k], side, 0.005 * side) << tag << " at " << p["time"][k];
+      EXPECT_NEAR(p["left"][k], side, 0.005 * side) << tag;
+      EXPECT_NEAR(p["floor"][k], floor, 0.005 * floor) << tag;
+      EXPECT_NEAR(p["short"][k], side, 0.005 * side) << tag;
+      EXPECT_EQ(p["dry"][k], 0.0) << tag;
+    }
+  }
+}
+
+TEST(WallForce, ALoadSensorWithoutLengthOrOffTheWallsIsAnErrorNamingTheKey) {
+  std::string text = tank("fractional_step", "constraints", "advected");
+  const std::string probes = R"("probes": [)";
+  text.replace(text.find(probes), probes.size(), R"("probes": [
+      {"name": "p", "type": "pressure", "body": "water", "from": [0.4, 0.1], "to": [0.4, 0.1], "method": "load"},)");
+  const RunResult r = run_case_text(fresh_dir("wall_load_no_length"), text);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.stderr_text.find("/probes/0/to"), std::string::npos) << r.stderr_text;
+  // A segment in the water, away from every wall.
+  const std::string point = R"("from": [0.4, 0.1], "to": [0.4, 0.1])";
+  text.replace(text.find(point), point.size(), R"("from": [0.2, 0.05], "to": [0.2, 0.15])");
+  const RunResult off = run_case_text(fresh_dir("wall_load_off_the_wall"), text);
+  EXPECT_EQ(off.exit_code, 2);
+  EXPECT_NE(off.stderr_text.find("/probes/0/from"), std::string::npos) << off.stderr_text;
 }
 
 TEST(WallForce, AProbeOfAWallTheBodyDoesNotHaveIsAnErrorNamingTheKey) {

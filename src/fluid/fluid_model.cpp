@@ -438,28 +438,37 @@ int FluidModel::wall_index(const std::string& name) const {
   return -1;
 }
 
+template <class Visit>
+void FluidModel::each_constraint_load(const Visit& visit) const {
+  // The reaction of each constrained component (the force the wall applies to the fluid along it, sign flipped),
+  // and the friction of the particles sliding on a no-slip wall ("navier": -k (v_t - v_wall,t) on the fluid, sign
+  // flipped).
+  const auto& ks = boundaries_.constraints();
+  const ParticleFrames& frames = boundaries_.frames();
+  if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
+    for (size_t k = 0; k < ks.size(); ++k)
+      if (ks[k].boundary == 0)
+        visit(ks[k].i, ks[k].part,
+              Vec2(-step_.constraint_force[static_cast<Index>(k)] * frames.direction(ks[k].i, ks[k].c)));
+  for (const BoundaryFriction& w : boundaries_.frictions())
+    if (w.boundary == 0 && w.i < cloud_.n())
+      visit(w.i, w.part,
+            Vec2(boundaries_.friction_coefficient(w) *
+                 (frames.component(cloud_.v(), w.i, w.c) - boundaries_.friction_velocity(w, step_.t_new)) *
+                 frames.direction(w.i, w.c)));
+}
+
 std::vector<FluidModel::WallLoad> FluidModel::wall_loads() const {
   std::vector<WallLoad> loads;
   if (boundaries_.walls().finds_contacts()) {
-    const auto& ks = boundaries_.constraints();
-    const ParticleFrames& frames = boundaries_.frames();
     std::vector<Index> slot(static_cast<size_t>(cloud_.n()), -1);
-    const auto load_of = [&](Index i) -> Vec2& {
+    each_constraint_load([&](Index i, int, const Vec2& force) {
       if (slot[static_cast<size_t>(i)] < 0) {
         slot[static_cast<size_t>(i)] = static_cast<Index>(loads.size());
         loads.push_back({cloud_.x().segment<2>(2 * i), Vec2::Zero()});
       }
-      return loads[static_cast<size_t>(slot[static_cast<size_t>(i)])].force;
-    };
-    if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
-      for (size_t k = 0; k < ks.size(); ++k)
-        if (ks[k].boundary == 0 && ks[k].i < cloud_.n())
-          load_of(ks[k].i) -= step_.constraint_force[static_cast<Index>(k)] * frames.direction(ks[k].i, ks[k].c);
-    for (const BoundaryFriction& w : boundaries_.frictions())
-      if (w.boundary == 0 && w.i < cloud_.n())
-        load_of(w.i) += boundaries_.friction_coefficient(w) *
-                        (frames.component(cloud_.v(), w.i, w.c) - boundaries_.friction_velocity(w, step_.t_new)) *
-                        frames.direction(w.i, w.c);
+      loads[static_cast<size_t>(slot[static_cast<size_t>(i)])].force += force;
+    });
     return loads;
   }
   const Index nb = static_cast<Index>(step_.boundary_force.size() / 2);
@@ -488,19 +497,9 @@ Vec2 FluidModel::wall_normal_near(const Vec2& p, double& distance) const {
 Vec2 FluidModel::wall_force(int wall) const {
   Vec2 f = Vec2::Zero();
   if (boundaries_.walls().finds_contacts()) {
-    // The reaction of each constrained component (the force the wall applies to the fluid along it), and the
-    // friction of the particles sliding on a no-slip wall ("navier": -k (v_t - v_wall,t) on the fluid).
-    const auto& ks = boundaries_.constraints();
-    const ParticleFrames& frames = boundaries_.frames();
-    if (static_cast<size_t>(step_.constraint_force.size()) == ks.size())
-      for (size_t k = 0; k < ks.size(); ++k)
-        if (ks[k].boundary == 0 && ks[k].part == wall)
-          f -= step_.constraint_force[static_cast<Index>(k)] * frames.direction(ks[k].i, ks[k].c);
-    for (const BoundaryFriction& w : boundaries_.frictions())
-      if (w.boundary == 0 && w.part == wall && w.i < cloud_.n())
-        f += boundaries_.friction_coefficient(w) *
-             (frames.component(cloud_.v(), w.i, w.c) - boundaries_.friction_velocity(w, step_.t_new)) *
-             frames.direction(w.i, w.c);
+    each_constraint_load([&](Index, int part, const Vec2& force) {
+      if (part == wall) f += force;
+    });
     return f;
   }
   // Wall particles: the force each applied to the fluid in the step's solve. A particle shared by two walls (a

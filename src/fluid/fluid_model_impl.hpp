@@ -124,6 +124,10 @@ class FluidModel final : public PhysicsModel, public InterfaceFluid {
   }
 
  private:
+  /// Walls as constraints: visit(i, part, force) for each force a wall (FluidWalls::all()[part]) took from fluid
+  /// particle i in the last step: each constrained component's reaction and each Navier friction, sign flipped.
+  template <class Visit>
+  void each_constraint_load(const Visit& visit) const;
   /// The body's own keys (fluid_input.cpp): its constants, the domain detection's settings into rs and how the
   /// walls hold the fluid; d the defaults that follow from other keys (fluid_defaults).
   void read_body_keys(Params b, const FluidDefaults& d, RemeshPipeline::Settings& rs);

@@ -241,8 +241,8 @@ FluidProbe::FluidProbe(const FluidModel& m, std::string name, std::string type, 
     read_segment();
     band_ = p.positive("tolerance");
     load_method_ = p.choice("method", {"particles", "load"}) == "load";
-    if (load_method_ && !((b_ - a_).norm() > 0)) p.fail("to", "a load sensor needs a segment (its two ends coincide)");
     if (load_method_) {
+      if (!((b_ - a_).norm() > 0)) p.fail("to", "a load sensor needs a segment (its two ends coincide)");
       double distance = 0;
       m.wall_normal_near(0.5 * (a_ + b_), distance);
       if (!(distance <= band_))

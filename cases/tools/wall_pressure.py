@@ -56,20 +56,18 @@ def measures(probes):
     and P2 in p*, and the impact, plateau, impulse, P2 wetting time, highest run-up and largest share above 2 H (and
     P1's impact, plateau and impulse read from the wall's load)."""
     t = [x * T_SCALE for x in probes["time"]]
-    p1 = [v / P_SCALE for v in probes["p1"]]
     p2 = [v / P_SCALE for v in probes["p2"]]
-    o = onset(t, p1)
     runup = [v for v in probes["runup"] if not math.isnan(v)]
-    m = {"t": t, "p1": p1, "p2": p2, "onset": o, "plateau": plateau(t, p1),
-         "impulse": impulse(t, p1, o, IMPULSE_WINDOW) if math.isfinite(o) else float("nan"),
-         "p2_wets": wets(t, p2), "runup_max": max(runup) if runup else float("nan"),
+    m = {"t": t, "p2": p2, "p2_wets": wets(t, p2), "runup_max": max(runup) if runup else float("nan"),
          "above_2H_max": max(probes["above_2H"])}
-    if "p1_load" in probes:  # P1 read from the wall's load over the sensor's face ("method": "load")
-        p1_load = [v / P_SCALE for v in probes["p1_load"]]
-        o_load = onset(t, p1_load)
-        m.update({"p1_load": p1_load, "onset_load": o_load, "plateau_load": plateau(t, p1_load),
-                  "impulse_load": impulse(t, p1_load, o_load, IMPULSE_WINDOW) if math.isfinite(o_load)
-                  else float("nan")})
+    # P1 from the particles' pressures, and from the wall's load over the sensor's face ("method": "load").
+    for column, suffix in (("p1", ""), ("p1_load", "_load")):
+        if column not in probes:
+            continue
+        p = [v / P_SCALE for v in probes[column]]
+        o = onset(t, p)
+        m.update({column: p, "onset" + suffix: o, "plateau" + suffix: plateau(t, p),
+                  "impulse" + suffix: impulse(t, p, o, IMPULSE_WINDOW) if math.isfinite(o) else float("nan")})
     return m
 
 

@@ -11,9 +11,10 @@ writer of those values and of the README tables that show them.
       quantity: (1) the claim — the value against the reference with the stated tolerance; (2) the drift — the
       value against the recorded one (a documented number that moves fails). Exit 1 when a check fails.
       --set adds an override to every run (e.g. a deliberate change, to see a check fail).
-  claims.py update CASE... [--exe EXE] [--out DIR] [--tier-only]
+  claims.py update CASE... [--exe EXE] [--out DIR] [--tier-only] [--runs RUN...]
       Runs the case at full size and at tier size and records the values (value, tier_value) and wall times
-      in expected.json. Then regenerate the tables.
+      in expected.json. Then regenerate the tables. --runs runs only the named runs and records only the
+      quantities that come from them (a run added to a case whose other runs did not change).
   claims.py tables [--check]
       Rewrites the generated tables in the case READMEs and the summary in docs/results.md from the
       expected.json files; with --check, changes nothing and exits 1 when a file would change.
@@ -77,12 +78,15 @@ def all_cases():
 
 # ---------------------------------------------------------------------------------------------------- running
 
-def run_case(case, e, exe, out, tier, extra_sets, log):
-    """Runs every run of the case and every plot; returns {run: out_dir}, {plot: metrics}, {run: wall seconds}."""
+def run_case(case, e, exe, out, tier, extra_sets, log, only=None):
+    """Runs every run of the case (those named in `only`, when given) and every plot of them; returns
+    {run: out_dir}, {plot: metrics}, {run: wall seconds}."""
     dirs, walls = {}, {}
     for name, r in e["runs"].items():
         if tier and r.get("tier", True) is False:
             log("  run %-10s skipped (not in the tier)" % name)
+            continue
+        if only is not None and name not in only:
             continue
         d = os.path.join(out, name)
         os.makedirs(os.path.dirname(d), exist_ok=True)
@@ -239,6 +243,9 @@ def cmd_check(args):
 def cmd_update(args):
     for case in args.cases:
         e = load(case)
+        unknown = [r for r in (args.runs or []) if r not in e["runs"]]
+        if unknown:
+            raise ClaimsError("%s: --runs: no run named %s" % (case, ", ".join(unknown)))
         reduced = e.get("tier", {}).get("size", "full") != "full"
         modes = [] if args.tier_only else [False]
         if reduced:
@@ -246,8 +253,10 @@ def cmd_update(args):
         for tier in modes:
             print("%s: %s" % (case, "tier size" if tier else "full size"))
             dirs, metrics, walls = run_case(case, e, args.exe, os.path.join(args.out, case + ("_tier" if tier else "")),
-                                            tier, [], print)
+                                            tier, [], print, args.runs)
             for q in e["quantities"]:
+                if args.runs and skipped(q, e, dirs, metrics):
+                    continue  # from a run not re-run: its recorded value stays
                 if tier and skipped(q, e, dirs, metrics):
                     q.pop("tier_value", None)  # its run is not in the tier
                     continue
@@ -256,7 +265,8 @@ def cmd_update(args):
                 print("  %-28s %s" % (q["name"], fmt(q, v)))
             if not tier:
                 for name, r in e["runs"].items():
-                    r["cpu_time"] = round(walls[name], 1)
+                    if name in walls:
+                        r["cpu_time"] = round(walls[name], 1)
         save_expected(case, e)
     return 0
 
@@ -417,6 +427,7 @@ def main():
             s.add_argument("--set", action="append", default=[])
         else:
             s.add_argument("--tier-only", action="store_true")
+            s.add_argument("--runs", nargs="+", metavar="RUN")
     t = sub.add_parser("tables")
     t.add_argument("--check", action="store_true")
     sub.add_parser("list")

@@ -150,7 +150,10 @@ const KeyTable kFractionalStepKeys(
                  {"linear_solver", Json{{"type", "auto"}}, linear_solver_doc(kFractionalStepDirect)},
                  {"inverted_elements", "retry",
                   "A step in which an element turns over: retry (with dt / 2) or remesh (kept, left to the next "
-                  "remesh)."}}));
+                  "remesh)."},
+                 {"mass", "lumped",
+                  "The predictor's mass matrix: lumped or consistent (in the elements off the free surface; not with "
+                  "a distributed linear solver)."}}));
 
 const KeyTable kTauAutomaticKeys("/bodies/*/scheme/tau (fluid body, type automatic)",
                                  "PSPG parameter from the element size, the time step and the viscosity.",
@@ -335,7 +338,8 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
     ls.auto_threshold = kPspgKrylovFrom;
     ps.solver = mpi_run::distribute(read_linear_solver(s, "linear_solver", ls, kPspgDirect));
   } else {
-    // Fractional step: lumped mass, Dirichlet free-surface pressure, symmetric positive definite solves.
+    // Fractional step: lumped or consistent mass, Dirichlet free-surface pressure, symmetric positive definite
+    // solves.
     fs.viscous_step = s.choice("viscous_step", {"automatic", "explicit", "implicit"});
     LinearSolverSettings ls;
     ls.kind = SystemKind::symmetric_positive_definite;
@@ -344,6 +348,13 @@ bool FluidModel::read_scheme(Params s, const FluidDefaults& d, RemeshPipeline::S
     ls.auto_threshold = kFractionalStepKrylovFrom;
     fs.solver = mpi_run::distribute(read_linear_solver(s, "linear_solver", ls, kFractionalStepDirect));
     fs.retry_inverted = s.choice("inverted_elements", {"retry", "remesh"}) == "retry";
+    fs.consistent_mass = s.choice("mass", {"lumped", "consistent"}) == "consistent";
+    // The consistent mass's solves are the process's own (the whole matrix on each process); under a distributed
+    // solver each process holds only the elements of its rows.
+    if (fs.consistent_mass && fs.solver.distributed)
+      s.fail("mass",
+             "\"consistent\" with the fractional step needs the whole mesh on each process: one process or a "
+             "direct \"linear_solver\"");
     // The conservative detections keep the area where the topology does not change, so the steps must keep it
     // too (fractional_step.cpp); the alpha shape re-detects the domain and corrects its area at every remesh.
     fs.exact_area_rate = rs.detection != meshing::DomainDetection::Alpha;

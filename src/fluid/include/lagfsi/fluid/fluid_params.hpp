@@ -69,6 +69,7 @@ struct FractionalStepSettings {
                                  // implicit viscous predictor's is the same with kind mass_dominated
   bool retry_inverted = true;    // an element inverted within the step fails it (retry)
   bool exact_area_rate = false;  // the pressure equation holds each element's exact area rate (advected, level set)
+  bool consistent_mass = false;  // the predictor with the consistent mass matrix off the free surface ("mass")
 };
 
 }  // namespace lagfsi::fluid

@@ -20,14 +20,11 @@
 //
 // With "mass": "consistent" the predictor's m_a becomes the consistent P1 mass matrix, M_ab = sum_e rho A_e
 // (1 + delta_ab) / 12, in the elements inside the water (assemble_mass says which keep the lumped mass, rho A_e / 3
-// on the diagonal), one scalar matrix for both components solved by
-// conjugate gradients with its diagonal as preconditioner (M is spectrally equivalent to it: a few tens of
-// iterations whatever the mesh). Its rows sum to the lumped masses, so gravity m_a g is M g and the hydrostatic
-// state stays a fixed point. The correction keeps the lumped mass (the pressure equation's Laplacian stands for
-// D M^-1 G with it; a consistent correction alone gave nothing: 0.88 against the lumped scheme's 0.90 below, at
-// h = L/20). The lumped predictor smooths the pressure's force over each particle's
-// elements; in cases/taylor_green_box (a vortex whose exact decay is known, in a box of slip walls whose
-// particles keep the lumped mass) it loses 1.8 (h = L/20) and 1.3 (L/10) times more energy than the consistent one.
+// on the diagonal): one scalar matrix for both components, solved by conjugate gradients with its diagonal as
+// preconditioner (M is spectrally equivalent to it: the iterations do not grow with the mesh). Its rows sum to the
+// lumped masses, so gravity m_a g is M g and the hydrostatic state stays a fixed point. The correction keeps the
+// lumped mass, for which the pressure equation's Laplacian stands in for D M^-1 G. The lumped predictor smooths the
+// pressure's force over each particle's elements, which damps resolved vortices (docs/decisions/0021).
 //
 // The hydrostatic state is a fixed point: with u = 0 and p linear in depth, pbar terms balance m g exactly
 // at every particle (one-point quadrature of the linear p is exact and the mass is lumped), so div u* = 0
@@ -244,10 +241,9 @@ void FractionalStep::assemble_mass(const Work& wk) {
   const std::vector<char>& fixed = f_.step.fixed;
   // The elements with a particle whose pressure is prescribed (the free surface, an outlet: p = 0) or that slides on a
   // wall as a constraint keep the lumped mass (their rows still sum to the particles' masses); wall and ghost
-  // particles do not (a channel's wake is made at its walls). With the consistent mass at the free surface too, the
-  // dam break of cases/dam_break_tank gained energy in its splash (the kinetic energy four times the lumped run's
-  // peak) until an element turned over at 0.58 s; at the particles sliding on its walls (the fractional step's
-  // conservative settings), its water drifted 6.5 % after the splash (0.6 % lumped).
+  // particles do not (a channel's wake is made at its walls). With the consistent mass at the free surface, a dam
+  // break's splash gained energy until an element turned over; at the particles sliding on its walls, its water
+  // drifted (docs/decisions/0021).
   const std::vector<ParticleKind>& kind = f_.cloud.kind();
   const auto inside = [&](Index i) {
     const bool sliding = kind[i] == ParticleKind::Fluid && (wk.vfixed[2 * i] || wk.vfixed[2 * i + 1] ||

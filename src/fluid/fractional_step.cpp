@@ -32,6 +32,7 @@
 // predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton
 // iterations on (x, y, p) (pspg_scheme.cpp).
 #include "fluid_scheme.hpp"
+#include "masked_cg.hpp"
 
 #include <lagfsi/assembly.hpp>
 #include <lagfsi/linear_solver_input.hpp>
@@ -147,9 +148,6 @@ class FractionalStep final : public FluidScheme {
   void assemble_mass(const Work& wk);
   /// The mass times d (2 np, both components): m_a d_a lumped, M d consistent.
   Vec mass_times(const Work& wk, const Vec& d, bool consistent) const;
-  /// Component c of (M + diag(k)) y = b in the rows of the components that are not prescribed (wk.vfixed), the
-  /// prescribed y given (the consistent mass; conjugate gradients with M's diagonal as preconditioner).
-  void solve_mass(const Work& wk, int c, const Vec& k, const Vec& b, Vec& y) const;
   /// The viscous predictor is implicit (the automatic choice: when the explicit one would exceed its
   /// stability limit dt <= rho h_min^2 / (8 mu), h_min = 0.3 h).
   bool viscous_implicit() const;
@@ -279,43 +277,6 @@ Vec FractionalStep::mass_times(const Work& wk, const Vec& d, bool consistent) co
   return out;
 }
 
-void FractionalStep::solve_mass(const Work& wk, int c, const Vec& k, const Vec& b, Vec& y) const {
-  const Index np = f_.cloud.n();
-  const auto free = [&](Index i) { return wk.vfixed[2 * i + c] == 0; };
-  const auto apply = [&](const Vec& z) {  // (M + diag(k)) z in the free rows, 0 in the prescribed ones
-    Vec r = mass_ * z + k.cwiseProduct(z);
-    for (Index i = 0; i < np; ++i)
-      if (!free(i)) r[i] = 0.0;
-    return r;
-  };
-  Vec diag = mass_.diagonal() + k;
-  for (Index i = 0; i < np; ++i)
-    if (!(diag[i] > 0)) diag[i] = 1.0;  // a particle in no element (prescribed)
-  Vec r = b - apply(y);
-  for (Index i = 0; i < np; ++i)
-    if (!free(i)) r[i] = 0.0;
-  const double b_norm = std::sqrt([&] {
-    double n = 0;
-    for (Index i = 0; i < np; ++i)
-      if (free(i)) n += b[i] * b[i];
-    return n;
-  }());
-  Vec z = r.cwiseQuotient(diag), p = z;
-  double rz = r.dot(z);
-  // M is spectrally equivalent to its diagonal (the eigenvalues of diag(M)^-1 M of a P1 mesh lie in [1/2, 2]):
-  // the iterations do not grow with the mesh.
-  for (int it = 0; it < 500 && r.norm() > 1e-13 * std::max(b_norm, 1e-300); ++it) {
-    const Vec q = apply(p);
-    const double alpha = rz / p.dot(q);
-    y += alpha * p;
-    r -= alpha * q;
-    z = r.cwiseQuotient(diag);
-    const double rz_new = r.dot(z);
-    p = z + (rz_new / rz) * p;
-    rz = rz_new;
-  }
-}
-
 void FractionalStep::prescribe_velocities(Work& wk) {
   const Index np = f_.cloud.n();
   const double dt = f_.step.dt;
@@ -402,15 +363,17 @@ void FractionalStep::predict_velocities(Work& wk) {
   if (!wk.implicit && s_.consistent_mass) {
     // Per component c: (M / dt + k) u*_c = M u^n_c / dt + f_c + k v_wall, the prescribed components given.
     t0 = SteadyClock::now();
-    const Vec Mv = mass_times(wk, v, s_.consistent_mass);
+    const Vec Mv = mass_times(wk, v, true);
     for (int c = 0; c < 2; ++c) {
       Vec k(np), rhs(np), y(np);
+      std::vector<char> prescribed(static_cast<size_t>(np));
       for (Index i = 0; i < np; ++i) {
         k[i] = dt * wk.friction[2 * i + c];
         rhs[i] = Mv[2 * i + c] + dt * (wk.force[2 * i + c] + wk.friction_force[2 * i + c]);
         y[i] = wk.ustar[2 * i + c];
+        prescribed[static_cast<size_t>(i)] = wk.vfixed[2 * i + c];
       }
-      solve_mass(wk, c, k, rhs, y);
+      masked_jacobi_cg(mass_, k, prescribed, rhs, y);
       for (Index i = 0; i < np; ++i) wk.ustar[2 * i + c] = y[i];
     }
     f_.times.solve += seconds_since(t0);
@@ -427,6 +390,7 @@ void FractionalStep::predict_velocities(Work& wk) {
     // prescribed components eliminated (symmetric positive definite), the wall friction k on the diagonal
     // of its component. Both components share the matrix unless a wall constrains one component only
     // (slip walls, a fixed mesh's or the constraints') or a friction acts on one, then each gets its own.
+    const Vec Mv = mass_times(wk, v, s_.consistent_mass);  // M u^n (lumped: m_a u^n_a)
     bool same = true;
     for (Index i = 0; i < np && same; ++i)
       same = wk.vfixed[2 * i] == wk.vfixed[2 * i + 1] && wk.friction[2 * i] == wk.friction[2 * i + 1];
@@ -459,7 +423,6 @@ void FractionalStep::predict_velocities(Work& wk) {
       for (Index i = 0; i < np; ++i)
         if (wk.vfixed[2 * i + c]) known[i] = wk.ustar[2 * i + c];
       const Vec moved = viscous_stiffness_ * known;
-      const Vec Mv = mass_times(wk, v, s_.consistent_mass);
       for (Index i = 0; i < np; ++i)
         rhs[i] = wk.vfixed[2 * i + c]
                      ? wk.ustar[2 * i + c]

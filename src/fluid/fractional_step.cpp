@@ -31,7 +31,9 @@
 // and dp = 0. A step costs one CHOLMOD factorization of a scalar Laplacian (and, with the implicit viscous
 // predictor, one more of a scalar matrix of the same pattern) instead of the monolithic scheme's Newton
 // iterations on (x, y, p) (pspg_scheme.cpp).
+#include "element_loop.hpp"
 #include "fluid_scheme.hpp"
+#include "fractional_step_reactions.hpp"
 #include "masked_cg.hpp"
 
 #include <lagfsi/assembly.hpp>
@@ -51,23 +53,6 @@
 namespace lagfsi::fluid {
 
 namespace {
-constexpr Index kParallelElements = 2000;
-
-/// Runs body(e, out) for every element, in parallel above a size where threads pay: the body adds into
-/// out[k], the calling thread's array for targets[k] (ThreadScatter: the sums are the same in every run with the
-/// same number of threads, and on one thread those of the serial loop).
-template <class Body>
-void element_loop(Index ne, ThreadScatter& scatter, std::vector<std::span<double>> targets, const Body& body) {
-  scatter.targets(std::move(targets));
-#pragma omp parallel if (ne >= kParallelElements)
-  {
-    const std::span<double* const> out = scatter.arrays();
-#pragma omp for schedule(static) nowait
-    for (Index e = 0; e < ne; ++e) body(e, out);
-  }
-  scatter.merge();
-}
-
 /// Rows and columns of the prescribed unknowns (fixed(i)) become those of the identity; `diag(i)` is added to
 /// the diagonal of the others.
 template <class Fixed, class Diag>
@@ -442,9 +427,8 @@ void FractionalStep::pressure_increment(Work& wk) {
   const double dt = f_.step.dt;
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
   const std::vector<char>& fixed = f_.step.fixed;
-  auto t0 = SteadyClock::now();
   // 2. Pressure increment (the matrix, like the viscous one, only once per step's mesh).
-  t0 = SteadyClock::now();
+  auto t0 = SteadyClock::now();
   const bool assemble = !step_factorized_;
   double* lv = poisson_.valuePtr();
   if (assemble) std::fill(lv, lv + poisson_.nonZeros(), 0.0);
@@ -508,10 +492,8 @@ void FractionalStep::correct(Work& wk) {
   const Vec& v = f_.cloud.v();
   const std::vector<std::array<Index, 3>>& tri = f_.mesh.tri;
   Vec& pres = f_.cloud.p();
-  Vec& ghost_force = f_.ghosts.forces();
-  auto t0 = SteadyClock::now();
-  // 3. Correction and new positions.
-  t0 = SteadyClock::now();
+  // 3. Correction, and the forces of the prescribed particles.
+  const auto t0 = SteadyClock::now();
   v_new_ = wk.ustar;
   wk.du = Vec::Zero(2 * np);
   element_loop(ne, scatter_, {values_of(wk.du)}, [&](Index e, std::span<double* const> out) {
@@ -527,66 +509,13 @@ void FractionalStep::correct(Work& wk) {
   for (Index k = 0; k < 2 * np; ++k)
     if (!wk.vfixed[k]) v_new_[k] += dt * wk.du[k] / wk.mass[k / 2];
   pres += wk.dp;
-  // The inertia of the step in the reactions of the prescribed particles below: m_a (u^{n+1} - u^n)_a / dt, or with
-  // the consistent mass (M (u* - u^n) + m (u^{n+1} - u*))_a / dt, the predictor's mass and the correction's.
+  // The step's inertia in the reactions of the prescribed particles (fractional_step_reactions.hpp):
+  // m_a (u^{n+1} - u^n)_a / dt, or with the consistent mass (M (u* - u^n) + m (u^{n+1} - u*))_a / dt, the
+  // predictor's mass and the correction's.
   const Vec inertia = s_.consistent_mass
                           ? Vec((mass_times(wk, wk.ustar - v, true) + mass_times(wk, v_new_ - wk.ustar, false)) / dt)
                           : Vec(mass_times(wk, v_new_ - v, false) / dt);
-  // The implicit viscous predictor's K u* in the rows of the particles `wanted` selects (ghost, wall and
-  // constrained particles: the forces they apply), K_ab = sum_e mu A grad N_a . grad N_b over the viscous
-  // elements; zero with the explicit predictor, whose viscous term is in `force`.
-  auto viscous_rows = [&](auto wanted) {
-    Vec Ku = Vec::Zero(2 * np);
-    if (!wk.implicit) return Ku;
-    for (Index e = 0; e < ne; ++e) {
-      const auto& t = tri[e];
-      if (f_.boundaries.inviscid(t) || !(wanted(t[0]) || wanted(t[1]) || wanted(t[2]))) continue;
-      for (int a = 0; a < 3; ++a)
-        if (wanted(t[a]))
-          for (int b = 0; b < 3; ++b)
-            Ku.segment<2>(2 * t[a]) +=
-                f_.c.mu * wk.area[e] * wk.grad[e][a].dot(wk.grad[e][b]) * wk.ustar.segment<2>(2 * t[b]);
-    }
-    return Ku;
-  };
-  if (f_.ghosts.count() > 0) {
-    // Forces on the ghost particles: what the structure must apply to give them the prescribed velocity,
-    // F = m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor), sign flipped.
-    const Vec Ku = viscous_rows([&](Index i) { return f_.ghosts.is_ghost(i); });
-    for (size_t gi = 0; gi < f_.ghosts.count(); ++gi) {
-      const Index i = f_.ghosts.index(gi);
-      if (f_.ghosts.merged(gi)) {
-        ghost_force.segment<2>(2 * gi).setZero();
-        continue;
-      }
-      ghost_force.segment<2>(2 * gi) =
-          wk.force.segment<2>(2 * i) + wk.du.segment<2>(2 * i) - Ku.segment<2>(2 * i) - inertia.segment<2>(2 * i);
-    }
-  }
-  if (f_.step.energy) {
-    // The force each wall or ghost particle applies to the fluid (the boundary work of the energy balance):
-    // m (u^{n+1} - u^n)/dt - f - du (+ K u* with the implicit viscous predictor).
-    const Index nb = f_.cloud.n_boundary_particles();
-    const Vec Ku = viscous_rows([&](Index i) { return i < nb; });
-    Vec& boundary_force = f_.step.boundary_force;
-    boundary_force.resize(2 * nb);
-    for (Index i = 0; i < nb; ++i)
-      boundary_force.segment<2>(2 * i) =
-          inertia.segment<2>(2 * i) - wk.force.segment<2>(2 * i) - wk.du.segment<2>(2 * i) + Ku.segment<2>(2 * i);
-  }
-  if (!f_.boundaries.constraints().empty()) {
-    // The same for the constrained components of the particles on walls (the energy balance, and whether the
-    // wall pushes or pulls: WallContacts::release_pulled).
-    const auto& ks = f_.boundaries.constraints();
-    Vec& kf = f_.step.constraint_force;
-    kf.resize(static_cast<Index>(ks.size()));
-    std::vector<char> on_wall = f_.boundaries.on_wall(np);
-    const Vec Kw = viscous_rows([&](Index i) { return on_wall[i] != 0; });
-    for (size_t k = 0; k < ks.size(); ++k) {
-      const Index j = 2 * ks[k].i + ks[k].c;
-      kf[static_cast<Index>(k)] = inertia[j] - wk.force[j] - wk.du[j] + Kw[j];
-    }
-  }
+  write_prescribed_reactions(f_, {wk.area, wk.grad, wk.ustar, wk.force, wk.du, inertia, wk.implicit});
   f_.times.assembly += seconds_since(t0);
 }
 
@@ -621,16 +550,12 @@ IterationReport FractionalStep::move_and_check(Work& wk) {
                         std::to_string((x_new.segment<2>(2 * i) - x.segment<2>(2 * i)).norm() / f_.cloud.h(i)) +
                         " spacings in the step at t = " + std::to_string(f_.step.t_new));
 
-  // An element turned inside out within the step: a particle crossed the opposite side of its element
-  // (a neighbour at an impact, a wall). With "inverted_elements": "retry" (the default) the step is
-  // rejected and the driver retries it with half the time step: the flow there was not resolved. With
-  // "remesh" the step is kept: the next remesh rebuilds the elements from the particles, and a particle
-  // that went through a wall is put back by keep_inside_walls. Which pays depends on the case:
-  // elastic_obstacle_walhorn retried 184 of 1085 steps (19.7 s, 4.78 FSI iterations a coupled step) and
-  // keeping them gives 14.5 s, 4.09, the same area and a tip history closer to the reference; the rubber
-  // gate of elastic_gate_antoci, whose opening is a few particles wide, moves 2-3 % away from the
-  // experiment. An element in which a structure's boundary slides past another prescribed particle (a
-  // gate's tip over the floor) is never a failure: no time step resolves that, and remeshing removes it.
+  // An element turned inside out within the step: a particle crossed the opposite side of its element (a
+  // neighbour at an impact, a wall). "retry" (the default) rejects the step, which the driver retries with half the
+  // time step; "remesh" keeps it and the next remesh rebuilds the elements (keep_inside_walls puts back a particle
+  // that went through a wall); docs/fluid_settings.md says which cases pay. An element in which a structure's
+  // boundary slides past another prescribed particle (a gate's tip over the floor) is never a failure: no time step
+  // resolves that, and remeshing removes it.
   inverted_in_step_ = 0;
   for (Index e = 0; e < ne; ++e)
     if (!(f_.mesh.element_area(x_new, e) > 0) && !f_.ghosts.moving_boundary_pair(tri[e], kind)) {

@@ -21,7 +21,8 @@
 ///  - energies: kinetic, potential, gravity work, dissipation, boundary work   fluid_energy.hpp, .cpp
 ///  - the pressure level of incompressible water no boundary sets        pressure_level.hpp, .cpp
 ///  - the schemes, chosen once per body (fluid_scheme.hpp): monolithic PSPG (pspg_scheme.cpp), fractional
-///    step (fractional_step.cpp); the element kernel                     fluid_element.cpp (fluid_element.hpp)
+///    step (fractional_step.cpp; its prescribed particles' forces fractional_step_reactions.hpp, .cpp, its
+///    consistent mass's solver masked_cg.hpp, .cpp); the element kernel fluid_element.cpp (fluid_element.hpp)
 ///  - reading the body from the case                                     fluid_input.cpp, point_grid.hpp
 ///  - probes                                                             fluid_probes.hpp, fluid_probes.cpp
 ///  - the PhysicsModel lifecycle (the model over its pieces)            fluid_model_impl.hpp, fluid_model.cpp
